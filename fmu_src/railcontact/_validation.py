@@ -1,0 +1,79 @@
+"""One range-check helper for every public function of :mod:`railcontact`.
+
+Every public function validates its inputs through :func:`check_range`, so the error messages
+have one form::
+
+    poisson_ratio must be in [0, 0.5) [-]; got 0.6
+
+The message names the parameter, its allowed range, its unit and the (first) offending value.
+NaN and inf are always rejected.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["check_range", "check_choice"]
+
+
+def _fmt(value) -> str:
+    return f"{value:g}" if isinstance(value, (int, float, np.floating, np.integer)) else str(value)
+
+
+def check_range(name, value, unit, lower=None, upper=None, *, lower_closed=True,
+                upper_closed=True, condition=None):
+    """Return ``value`` as a float ndarray after checking it lies in a range.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name as the user passed it (snake_case API name).
+    value : array_like
+        Value(s) to check.
+    unit : str
+        Unit shown in the message, e.g. ``"N"``, ``"-"``, ``"1/m"``.
+    lower, upper : float or None
+        Bounds; ``None`` means unbounded on that side.
+    lower_closed, upper_closed : bool
+        Whether the bound itself is allowed.
+    condition : str, optional
+        Name of the validity condition of an approximation (e.g. ``"Eq. (4.2): no loss of
+        contact"``), appended to the message.
+
+    Returns
+    -------
+    ndarray
+        ``np.asarray(value, dtype=float)``.
+
+    Raises
+    ------
+    ValueError
+        ``"<name> must be in <range> [<unit>]; got <value>"`` for the first offending element,
+        including NaN and inf.
+    """
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a real number [{unit}]; got {value!r}") from exc
+    ok = np.isfinite(arr)
+    if lower is not None:
+        ok &= (arr >= lower) if lower_closed else (arr > lower)
+    if upper is not None:
+        ok &= (arr <= upper) if upper_closed else (arr < upper)
+    if not np.all(ok):
+        bad = arr[~ok].ravel()[0] if arr.ndim else arr.item()
+        lo = "-inf" if lower is None else _fmt(lower)
+        hi = "inf" if upper is None else _fmt(upper)
+        interval = (("[" if lower_closed and lower is not None else "(") + f"{lo}, {hi}"
+                    + ("]" if upper_closed and upper is not None else ")"))
+        count = "" if arr.ndim == 0 else f" ({int(np.count_nonzero(~ok))} of {arr.size} values)"
+        extra = f" ({condition})" if condition else ""
+        raise ValueError(f"{name} must be in {interval} [{unit}]{extra}; got {_fmt(bad)}{count}")
+    return arr
+
+
+def check_choice(name, value, choices):
+    """Return ``value`` if it is one of ``choices``, else raise ``ValueError`` naming them."""
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {sorted(choices)}; got {value!r}")
+    return value
