@@ -1,0 +1,705 @@
+r"""Discretised 2-D elastic half-space solver (plane strain): the project's "exact theory" in 2-D.
+
+Normal contact (frictionless / quasi-identical, Nielsen Sec. 2.3.2, Eqs. (2.3)-(2.8)) and steady
+rolling tangential contact (Sec. 2.3.3, Eqs. (2.18), (2.20)-(2.22)) of two elastic bodies with the
+same Young's modulus ``E`` and Poisson ratio ``nu`` (quasi-identical, so the normal and tangential
+problems decouple). Loads are per unit length [N/m]; traction and pressure in [Pa].
+
+Discretisation
+--------------
+The potential contact ``[x_min, x_max]`` is cut into ``n`` equal elements of width ``dx`` carrying
+a piecewise-constant pressure ``p_j`` and traction ``q_j``. Displacements are evaluated at the
+element centres with the *exact* element integrals of the 2-D kernels of Appendix C
+(Eqs. (C.1)-(C.2); Johnson, Contact Mechanics, Eq. (2.19)),
+
+.. math::
+
+    u(x) = -K \int p(\zeta)\,\ln\frac{|x-\zeta|}{L}\,d\zeta, \qquad K = \frac{4(1-\nu^2)}{\pi E},
+
+for both bodies together (``u = u_1 - u_2``). The element integral is
+``L [F((x - lo)/L) - F((x - hi)/L)]`` with ``F(t) = t ln|t| - t``. The derivative ``du/dx`` (the
+Cauchy kernel ``1/(x - zeta)`` of (C.3)-(C.4)) is used in its exact element-averaged form, i.e. as a
+difference of exact element displacements (Kalker's discretisation of steady rolling, also used by
+CONTACT).
+
+Conventions (read these before comparing with a closed form)
+-------------------------------------------------------------
+* **Rolling direction.** The bodies move in ``-x`` relative to the contact: material enters at the
+  leading edge ``x = +a`` and leaves at ``x = -a``. The slip is then
+  ``s(x) = xi - du_x/dx`` with ``u_x = u_x1 - u_x2`` of the wheel (body 1) relative to the rail.
+  The thesis (2.18) writes ``s = xi + du_x/dx``; that form belongs to the mirrored orientation
+  (leading edge at ``-a``, as in its (2.55)-(2.56), where the stick zone starts at ``-a0``). With
+  ``x -> -x`` both agree. Carter's stick zone is therefore ``[a - 2 a*, a]`` here (leading edge).
+* **Sign of traction.** ``traction`` is the tangential stress *acting on the wheel* (body 1), the
+  package convention (same as CONTACT): it opposes the slip, ``q s <= 0``, and the total force
+  ``T = sum(q) dx`` opposes the creepage (``T > 0`` for ``xi < 0``; Carter ``T = mu N (1 - (a*/a)^2)``).
+* **Approach.** In 2-D the rigid approach is defined only up to the datum of the log kernel
+  (Nielsen, text after (2.35)). Here ``approach = h(x) + u_z(x)`` in the contact with the kernel
+  ``ln(|x - zeta| / L)``, ``L = reference_length`` (default 1 m, i.e. (C.1) with ``C1 = 0`` in SI).
+  For Hertz this gives ``delta = K N (1/2 - ln(a0 / (2 L)))``. Changing ``L`` adds
+  ``K N ln(L'/L)``. CONTACT's 2-D cases (a strip of length ``DY`` with the 3-D kernel) correspond
+  to ``L = DY`` up to ``O((a/DY)^2)``.
+
+References
+----------
+.. [1] J.B. Nielsen, New Developments in the Theory of Wheel/Rail Contact Mechanics,
+   IMM-PHD-1998-51, DTU, 1998, Secs. 2.3-2.4 and Appendix C.
+.. [2] K.L. Johnson, Contact Mechanics, Cambridge University Press, 1985, Secs. 2.2, 5.2, 8.2.
+.. [3] J.J. Kalker, Three-Dimensional Elastic Bodies in Rolling Contact, Kluwer, 1990, Ch. 2
+   (discretised steady rolling; algorithms NORM and TANG).
+.. [4] F.W. Carter, On the action of a locomotive driving wheel, Proc. R. Soc. A 112 (1926) 151-157.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validation import check_range
+
+__all__ = [
+    "NormalContact2D",
+    "RollingContact2D",
+    "solve_normal_2d",
+    "solve_rolling_2d",
+    "log_influence_matrix",
+    "combined_compliance",
+]
+
+
+# ---------------------------------------------------------------------------------------------
+# kernels
+# ---------------------------------------------------------------------------------------------
+def combined_compliance(youngs_modulus, poisson_ratio):
+    r"""Kernel factor ``K = 4 (1 - nu^2) / (pi E)`` of (C.1)-(C.4) for two identical bodies.
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus of both bodies, > 0. [Pa]
+    poisson_ratio : float
+        Poisson's ratio of both bodies, in [0, 0.5). [-]
+
+    Returns
+    -------
+    float
+        ``K``. [1/Pa]
+    """
+    e = check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False)
+    return float(4.0 * (1.0 - nu**2) / (np.pi * e))
+
+
+def _f_log(t):
+    """Antiderivative ``t ln|t| - t`` of ``ln|t|`` (0 at t = 0)."""
+    t = np.asarray(t, dtype=float)
+    at = np.abs(t)
+    return t * np.log(np.where(at > 0.0, at, 1.0)) - t
+
+
+def log_influence_matrix(x_obs, element_lo, element_hi, reference_length=1.0):
+    r"""Exact element integrals ``-int_lo^hi ln(|x - zeta| / L) d zeta`` of the 2-D log kernel.
+
+    ``u = K @ (matrix @ p)`` is the displacement (C.1)/(C.2) at ``x_obs`` due to piecewise-constant
+    loads ``p_j`` on ``[element_lo_j, element_hi_j]``.
+
+    Parameters
+    ----------
+    x_obs : array_like, shape (m,)
+        Observation points. [m]
+    element_lo, element_hi : array_like, shape (n,)
+        Element edges. [m]
+    reference_length : float
+        Datum length ``L`` of the log kernel. [m]
+
+    Returns
+    -------
+    ndarray, shape (m, n)
+        Influence coefficients. [m]
+    """
+    x = np.asarray(x_obs, dtype=float)[:, None]
+    lo = np.asarray(element_lo, dtype=float)[None, :]
+    hi = np.asarray(element_hi, dtype=float)[None, :]
+    ell = float(reference_length)
+    return -ell * (_f_log((x - lo) / ell) - _f_log((x - hi) / ell))
+
+
+# ---------------------------------------------------------------------------------------------
+# results
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class NormalContact2D:
+    """Result of :func:`solve_normal_2d` (all SI).
+
+    Attributes
+    ----------
+    x : ndarray
+        Element centres. [m]
+    element_width : float
+        Element width. [m]
+    pressure : ndarray
+        Element pressures, >= 0. [Pa]
+    gap : ndarray
+        Undeformed separation ``h`` at the centres. [m]
+    deformed_gap : ndarray
+        ``h + u_z - approach`` at the centres: 0 in contact, >= 0 outside. [m]
+    displacement : ndarray
+        ``u_z`` (both bodies, datum ``reference_length``). [m]
+    contact_mask : ndarray of bool
+        Elements with ``pressure > 0``.
+    contact_start, contact_end : float
+        Outermost contact edges (``p**2`` extrapolated linearly to 0 from the loaded elements
+        next to the edge: exact for a square-root edge; see ``_edge``). [m]
+    zones : list of (float, float)
+        ``(start, end)`` of every separate contact zone (same edge estimate). [m]
+    approach : float
+        Rigid approach ``delta`` of (2.3) in the datum of ``reference_length``. [m]
+    normal_load : float
+        ``sum(pressure) * element_width`` (equals the load asked for). [N/m]
+    reference_length : float
+        Datum of the log kernel. [m]
+    iterations : int
+        Active-set iterations used.
+    """
+
+    x: np.ndarray
+    element_width: float
+    pressure: np.ndarray
+    gap: np.ndarray
+    deformed_gap: np.ndarray
+    displacement: np.ndarray
+    contact_mask: np.ndarray
+    contact_start: float
+    contact_end: float
+    zones: list
+    approach: float
+    normal_load: float
+    reference_length: float
+    iterations: int
+    youngs_modulus: float = field(default=np.nan)
+    poisson_ratio: float = field(default=np.nan)
+
+
+@dataclass(frozen=True)
+class RollingContact2D:
+    """Result of :func:`solve_rolling_2d` (all SI).
+
+    Attributes
+    ----------
+    x : ndarray
+        Element centres. [m]
+    element_width : float
+        [m]
+    pressure : ndarray
+        Input pressure. [Pa]
+    traction : ndarray
+        Tangential stress on the wheel, opposing the slip. [Pa]
+    slip : ndarray
+        Dimensionless slip ``s = xi - du_x/dx`` per element (0 in stick, 0 outside contact). [-]
+    stick : ndarray of bool
+        Stick elements (``s = 0``, ``|q| <= mu p``).
+    contact_mask : ndarray of bool
+        ``pressure > 0``.
+    creepage : float
+        Longitudinal creepage ``xi``. [-]
+    tangential_force : float
+        ``sum(traction) dx`` on the wheel; opposes the creepage. [N/m]
+    normal_load : float
+        ``sum(pressure) dx``. [N/m]
+    stick_start, stick_end : float
+        Extent of the stick region: from the first to the last stick element, each limit refined
+        inside one element (``s**2`` extrapolated to 0 next to a slip zone, ``p**2`` at a contact
+        edge; see ``_stick_limit``); ``nan`` if full slip. Several stick regions (possible with
+        non-Hertzian pressure or falling friction) are spanned as one. [m]
+    friction_bound : ndarray
+        ``mu(|s|) p`` used for every element. [Pa]
+    iterations : int
+        Iterations used (active-set, or outer friction iterations for a callable law).
+    """
+
+    x: np.ndarray
+    element_width: float
+    pressure: np.ndarray
+    traction: np.ndarray
+    slip: np.ndarray
+    stick: np.ndarray
+    contact_mask: np.ndarray
+    creepage: float
+    tangential_force: float
+    normal_load: float
+    stick_start: float
+    stick_end: float
+    friction_bound: np.ndarray
+    iterations: int
+
+
+# ---------------------------------------------------------------------------------------------
+# normal problem
+# ---------------------------------------------------------------------------------------------
+def _zone_edges(x, dx, pressure, mask):
+    """Start/end of each run of ``mask``; edge from p**2 extrapolation, clipped to one element."""
+    idx = np.flatnonzero(mask)
+    if idx.size == 0:
+        return []
+    breaks = np.flatnonzero(np.diff(idx) > 1)
+    starts = np.concatenate([[idx[0]], idx[breaks + 1]])
+    ends = np.concatenate([idx[breaks], [idx[-1]]])
+    zones = []
+    for i0, i1 in zip(starts, ends):
+        zones.append((_edge(x, dx, pressure, i0, -1, i1 - i0 + 1),
+                      _edge(x, dx, pressure, i1, +1, i1 - i0 + 1)))
+    return zones
+
+
+def _edge(x, dx, pressure, i_out, direction, n_zone):
+    """Edge beyond the outermost loaded element ``i_out`` of a zone (``direction`` = +-1).
+
+    ``p**2`` is extrapolated linearly to zero through the two elements just inside ``i_out``
+    (the outermost element's own value is biased by the discretisation). A square-root edge
+    (smooth non-conformal contact) makes ``p**2`` linear, so the estimate is then within ~0.05
+    element widths (measured on Hertz, see the tests). Clipped to ``[-dx/2, dx]`` around the
+    centre of ``i_out``; zones of fewer than 3 elements use the element edge.
+    """
+    if n_zone < 3:
+        return float(x[i_out] + direction * 0.5 * dx)
+    i1, i2 = i_out - direction, i_out - 2 * direction
+    p21, p22 = pressure[i1] ** 2, pressure[i2] ** 2
+    if not p22 > p21:
+        return float(x[i_out] + direction * 0.5 * dx)
+    dist = dx * p21 / (p22 - p21) - dx      # distance beyond the centre of i_out
+    dist = min(max(dist, -0.5 * dx), dx)
+    return float(x[i_out] + direction * dist)
+
+
+def _stick_limit(x, dx, pressure, slip, stick, mask, i_st, direction):
+    """Limit of the stick region beyond its outermost element ``i_st`` (``direction`` = +-1).
+
+    * Stick element at a contact edge: the contact-edge estimate of ``_edge``.
+    * Slip next to it: ``s**2`` (square-root behaviour at a stick/slip boundary, (2.55)) is
+      extrapolated linearly to zero from the 2nd and 3rd slip elements, each placed at its upwind
+      point ``x + dx/2`` where the difference ``(u_{i+1} - u_i)/dx`` is centred. Measured on
+      Carter: within ~0.3 dx (edge of the element alone: up to 0.5 dx). Clipped to one element.
+    """
+    n = x.size
+    j = i_st + direction
+    if j < 0 or j >= n or not mask[j]:
+        k = i_st
+        count = 1
+        while 0 <= k - direction < n and mask[k - direction] and count < 3:
+            k -= direction
+            count += 1
+        return _edge(x, dx, pressure, i_st, direction, count)
+    j1, j2 = i_st + 2 * direction, i_st + 3 * direction
+    fallback = float(x[i_st] + direction * 0.5 * dx)
+    if not (0 <= j2 < n and all(mask[k] and not stick[k] for k in (j, j1, j2))):
+        return fallback
+    s1, s2 = slip[j1] ** 2, slip[j2] ** 2
+    if not s2 > s1:
+        return fallback
+    x1 = x[j1] + 0.5 * dx
+    est = x1 - direction * dx * s1 / (s2 - s1)
+    lo, hi = sorted((x[i_st] - direction * 0.5 * dx, x[i_st] + direction * 1.5 * dx))
+    return float(min(max(est, lo), hi))
+
+
+def _solve_eqp(a_ff, w_f, rhs_f, load):
+    """Solve [A_FF, -1; w_F^T, 0] [p_F; delta] = [rhs_F; load]."""
+    m = a_ff.shape[0]
+    mat = np.empty((m + 1, m + 1))
+    mat[:m, :m] = a_ff
+    mat[:m, m] = -1.0
+    mat[m, :m] = w_f
+    mat[m, m] = 0.0
+    sol = np.linalg.solve(mat, np.concatenate([rhs_f, [load]]))
+    return sol[:m], sol[m]
+
+
+def _normal_active_set(amat, gap, width, load, max_iter):
+    """Force-controlled frictionless contact: primal-dual active set, primal fallback.
+
+    Solves ``amat p + gap - delta >= 0``, ``p >= 0``, complementarity, ``width . p = load``.
+    ``amat`` is symmetric and positive definite on ``sum p = 0`` (log kernel), so the solution of
+    this strictly convex QP is unique.
+    """
+    n = gap.size
+    scale = 1.0 / np.mean(np.diag(amat))
+    active = np.ones(n, dtype=bool)
+    seen = set()
+    p = np.zeros(n)
+    delta = 0.0
+    for it in range(1, max_iter + 1):
+        p = np.zeros(n)
+        p[active], delta = _solve_eqp(amat[np.ix_(active, active)], np.full(active.sum(), width),
+                                      -gap[active], load)
+        g = amat @ p + gap - delta
+        new_active = (p - scale * g) > 0.0
+        if np.array_equal(new_active, active):
+            return p, delta, it
+        key = new_active.tobytes()
+        if key in seen or not new_active.any():
+            break
+        seen.add(key)
+        active = new_active
+    # fallback: primal active-set method (Nocedal & Wright, Alg. 16.3), finite, from feasible start
+    p = np.clip(p, 0.0, None)
+    total = p.sum() * width
+    p = p * (load / total) if total > 0 else np.full(n, load / (width * n))
+    free = p > 0.0
+    for it2 in range(1, 20 * n + 1):
+        pf, delta = _solve_eqp(amat[np.ix_(free, free)], np.full(free.sum(), width),
+                               -gap[free], load)
+        step_dir = np.zeros(n)
+        step_dir[free] = pf - p[free]
+        if np.max(np.abs(step_dir)) <= 1e-14 * max(np.max(np.abs(p)), 1e-300):
+            g = amat @ p + gap - delta
+            viol = np.where(free, np.inf, g)
+            j = int(np.argmin(viol))
+            if viol[j] >= -1e-14 * np.max(np.abs(gap) + 1e-300):
+                return p, delta, max_iter + it2
+            free[j] = True
+            continue
+        dec = free & (step_dir < 0.0)
+        alpha = 1.0
+        if dec.any():
+            ratios = -p[dec] / step_dir[dec]
+            k = int(np.argmin(ratios))
+            if ratios[k] < 1.0:
+                alpha = ratios[k]
+                blocking = np.flatnonzero(dec)[k]
+                p = p + alpha * step_dir
+                p[blocking] = 0.0
+                free[blocking] = False
+                continue
+        p = p + step_dir
+    raise RuntimeError("normal contact active-set solver did not converge")
+
+
+def solve_normal_2d(gap, normal_load, youngs_modulus, poisson_ratio, x_min, x_max,
+                    n_elements=400, *, reference_length=1.0, max_iter=200):
+    r"""Frictionless 2-D (plane strain) normal contact with a given load, Eqs. (2.3)-(2.8), (C.1).
+
+    Solves, on ``n_elements`` equal elements of ``[x_min, x_max]`` with piecewise-constant
+    pressure and the exact log-kernel influence coefficients, the complementarity problem
+
+    ``h_i + u_i - delta >= 0``, ``p_i >= 0``, ``p_i (h_i + u_i - delta) = 0``, ``sum p_i dx = N``
+
+    by a primal-dual active-set iteration (exact on the final contact set), with a finite primal
+    active-set method as a fallback. Any gap profile works: several zones, conformal shapes.
+
+    Parameters
+    ----------
+    gap : callable or array_like
+        Undeformed separation ``h(x)`` (2.2): a function of ``x`` [m] returning [m] (vectorised),
+        or an array of its values at the element centres. Only differences of ``h`` matter.
+    normal_load : float
+        Normal load per unit length, > 0. [N/m]
+    youngs_modulus : float
+        Young's modulus of both bodies, > 0. [Pa]
+    poisson_ratio : float
+        Poisson's ratio of both bodies, in [0, 0.5). [-]
+    x_min, x_max : float
+        Potential contact region, ``x_min < x_max``; must contain the contact. [m]
+    n_elements : int
+        Number of elements, >= 4. [-]
+    reference_length : float, optional
+        Datum ``L`` of the log kernel used for ``approach`` (module docstring), > 0. [m]
+    max_iter : int, optional
+        Maximum primal-dual active-set iterations before the fallback. [-]
+
+    Returns
+    -------
+    NormalContact2D
+
+    Raises
+    ------
+    ValueError
+        On bad input, or if the contact reaches ``x_min``/``x_max`` (domain too small).
+
+    Examples
+    --------
+    >>> r = solve_normal_2d(lambda x: x**2 / (2 * 0.5), 2e5, 2.1e11, 0.28, -2e-3, 2e-3, 200)
+    >>> round(r.contact_end * 1e3, 2)   # Hertz a0 = sqrt(8 N R (1 - nu^2) / (pi E)) = 1.06 mm
+    1.06
+    """
+    e = check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False)
+    load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
+    x_lo = float(check_range("x_min", x_min, "m"))
+    x_hi = float(check_range("x_max", x_max, "m", x_lo, None, lower_closed=False,
+                             condition="x_max > x_min"))
+    n = int(check_range("n_elements", n_elements, "-", 4, 100000))
+    if n != n_elements:
+        raise ValueError(f"n_elements must be an integer [-]; got {n_elements!r}")
+    ell = float(check_range("reference_length", reference_length, "m", 0.0, None,
+                            lower_closed=False))
+    dx = (x_hi - x_lo) / n
+    x = x_lo + dx * (np.arange(n) + 0.5)
+    h = np.asarray(gap(x) if callable(gap) else gap, dtype=float)
+    if h.shape != (n,):
+        h = np.broadcast_to(h, (n,)) if h.ndim == 0 else h
+        if h.shape != (n,):
+            raise ValueError(f"gap must be callable or have n_elements = {n} values [m]; "
+                             f"got shape {np.shape(h)}")
+    check_range("gap", h, "m")
+    kern = 4.0 * (1.0 - float(nu) ** 2) / (np.pi * float(e))
+    # internal datum 2 (x_max - x_min): the log kernel is then positive definite on the domain
+    ell_int = 2.0 * (x_hi - x_lo)
+    amat = kern * log_influence_matrix(x, x - 0.5 * dx, x + 0.5 * dx, ell_int)
+    h0 = h - h.min()
+    p, delta_int, iters = _normal_active_set(amat, h0, dx, load, max_iter)
+    p = np.where(p > 0.0, p, 0.0)
+    u_int = amat @ p
+    deformed = h0 + u_int - delta_int
+    mask = p > 0.0
+    if mask[0] or mask[-1]:
+        raise ValueError("x_min, x_max must enclose the contact [m]; the contact reaches "
+                         f"the domain edge (x_min = {x_lo:g}, x_max = {x_hi:g})")
+    # convert datum: u_L = u_int + K N ln(L/ell_int)
+    shift = kern * load * np.log(ell / ell_int)
+    u = u_int + shift
+    approach = delta_int + h.min() + shift
+    zones = _zone_edges(x, dx, p, mask)
+    return NormalContact2D(
+        x=x, element_width=dx, pressure=p, gap=h, deformed_gap=np.where(mask, 0.0, deformed),
+        displacement=u, contact_mask=mask, contact_start=zones[0][0], contact_end=zones[-1][1],
+        zones=zones, approach=float(approach), normal_load=float(p.sum() * dx),
+        reference_length=ell, iterations=iters, youngs_modulus=float(e),
+        poisson_ratio=float(nu))
+
+
+# ---------------------------------------------------------------------------------------------
+# steady rolling tangential problem
+# ---------------------------------------------------------------------------------------------
+def _slip_matrix(x, dx, kern):
+    """``M`` with ``du_x/dx`` at element ``i`` = ``-(M q)_i``, so ``s = xi + M q``.
+
+    Upwind (Kalker) difference of exact element displacements: the particle now at ``x_i`` was at
+    ``x_{i+1}`` one element-passage earlier (rolling direction: material moves towards ``-x``),
+    ``du/dx|_i = (u_{i+1} - u_i) / dx`` = exact average of the Cauchy kernel (C.4) over
+    ``[x_i, x_{i+1}]``.
+    """
+    ell = 2.0 * (x[-1] - x[0] + 2 * dx)
+    obs = np.concatenate([x, [x[-1] + dx]])
+    a = kern * log_influence_matrix(obs, x - 0.5 * dx, x + 0.5 * dx, ell)
+    return (a[:-1] - a[1:]) / dx  # -(u_{i+1} - u_i)/dx per unit q; positive diagonal
+
+
+def _rolling_active_set(mmat, bound, creepage, force, dx, max_iter):
+    """Coulomb steady rolling on the contact elements, creepage or force controlled.
+
+    Unknown ``q`` (traction on the wheel), ``s = xi + M q``; stick ``s = 0, |q| <= g``; slip
+    ``q = -g sign(s)``. ``M`` has a positive semi-definite symmetric part, so for given creepage
+    the discrete problem is a monotone variational inequality with a unique solution (the discrete
+    Carter solution). Semismooth-Newton (primal-dual active set) iteration.
+    """
+    for c_factor in (1.0, 0.1, 10.0, 0.01):
+        try:
+            return _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor)
+        except RuntimeError:
+            continue
+    raise RuntimeError("rolling active-set iteration cycled")
+
+
+def _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor):
+    m = bound.size
+    force_control = force is not None
+    q = np.zeros(m)
+    xi = 0.0 if force_control else creepage
+    stick = np.ones(m, dtype=bool)
+    sign = np.zeros(m)
+    c = c_factor / np.mean(np.diag(mmat))
+    seen = set()
+    for it in range(1, max_iter + 1):
+        st = np.flatnonzero(stick)
+        sl = np.flatnonzero(~stick)
+        q = np.zeros(m)
+        q[sl] = -bound[sl] * sign[sl]
+        if force_control:
+            ns = st.size
+            mat = np.zeros((ns + 1, ns + 1))
+            mat[:ns, :ns] = mmat[np.ix_(st, st)]
+            mat[:ns, ns] = 1.0
+            mat[ns, :ns] = dx
+            rhs = np.concatenate([-mmat[np.ix_(st, sl)] @ q[sl], [force - dx * q[sl].sum()]])
+            if ns:  # (all-slip trial set: keep the previous creepage; the sets then change)
+                sol = np.linalg.solve(mat, rhs)
+                q[st] = sol[:ns]
+                xi = sol[ns]
+        else:
+            if st.size:
+                q[st] = np.linalg.solve(mmat[np.ix_(st, st)],
+                                        -xi - mmat[np.ix_(st, sl)] @ q[sl])
+        s = xi + mmat @ q
+        # new sets: r = -q in box [-g, g]; stick if |q - c s| < g
+        trial = q - c * s
+        new_stick = np.abs(trial) < bound
+        new_sign = np.where(new_stick, 0.0, -np.sign(trial))
+        if np.array_equal(new_stick, stick) and np.array_equal(new_sign, sign):
+            return q, s, xi, stick, it
+        key = new_stick.tobytes() + new_sign.tobytes()
+        if key in seen:
+            break
+        seen.add(key)
+        stick, sign = new_stick, new_sign
+    raise RuntimeError("rolling active-set iteration cycled")
+
+
+def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
+                     tangential_force=None, friction=0.3, *, max_iter=200,
+                     friction_damping=0.5, friction_tol=1e-10, friction_max_iter=500):
+    r"""Steady 2-D rolling (Carter problem) for a given pressure, Eqs. (2.18), (2.20)-(2.22), (C.4).
+
+    Rolling direction: material moves in ``-x`` through the contact (leading edge at the largest
+    ``x``); ``s = xi - du_x/dx`` (the thesis' (2.18) mirrored, see the module docstring).
+    Traction ``q`` acts on the wheel and opposes the slip; stick ``s = 0, |q| <= mu(0) p``,
+    slip ``q = -mu(|s|) p sign(s)``.
+
+    Parameters
+    ----------
+    x : array_like
+        Uniformly spaced element centres (e.g. ``solve_normal_2d(...).x``). [m]
+    pressure : array_like
+        Element pressures, >= 0 (same length as ``x``; elements with 0 carry no traction). [Pa]
+    youngs_modulus : float
+        Young's modulus of both bodies, > 0. [Pa]
+    poisson_ratio : float
+        Poisson's ratio of both bodies, in [0, 0.5). [-]
+    creepage : float, optional
+        Longitudinal creepage ``xi`` (2.15). [-]
+    tangential_force : float, optional
+        Tangential force on the wheel, ``|T| <= mu(0) N``. [N/m]
+        Exactly one of ``creepage`` and ``tangential_force`` must be given.
+    friction : float or callable
+        Coulomb coefficient (>= 0), or a vectorised function ``mu(|s|)`` of the dimensionless slip
+        magnitude (velocity-dependent friction, Ch. 5). For a callable law the per-element bound
+        is found by a damped fixed-point iteration started from the Coulomb solution with
+        ``mu(0)``; with a falling law the continuum problem may have several solutions and the one
+        returned is the limit of that continuation (each inner problem is the unique solution
+        of a monotone discrete problem).
+    max_iter : int, optional
+        Active-set iterations per inner solve. [-]
+    friction_damping : float, optional
+        Relaxation factor ``omega`` in (0, 1] of the friction iteration (halved automatically
+        when the update grows). [-]
+    friction_tol : float, optional
+        Convergence tolerance on ``max |mu_new - mu|``. [-]
+    friction_max_iter : int, optional
+        Maximum friction iterations. [-]
+
+    Returns
+    -------
+    RollingContact2D
+
+    Raises
+    ------
+    ValueError
+        Bad input (naming the parameter), ``|tangential_force| > mu(0) N``, or no convergence of
+        the velocity-dependent friction iteration (naming ``friction`` and the creepage/force).
+    """
+    xs = check_range("x", x, "m")
+    if xs.ndim != 1 or xs.size < 4:
+        raise ValueError(f"x must be a 1-D array of >= 4 element centres [m]; got shape {xs.shape}")
+    dxs = np.diff(xs)
+    dx = float(dxs.mean())
+    if not (dx > 0 and np.allclose(dxs, dx, rtol=1e-6, atol=0.0)):
+        raise ValueError("x must be uniformly spaced and increasing [m]")
+    p = check_range("pressure", pressure, "Pa", 0.0, None)
+    if p.shape != xs.shape:
+        raise ValueError(f"pressure must have the shape of x {xs.shape} [Pa]; got {p.shape}")
+    e = check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False)
+    if (creepage is None) == (tangential_force is None):
+        raise ValueError("creepage and tangential_force: give exactly one of them; got "
+                         f"creepage={creepage!r}, tangential_force={tangential_force!r}")
+    law = friction if callable(friction) else None
+    if law is None:
+        mu0 = float(check_range("friction", friction, "-", 0.0, None))
+    else:
+        mu0 = float(check_range("friction", law(np.zeros(1)), "-", 0.0, None)[0])
+    if creepage is not None:
+        xi_in = float(check_range("creepage", creepage, "-"))
+        force_in = None
+    else:
+        xi_in = None
+        force_in = float(check_range("tangential_force", tangential_force, "N/m"))
+    omega = float(check_range("friction_damping", friction_damping, "-", 0.0, 1.0,
+                              lower_closed=False))
+    kern = 4.0 * (1.0 - float(nu) ** 2) / (np.pi * float(e))
+    mask = p > 0.0
+    n_load = float(p.sum() * dx)
+    nx = xs.size
+    zero = np.zeros(nx)
+    if force_in is not None and abs(force_in) > mu0 * n_load * (1.0 + 1e-12):
+        raise ValueError(f"tangential_force must be in [-{mu0 * n_load:g}, {mu0 * n_load:g}] "
+                         f"[N/m] (|T| <= mu(0) N); got {force_in:g}")
+    if not mask.any() or mu0 * n_load == 0.0:
+        return RollingContact2D(xs, dx, p, zero, zero.copy(), np.zeros(nx, bool), mask,
+                                0.0 if xi_in is None else xi_in, 0.0, n_load, np.nan, np.nan,
+                                zero.copy(), 0)
+    idx = np.flatnonzero(mask)
+    mfull = _slip_matrix(xs, dx, kern)
+    mmat = mfull[np.ix_(idx, idx)]
+    pc = p[idx]
+
+    def inner(mu_el):
+        bound = mu_el * pc
+        if force_in is not None and abs(force_in) >= dx * bound.sum() * (1 - 1e-12):
+            # full sliding at the bound: q = -sign(T)... creepage from the slip limit
+            q = np.sign(force_in) * bound
+            s = mmat @ q
+            # any xi with sign(xi + M q) = -sign(q) everywhere; choose the smallest magnitude
+            xi = float(-(s.max() if force_in > 0 else s.min()))
+            return q, xi + s, xi, np.zeros(idx.size, bool), 1
+        try:
+            return _rolling_active_set(mmat, bound, xi_in, force_in, dx, max_iter)
+        except RuntimeError:
+            ctl = (f"creepage = {xi_in:g}" if xi_in is not None
+                   else f"tangential_force = {force_in:g} N/m")
+            raise ValueError(f"max_iter: the steady-rolling active-set iteration did not converge "
+                             f"({ctl}, max_iter = {max_iter}, {idx.size} contact elements)"
+                             ) from None
+
+    mu_el = np.full(idx.size, mu0)
+    q, s, xi, st, iters = inner(mu_el)
+    if law is not None:
+        converged = False
+        prev_change = np.inf
+        for k in range(1, int(friction_max_iter) + 1):
+            target = np.where(st, mu0, np.asarray(law(np.abs(s)), dtype=float))
+            change = float(np.max(np.abs(target - mu_el)))
+            if change <= friction_tol:
+                converged = True
+                break
+            if change > prev_change:
+                omega = max(0.5 * omega, 1e-3)
+            prev_change = change
+            mu_el = mu_el + omega * (target - mu_el)
+            q, s, xi, st, _ = inner(mu_el)
+        iters = k
+        if not converged:
+            ctl = (f"creepage = {xi_in:g}" if xi_in is not None
+                   else f"tangential_force = {force_in:g} N/m")
+            raise ValueError("friction law did not converge in the velocity-dependent friction "
+                             f"iteration (friction_max_iter = {friction_max_iter}, "
+                             f"friction_damping = {friction_damping:g}, {ctl}, "
+                             f"last change = {change:.3g}); try a smaller friction_damping")
+    traction = zero.copy()
+    traction[idx] = q
+    slip = zero.copy()
+    slip[idx] = np.where(st, 0.0, s)
+    stick = np.zeros(nx, bool)
+    stick[idx] = st
+    bound_full = zero.copy()
+    bound_full[idx] = mu_el * pc
+    if st.any():
+        sidx = idx[st]
+        stick_start = _stick_limit(xs, dx, p, slip, stick, mask, sidx[0], -1)
+        stick_end = _stick_limit(xs, dx, p, slip, stick, mask, sidx[-1], +1)
+    else:
+        stick_start = stick_end = np.nan
+    return RollingContact2D(
+        x=xs, element_width=dx, pressure=p, traction=traction, slip=slip, stick=stick,
+        contact_mask=mask, creepage=float(xi), tangential_force=float(traction.sum() * dx),
+        normal_load=n_load, stick_start=stick_start, stick_end=stick_end,
+        friction_bound=bound_full, iterations=int(iters))
