@@ -545,9 +545,135 @@ def _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor):
     raise RuntimeError("rolling active-set iteration cycled")
 
 
+def _mu_and_slope(law, s_abs):
+    """``mu(|s|)`` and ``d mu / d|s|`` (central difference, step relative to |s|)."""
+    h = 1e-7 * np.maximum(s_abs, 1e-6)
+    mu = np.asarray(law(s_abs), dtype=float)
+    lo = np.maximum(s_abs - h, 0.0)
+    slope = (np.asarray(law(s_abs + h), dtype=float) - np.asarray(law(lo), dtype=float)) / (
+        s_abs + h - lo)
+    return mu, slope
+
+
+def _law_newton(mmat, pc, law_t, mu0, xi_fixed, force, dx, q, xi, stick, sigma, tol,
+                newton_max):
+    """Newton iteration for a fixed stick/slip partition with friction law ``law_t``.
+
+    Stick rows: ``s_i = 0`` (scaled by ``1/M_ii``); slip rows: ``q_i + p_i sigma_i mu(|s_i|) = 0``;
+    with force control one more row ``dx sum q = T`` and unknown ``xi``. Backtracking line search
+    on the residual norm. Returns ``(q, xi, ok)``.
+    """
+    m = q.size
+    fc = force is not None
+    diag = np.diag(mmat)
+    length = dx * m
+    scale = tol * mu0 * pc.max()
+
+    def resid(q_, xi_):
+        s_ = xi_ + mmat @ q_
+        # slip magnitude along the assumed direction; a reversed slip (sigma s < 0) is left to
+        # the partition update (mu(0) there, no spurious roots of |s|)
+        mu_, slope_ = _mu_and_slope(law_t, np.maximum(sigma * s_, 0.0))
+        slope_ = np.where(sigma * s_ > 0.0, slope_, 0.0)
+        f = np.where(stick, s_ / diag, q_ + pc * sigma * mu_)
+        if fc:
+            f = np.append(f, (dx * q_.sum() - force) / length)
+        return f, s_, slope_
+
+    f, s, slope = resid(q, xi)
+    for _ in range(newton_max):
+        norm = np.linalg.norm(f, np.inf)
+        if norm <= scale:
+            return q, xi, True
+        jac = np.zeros((m + fc, m + fc))
+        rows_slip = (pc * slope)[:, None]   # d(p sigma mu(sigma s))/ds = p mu' (sigma^2 = 1)
+        jac[:m, :m] = np.where(stick[:, None], mmat / diag[:, None], rows_slip * mmat)
+        jac[np.arange(m), np.arange(m)] += np.where(stick, 0.0, 1.0)
+        if fc:
+            jac[:m, m] = np.where(stick, 1.0 / diag, rows_slip[:, 0])
+            jac[m, :m] = dx / length
+        try:
+            d = np.linalg.solve(jac, -f)
+        except np.linalg.LinAlgError:
+            return q, xi, False
+        alpha, n2 = 1.0, np.linalg.norm(f)
+        while alpha > 1e-4:
+            q_new = q + alpha * d[:m]
+            xi_new = xi + alpha * d[m] if fc else xi
+            f_new, s_new, slope_new = resid(q_new, xi_new)
+            if np.linalg.norm(f_new) < (1 - 1e-4 * alpha) * n2:
+                break
+            alpha *= 0.5
+        else:
+            return q, xi, False
+        q, xi, f, s, slope = q_new, xi_new, f_new, s_new, slope_new
+    return q, xi, np.linalg.norm(f, np.inf) <= scale
+
+
+def _law_partition(mmat, pc, law_t, mu0, xi_in, force, dx, q, xi, stick, tol, max_outer,
+                   newton_max=60):
+    """Stick/slip partition iteration around :func:`_law_newton`; ``None`` on failure."""
+    sigma = np.where(stick, 0.0, -np.sign(q))
+    sigma[(sigma == 0) & ~stick] = 1.0
+    seen = set()
+    for _ in range(max_outer):
+        q, xi, ok = _law_newton(mmat, pc, law_t, mu0, xi_in, force, dx, q, xi, stick, sigma,
+                                tol, newton_max)
+        if not ok:
+            return None
+        s = xi + mmat @ q
+        to_slip = stick & (np.abs(q) > mu0 * pc * (1 + 1e-10))
+        to_stick = ~stick & (sigma * s < 0)
+        if not (to_slip.any() or to_stick.any()):
+            return q, s, xi, stick
+        key = stick.tobytes() + sigma.tobytes()
+        if key in seen:   # cycling: change only the worst element
+            viol = np.where(to_slip, np.abs(q) / (mu0 * pc + 1e-300) - 1, 0.0) + np.where(
+                to_stick, -sigma * s / np.abs(s).max(), 0.0)
+            k = int(np.argmax(viol))
+            to_slip = to_slip & (np.arange(q.size) == k)
+            to_stick = to_stick & (np.arange(q.size) == k)
+        seen.add(key)
+        sigma = np.where(to_slip, -np.sign(q), np.where(to_stick, 0.0, sigma))
+        stick = (stick & ~to_slip) | to_stick
+        q = np.where(to_stick, q, q)  # start values kept
+    return None
+
+
+def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, tol, max_steps,
+                          max_outer):
+    """Velocity-dependent friction by continuation from the Coulomb solution with ``mu(0)``.
+
+    ``mu_t(s) = mu(0) + t (mu(s) - mu(0))``, ``t`` from 0 to 1; each step is solved by Newton on
+    the stick/slip partition starting from the previous step; the step in ``t`` is halved on
+    failure. The branch returned is the one connected to the static-friction Carter solution.
+    """
+    t, dt, steps = 0.0, 1.0, 0
+    state = (q, xi, stick)
+    while t < 1.0:
+        steps += 1
+        if steps > max_steps:
+            raise RuntimeError(f"t = {t:.4g}")
+        t_new = min(1.0, t + dt)
+        law_t = (lambda tt: (lambda s_: mu0 + tt * (np.asarray(law(s_), dtype=float) - mu0)))(
+            t_new)
+        out = _law_partition(mmat, pc, law_t, mu0, xi_in, force, dx, state[0], state[1],
+                             state[2].copy(), tol, max_outer)
+        if out is None:
+            dt *= 0.5
+            if dt < 1.0 / 4096:
+                raise RuntimeError(f"t = {t:.4g}")
+            continue
+        q, s, xi, stick = out
+        state = (q, xi, stick)
+        t = t_new
+        dt = min(1.0, 2.0 * dt)
+    return q, xi + mmat @ q, xi, stick, steps
+
+
 def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
                      tangential_force=None, friction=0.3, *, max_iter=200,
-                     friction_damping=0.5, friction_tol=1e-10, friction_max_iter=500):
+                     friction_tol=1e-10, friction_max_iter=200):
     r"""Steady 2-D rolling (Carter problem) for a given pressure, Eqs. (2.18), (2.20)-(2.22), (C.4).
 
     Rolling direction: material moves in ``-x`` through the contact (leading edge at the largest
@@ -572,20 +698,21 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
         Exactly one of ``creepage`` and ``tangential_force`` must be given.
     friction : float or callable
         Coulomb coefficient (>= 0), or a vectorised function ``mu(|s|)`` of the dimensionless slip
-        magnitude (velocity-dependent friction, Ch. 5). For a callable law the per-element bound
-        is found by a damped fixed-point iteration started from the Coulomb solution with
-        ``mu(0)``; with a falling law the continuum problem may have several solutions and the one
-        returned is the limit of that continuation (each inner problem is the unique solution
-        of a monotone discrete problem).
+        magnitude (velocity-dependent friction, Ch. 5, e.g. (5.16)). Stick elements may carry up to
+        ``mu(0) p``; slip elements carry exactly ``mu(|s|) p``. A callable law is solved by
+        continuation ``mu_t = mu(0) + t (mu - mu(0))``, ``t = 0 -> 1``, from the (unique)
+        Coulomb solution with ``mu(0)``, each step by Newton's method on the stick/slip
+        partition (step halved on failure). With a falling law the problem may have several
+        solutions; the one returned is the branch connected to the static-friction Carter
+        solution. In the step-law limit this gives Nielsen's Fig. 5.3: Carter with ``mu_k`` plus
+        a one-element peak at the stick/slip limit.
     max_iter : int, optional
         Active-set iterations per inner solve. [-]
-    friction_damping : float, optional
-        Relaxation factor ``omega`` in (0, 1] of the friction iteration (halved automatically
-        when the update grows). [-]
     friction_tol : float, optional
-        Convergence tolerance on ``max |mu_new - mu|``. [-]
+        Velocity-dependent friction: Newton tolerance on the residual, relative to
+        ``mu(0) max(p)``. [-]
     friction_max_iter : int, optional
-        Maximum friction iterations. [-]
+        Velocity-dependent friction: maximum number of continuation steps. [-]
 
     Returns
     -------
@@ -623,8 +750,7 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
     else:
         xi_in = None
         force_in = float(check_range("tangential_force", tangential_force, "N/m"))
-    omega = float(check_range("friction_damping", friction_damping, "-", 0.0, 1.0,
-                              lower_closed=False))
+    tol = float(check_range("friction_tol", friction_tol, "-", 0.0, None, lower_closed=False))
     kern = 4.0 * (1.0 - float(nu) ** 2) / (np.pi * float(e))
     mask = p > 0.0
     n_load = float(p.sum() * dx)
@@ -663,27 +789,21 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
     mu_el = np.full(idx.size, mu0)
     q, s, xi, st, iters = inner(mu_el)
     if law is not None:
-        converged = False
-        prev_change = np.inf
-        for k in range(1, int(friction_max_iter) + 1):
-            target = np.where(st, mu0, np.asarray(law(np.abs(s)), dtype=float))
-            change = float(np.max(np.abs(target - mu_el)))
-            if change <= friction_tol:
-                converged = True
-                break
-            if change > prev_change:
-                omega = max(0.5 * omega, 1e-3)
-            prev_change = change
-            mu_el = mu_el + omega * (target - mu_el)
-            q, s, xi, st, _ = inner(mu_el)
-        iters = k
-        if not converged:
+        try:
+            q, s, xi, st, iters = _rolling_law_homotopy(
+                mmat, pc, law, mu0, xi_in, force_in, dx, q, xi, st, tol,
+                int(friction_max_iter), max_iter)
+        except RuntimeError as exc:
             ctl = (f"creepage = {xi_in:g}" if xi_in is not None
                    else f"tangential_force = {force_in:g} N/m")
-            raise ValueError("friction law did not converge in the velocity-dependent friction "
-                             f"iteration (friction_max_iter = {friction_max_iter}, "
-                             f"friction_damping = {friction_damping:g}, {ctl}, "
-                             f"last change = {change:.3g}); try a smaller friction_damping")
+            raise ValueError(
+                "friction: the velocity-dependent friction law could not be followed from "
+                f"mu(0) = {mu0:g} to the full law (continuation stopped at {exc}; {ctl}, "
+                f"friction_max_iter = {friction_max_iter}, friction_tol = {friction_tol:g}, "
+                f"{idx.size} contact elements). A very steep falling law makes the discrete "
+                "problem non-unique element by element; use a smoother law or fewer elements"
+            ) from None
+        mu_el = np.where(st, mu0, np.asarray(law(np.abs(s)), dtype=float))
     traction = zero.copy()
     traction[idx] = q
     slip = zero.copy()
