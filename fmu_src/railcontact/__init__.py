@@ -18,5 +18,13 @@ Conventions (one set, used by every function, table and the FMU)
 """
 
 from ._validation import check_range  # noqa: F401
+from .hertz import (Hertz2D, Hertz3D, hertz_2d, hertz_3d,  # noqa: F401
+                    curvature_ratio_from_axis_ratio, axis_ratio_from_curvature_ratio)
+from .carter import (carter_creep_force, carter_critical_creepage,  # noqa: F401
+                     carter_stick_ratio, carter_traction, carter_slip)
+from .kalker import KalkerCoefficients, kalker_coefficients  # noqa: F401
+from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,  # noqa: F401
+                      creep_solution_3d, spin_coefficient, saturation_creepage_3d,
+                      normalised_creepage_3d, strip_force_function)
 
 __version__ = "0.1.0"

@@ -1,0 +1,242 @@
+r"""Kalker's creep coefficients C11, C22, C23 of the linear theory, as a smooth (C2) function.
+
+Data: Kalker (1967), Kalker (1990) Table E.3, for nu = 0, 0.25, 0.5 and a0/b0 = 0.1 ... 1 and
+b0/a0 = 0.9 ... 0.1 (19 axis ratios), shipped in ``railcontact/data/kalker_coefficients.csv``.
+Nielsen (1998) Appendix B lists the nu = 0.25 column; its first two rows are garbled by the OCR
+(see the erratum in the CSV header).
+
+Interpolation (exact at every one of the 57 nodes, C2 everywhere):
+
+1. For each tabulated nu_j and each coefficient, a not-a-knot cubic spline of ``ln C`` in
+   ``s = ln(a0/b0)`` through the 19 nodes (C2 in s).
+2. In nu, the *reciprocal* is interpolated quadratically through the three nodes:
+   ``1/C(nu) = sum_j L_j(nu) / C(nu_j)`` (Lagrange weights L_j). 1/C is very nearly linear in
+   nu (e.g. 1/C11 at a0/b0 = 1: 0.294, 0.243, 0.192), and it is exactly linear in the limit
+   a0/b0 -> 0, where C11 -> pi^2/(4 (1-nu)). This is also how Vollebregt's CONTACT (subroutine
+   ``linrol``) interpolates in nu.
+3. Outside the table (a0/b0 < 0.1 or > 10) the value is ``C = C_asym(g, nu) exp(P(t))`` with
+   Kalker's asymptotic expressions C_asym (Kalker 1990, Table E.3, as coded in CONTACT's
+   ``linrol``) and a cubic ``P(t) = c1 t + c2 t^2 + c3 t^3`` in ``t = min(a0/b0, b0/a0) / 0.1``
+   whose value, first and second derivative (in s) match ``ln C - ln C_asym`` of the table
+   interpolant at the table edge. Hence C is C2 across the edge, and ``P -> 0`` (C -> C_asym)
+   as the ellipse degenerates (t -> 0). At the table edges the asymptotes differ from the table
+   by 0.6-5 %, so over 0.05 <= a0/b0 < 0.1 and 10 < a0/b0 <= 20 the result is a smooth
+   transition whose accuracy is of that order (between the two) -- the range the brief asks to
+   cover; beyond that it tends to the asymptote.
+
+Asymptotes (g = a0/b0 -> 0, i.e. b0 >> a0)::
+
+    C11 = pi^2 / (4 (1-nu)),   C22 = pi^2 / 4,
+    C23 = pi sqrt(g) / (3 (1-nu)) [1 + nu (ln(16/g) - 5)]
+
+and (g' = b0/a0 -> 0, a0 >> b0), with Lambda = ln(16 / g'^2)::
+
+    C11 = 2 pi / ((Lambda - 2 nu) g') [1 + (3 - ln 4) / (Lambda - 2 nu)]
+    C22 = 2 pi / g' [1 + (1-nu)(3 - ln 4) / ((1-nu) Lambda + 2 nu)] / ((1-nu) Lambda + 2 nu)
+    C23 = 2 pi / (3 g'^(3/2) ((1-nu) Lambda - 2 + 4 nu))
+
+References
+----------
+.. [1] J.J. Kalker, On the rolling contact of two elastic bodies in the presence of dry
+   friction, PhD thesis, TH Delft, 1967.
+.. [2] J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990,
+   Appendix E, Table E.3 (creepage coefficients and their asymptotes).
+.. [3] E.A.H. Vollebregt, CONTACT (Apache-2.0), module m_hertz, subroutine linrol: the same
+   table and asymptotes, with linear interpolation in g and reciprocal-quadratic in nu.
+.. [4] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Eqs. (2.61)-(2.62) and Appendix B.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+from functools import lru_cache
+from importlib import resources
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from ._validation import check_range
+
+__all__ = ["KalkerCoefficients", "kalker_coefficients", "kalker_table",
+           "kalker_asymptotes"]
+
+KalkerCoefficients = namedtuple("KalkerCoefficients", ["c11", "c22", "c23"])
+KalkerCoefficients.__doc__ = "Kalker's creep coefficients C11, C22, C23 of the linear theory. [-]"
+
+_NU_NODES = np.array([0.0, 0.25, 0.5])
+_G_LOW, _G_HIGH = 0.1, 10.0
+_FD_STEP = 1e-3
+
+
+@lru_cache(maxsize=1)
+def kalker_table():
+    """The tabulated coefficients, read from the package data file.
+
+    Returns
+    -------
+    g : ndarray, shape (19,)
+        a0/b0, ascending; the b0/a0 rows are snapped to exactly ``1 / (b0/a0)``. [-]
+    nu : ndarray, shape (3,)
+        Poisson's ratios 0, 0.25, 0.5. [-]
+    c : ndarray, shape (3, 3, 19)
+        ``c[k, j, i]`` = coefficient k (C11, C22, C23) at nu[j], g[i]. [-]
+    """
+    text = resources.files("railcontact").joinpath("data/kalker_coefficients.csv").read_text()
+    rows = [line.split(",") for line in text.splitlines()
+            if line and not line.startswith("#") and not line.startswith("a0_over_b0")]
+    data = np.array(rows, dtype=float)
+    g_raw = data[:, 0]
+    # snap 1.11111 -> 1/0.9 etc. (the table lists b0/a0 = 0.9 ... 0.1 with one decimal)
+    g_snap = np.where(g_raw > 1.0, 1.0 / np.round(1.0 / g_raw, 1), g_raw)
+    g = np.unique(g_snap)
+    c = np.empty((3, 3, g.size))
+    for row, gs in zip(data, g_snap):
+        i = int(np.argmin(np.abs(g - gs)))
+        j = int(np.argmin(np.abs(_NU_NODES - row[1])))
+        c[:, j, i] = row[2:5]
+    return g, _NU_NODES.copy(), c
+
+
+def kalker_asymptotes(a0_over_b0, poisson_ratio):
+    """Kalker's asymptotic creep coefficients (Kalker 1990, Table E.3), see module docstring.
+
+    Uses the g -> 0 branch for a0/b0 <= 1 and the b0/a0 -> 0 branch for a0/b0 > 1. Only
+    meaningful for a0/b0 << 1 or >> 1.
+
+    Parameters
+    ----------
+    a0_over_b0 : array_like
+        Semi-axis ratio a0/b0 > 0. [-]
+    poisson_ratio : array_like
+        Poisson's ratio, in [0, 0.5]. [-]
+
+    Returns
+    -------
+    KalkerCoefficients
+    """
+    g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5)
+    return KalkerCoefficients(*_asymptotes(*np.broadcast_arrays(g, nu)))
+
+
+def _asymptotes(g, nu):
+    low = g <= 1.0
+    gl = np.where(low, g, 1.0)                       # a0/b0 -> 0 branch
+    c11_l = np.pi**2 / (4.0 * (1.0 - nu))
+    c22_l = np.full_like(gl, np.pi**2 / 4.0)
+    c23_l = np.pi * np.sqrt(gl) / (3.0 * (1.0 - nu)) * (1.0 + nu * (np.log(16.0 / gl) - 5.0))
+    gh = np.where(low, 1.0, 1.0 / g)                 # b0/a0 -> 0 branch
+    lam = np.log(16.0 / gh**2)
+    c3 = 3.0 - np.log(4.0)
+    c11_h = 2.0 * np.pi / ((lam - 2.0 * nu) * gh) * (1.0 + c3 / (lam - 2.0 * nu))
+    d22 = (1.0 - nu) * lam + 2.0 * nu
+    c22_h = 2.0 * np.pi / gh * (1.0 + (1.0 - nu) * c3 / d22) / d22
+    c23_h = 2.0 * np.pi / (3.0 * gh**1.5 * ((1.0 - nu) * lam - 2.0 + 4.0 * nu))
+    return (np.where(low, c11_l, c11_h), np.where(low, c22_l, c22_h),
+            np.where(low, c23_l, c23_h))
+
+
+@lru_cache(maxsize=1)
+def _splines():
+    g, _, c = kalker_table()
+    s = np.log(g)
+    return [[CubicSpline(s, np.log(c[k, j]), bc_type="not-a-knot") for j in range(3)]
+            for k in range(3)]
+
+
+def _lagrange(nu):
+    n0, n1, n2 = _NU_NODES
+    return ((nu - n1) * (nu - n2) / ((n0 - n1) * (n0 - n2)),
+            (nu - n0) * (nu - n2) / ((n1 - n0) * (n1 - n2)),
+            (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1)))
+
+
+def _table_log(k, s, nu):
+    """ln C_k and its first two s-derivatives from the table interpolant (s inside the table)."""
+    weights = _lagrange(nu)
+    u = u1 = u2 = 0.0
+    for j, spline in enumerate(_splines()[k]):
+        ln_c, d1, d2 = spline(s), spline(s, 1), spline(s, 2)
+        w = weights[j] * np.exp(-ln_c)               # L_j / C_j
+        u = u + w
+        u1 = u1 - d1 * w
+        u2 = u2 + (d1 * d1 - d2) * w
+    return -np.log(u), -u1 / u, -u2 / u + (u1 / u) ** 2
+
+
+def _asym_log(k, s, nu):
+    """ln C_asym,k and its first two s-derivatives (5-point central differences)."""
+    h = _FD_STEP
+    f = [np.log(_asymptotes(np.exp(s + m * h), nu)[k]) for m in (-2, -1, 0, 1, 2)]
+    d1 = (f[0] - 8.0 * f[1] + 8.0 * f[3] - f[4]) / (12.0 * h)
+    d2 = (-f[0] + 16.0 * f[1] - 30.0 * f[2] + 16.0 * f[3] - f[4]) / (12.0 * h * h)
+    return f[2], d1, d2
+
+
+def _coefficient(k, g, nu):
+    s = np.log(g)
+    s_lo, s_hi = np.log(_G_LOW), np.log(_G_HIGH)
+    s_in = np.clip(s, s_lo, s_hi)
+    inside, _, _ = _table_log(k, s_in, nu)
+    result = inside
+    for edge, side in ((s_lo, -1.0), (s_hi, 1.0)):
+        outside = (s - edge) * side > 0.0
+        if not np.any(outside):
+            continue
+        edge_arr = np.full_like(s, edge)
+        t0, t1, t2 = _table_log(k, edge_arr, nu)
+        a0_, a1, a2 = _asym_log(k, edge_arr, nu)
+        l0, l1, l2 = t0 - a0_, t1 - a1, t2 - a2
+        # t = exp(-side (s - edge)): dt/ds = -side t; at t = 1: P' = -side l1, P'' = l2 - P'
+        p1 = -side * l1
+        p2 = l2 - p1
+        # P = c1 t + c2 t^2 + c3 t^3 with P(1) = l0, P'(1) = p1, P''(1) = p2
+        c3 = (p2 - 2.0 * (p1 - l0)) / 2.0
+        c2 = p1 - l0 - 2.0 * c3
+        c1 = l0 - c2 - c3
+        t = np.exp(-side * (s - edge))
+        g_out = np.where(outside, g, np.exp(edge))   # keep the asymptote in its own branch
+        ln_asym = np.log(_asymptotes(g_out, nu)[k])
+        extended = ln_asym + t * (c1 + t * (c2 + t * c3))
+        result = np.where(outside, extended, result)
+    return np.exp(result)
+
+
+def kalker_coefficients(a0_over_b0, poisson_ratio):
+    r"""Kalker's creep coefficients C11, C22, C23, smooth (C2) in a0/b0 and nu.
+
+    Exact (to the table's 3 significant digits) at every tabulated node; a not-a-knot cubic
+    spline in ln(a0/b0), reciprocal-quadratic in nu, and a C2 blend into Kalker's asymptotes
+    beyond the table (see the module docstring). Used in the linear theory, Eqs. (2.61)-(2.62):
+    ``T_x = -G a0 b0 C11 xi_x``, ``T_y = -G a0 b0 (C22 xi_y + sqrt(a0 b0) C23 phi)``.
+
+    Parameters
+    ----------
+    a0_over_b0 : array_like
+        Semi-axis ratio a0/b0 (rolling over lateral) > 0. [-] Table range 0.1 ... 10;
+        smooth blend into the asymptotes over 0.05 ... 0.1 and 10 ... 20 (the validated range
+        is [0.05, 20]); beyond that the result tends to Kalker's asymptotes.
+    poisson_ratio : array_like
+        Poisson's ratio nu, in [0, 0.5]. [-]
+
+    Returns
+    -------
+    KalkerCoefficients
+        ``c11``, ``c22``, ``c23`` [-], broadcast over the inputs. For nu = 0, C11 = C22.
+
+    Raises
+    ------
+    ValueError
+        If an input is outside the range stated above (NaN and inf included).
+
+    References
+    ----------
+    .. [1] J.J. Kalker, Three-dimensional elastic bodies in rolling contact, 1990, Table E.3.
+    .. [2] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Appendix B.
+    """
+    g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5)
+    g, nu = np.broadcast_arrays(g, nu)
+    g = np.array(g, dtype=float)
+    nu = np.array(nu, dtype=float)
+    return KalkerCoefficients(*(_coefficient(k, g, nu)[()] for k in range(3)))
