@@ -470,5 +470,8 @@ def test_hertz_carter_fine_grids():
     for n in (1600, 3200):
         r = solve_normal_2d(parabola, N, E, NU, -1.23 * A0, 1.31 * A0, n)
         rr = solve_rolling_2d(r.x, r.pressure, E, NU, creepage=xi, friction=mu)
+        h = r.element_width / A0
         assert abs(0.5 * (r.contact_end - r.contact_start) / A0 - 1) < 1e-4
-        assert abs(rr.tangential_force / force - 1) < 4e-4
+        # first order, constant oscillating in [0.1, 0.45] with the position of the contact
+        # edge inside the outermost element (measured for n = 100 ... 2400)
+        assert abs(rr.tangential_force / force - 1) < 0.5 * h
