@@ -26,5 +26,6 @@ from .kalker import KalkerCoefficients, kalker_coefficients  # noqa: F401
 from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,  # noqa: F401
                       creep_solution_3d, spin_coefficient, saturation_creepage_3d,
                       normalised_creepage_3d, strip_force_function)
+from . import polynomial  # noqa: F401
 
 __version__ = "0.1.0"
