@@ -156,8 +156,15 @@ def _half_ellipse(x, a):
 
 
 def _pv_ellipse(x, a):
-    """(1/pi) PV int_{-a}^{a} sqrt(a^2 - z^2) / (x - z) dz = x - sign(x) sqrt(x^2 - a^2)^+ ."""
-    return x - np.sign(x) * np.sqrt(np.clip(x * x - a * a, 0.0, None))
+    """(1/pi) PV int_{-a}^{a} sqrt(a^2 - z^2) / (x - z) dz = x - sign(x) sqrt(x^2 - a^2)^+ .
+
+    Outside |x| <= a written as a^2 / (x + sign(x) sqrt(x^2 - a^2)) (no cancellation far away).
+    """
+    x, a = np.broadcast_arrays(x, a)
+    inside = np.abs(x) <= a
+    den = x + np.sign(x) * np.sqrt(np.clip(x * x - a * a, 0.0, None))
+    outside = np.divide(a * a, den, out=np.zeros(x.shape), where=~inside)
+    return np.where(inside, x, outside)
 
 
 def carter_traction(x, creepage, normal_load, radius, youngs_modulus, poisson_ratio,
