@@ -128,9 +128,12 @@ def _asymptotes(g, nu):
     gh = np.where(low, 1.0, 1.0 / g)                 # b0/a0 -> 0 branch
     lam = np.log(16.0 / gh**2)
     c3 = 3.0 - np.log(4.0)
-    c11_h = 2.0 * np.pi / ((lam - 2.0 * nu) * gh) * (1.0 + c3 / (lam - 2.0 * nu))
-    d22 = (1.0 - nu) * lam + 2.0 * nu
-    c22_h = 2.0 * np.pi / gh * (1.0 + (1.0 - nu) * c3 / d22) / d22
+    d11 = lam - 2.0 * nu
+    c11_h = 2.0 * np.pi / (d11 * gh) * (1.0 + c3 / d11)
+    # C22 = 2 pi / g' [1 + (1-nu) c3 / ((1-nu) Lambda + 2 nu)] / ((1-nu) Lambda + 2 nu), written
+    # with d22 = Lambda + 2 nu/(1-nu) so that C11 == C22 holds bit-for-bit at nu = 0
+    d22 = lam + 2.0 * nu / (1.0 - nu)
+    c22_h = 2.0 * np.pi / (d22 * gh) * (1.0 + c3 / d22) / (1.0 - nu)
     c23_h = 2.0 * np.pi / (3.0 * gh**1.5 * ((1.0 - nu) * lam - 2.0 + 4.0 * nu))
     return (np.where(low, c11_l, c11_h), np.where(low, c22_l, c22_h),
             np.where(low, c23_l, c23_h))
