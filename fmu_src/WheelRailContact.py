@@ -1,0 +1,288 @@
+r"""WheelRailContact: FMI 2.0 co-simulation slave (PythonFMU) for one wheel/rail contact.
+
+Thin by design: it registers the variables, reads the scene (TOML file or text, or its own
+parameters), builds the effects the scene switches on (:mod:`railcontact.effects`) in
+``exit_initialization_mode`` and calls them in ``do_step``. All physics is in ``railcontact``.
+
+Build with ``python build_fmu.py`` (it bundles a uniquely named copy of ``railcontact``, the
+tables and the scenes, and rewrites ``_PACKAGE`` below to the bundled name).
+
+Semantics of a step: the outputs at the end of ``doStep(t, h)`` are the contact solution for
+the inputs set before the step (sample and hold); the outputs after initialisation are the
+solution for the start values of the inputs.
+
+Errors: PythonFMU (0.7) turns any Python exception into the status fmi2Fatal. An invalid
+parameter makes ``fmi2ExitInitializationMode`` fail, an invalid input (NaN, inf, negative
+normal force or speed) makes ``fmi2DoStep`` fail; in both cases an error message naming the
+parameter or input is logged first (visible with debug logging on, e.g. ``fmpy simulate
+--debug-logging`` or ``simulate_fmu(..., debug_logging=True)``). No NaN is ever returned.
+"""
+
+import importlib
+import json
+import math
+from pathlib import Path
+from xml.etree.ElementTree import Element, SubElement
+
+from pythonfmu import Boolean, DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability
+from pythonfmu import Real, String
+from pythonfmu.enums import Fmi2Initial, Fmi2Status
+
+_PACKAGE = "railcontact"  # build_fmu.py rewrites this line to the bundled copy's unique name
+
+_rc = importlib.import_module(_PACKAGE)
+_scene = importlib.import_module(_PACKAGE + ".scene")
+_effects = importlib.import_module(_PACKAGE + ".effects")
+
+#: Outputs: name -> (unit, description, ContactPoint field).
+OUTPUTS = {
+    "Fx": ("N", "Longitudinal tangential contact force on the wheel (opposes the longitudinal "
+                "creepage; |(Fx, Fy)| <= mu N)", "Fx"),
+    "Fy": ("N", "Lateral tangential contact force on the wheel", "Fy"),
+    "a0": ("m", "Contact ellipse semi-axis in the rolling direction (Hertz)", "a0"),
+    "b0": ("m", "Contact ellipse lateral semi-axis (Hertz)", "b0"),
+    "p0": ("Pa", "Maximum Hertz contact pressure, 3 N / (2 pi a0 b0)", "p0"),
+    "stick_area_fraction": ("1", "Stick area over contact area (1 = full stick, 0 = full "
+                                 "slip), strip-theory estimate", "stick_area_fraction"),
+    "stick_width_ratio": ("1", "Lateral extent of the stick zone b*/b0 = sqrt(1 - z^2) (Nielsen "
+                               "Eq. (2.84))", "stick_width_ratio"),
+    "r_a0": ("1", "Stick zone length over contact length on the centre line, a*/a0 = "
+                  "1 - min(z, 1) (Nielsen Eq. (2.83); 1 = full stick)", "r_a0"),
+}
+
+#: Boolean outputs: name -> (description, ContactPoint field).
+BOOLEAN_OUTPUTS = {
+    "creep_within_validity": ("False when the creep theory is used outside its range: spin "
+                              "pole inside the contact (spin coefficient > 1, Eq. (2.98)) or, "
+                              "for the linear theory, |T| > mu N", "creep_within_validity"),
+}
+
+#: SI units used by the variables: name -> exponents of kg, m, s.
+UNITS = {
+    "1": {}, "N": {"kg": 1, "m": 1, "s": -2}, "m": {"m": 1}, "Pa": {"kg": 1, "m": -1, "s": -2},
+    "1/m": {"m": -1}, "m/s": {"m": 1, "s": -1}, "N.m": {"kg": 1, "m": 2, "s": -2},
+    "s": {"s": 1},
+}
+
+_SCENE_PARAMETERS = (
+    ("scene_file", "Scene TOML file (path, or the name of a scene bundled in the FMU such as "
+                   "'creep_only_table'); empty: the scene is given by the parameters below"),
+    ("scene_toml", "Scene TOML text (used if scene_file is empty); empty: the parameters below "
+                   "define the scene"),
+)
+
+
+class WheelRailContact(Fmi2Slave):
+    """One wheel/rail rolling contact: normal force and creepages in, creep forces out."""
+
+    author = "railcontact contributors"
+    description = ("Wheel/rail rolling contact after J.B. Nielsen (1998): Hertz normal "
+                   "contact, 3-D creep forces (analytic or tables) and the effects a scene "
+                   "switches on")
+    license = "MIT"
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self.version = getattr(_rc, "__version__", "unknown")
+        self.default_experiment = DefaultExperiment(start_time=0.0, stop_time=1.0,
+                                                    step_size=1e-3)
+        self._units = {}
+        self._contact = _effects.ContactPoint()
+        self._pipeline = None
+        self._steps = ()
+        self._warned = set()
+        self._built_from = None
+
+        self.scene_file = ""
+        self.scene_toml = ""
+        for name, desc in _SCENE_PARAMETERS:
+            self.register_variable(String(name, causality=Fmi2Causality.parameter,
+                                          variability=Fmi2Variability.fixed,
+                                          description=desc))
+        defaults = _scene.scene_to_parameters()
+        for spec in _scene.FMU_PARAMETERS:
+            setattr(self, spec.name, defaults[spec.name])
+            cls = {"real": Real, "string": String, "boolean": Boolean}[spec.kind]
+            self.register_variable(cls(spec.name, causality=Fmi2Causality.parameter,
+                                       variability=Fmi2Variability.fixed,
+                                       description=spec.description))
+            if spec.unit:
+                self._units[spec.name] = spec.unit
+
+        c = self._contact
+        for name, (unit, desc) in _scene.INPUTS.items():
+            setattr(c, name, float(_scene.INPUT_DEFAULTS[name]))
+            self.register_variable(Real(
+                name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
+                description=desc, getter=(lambda n=name: getattr(c, n)),
+                setter=(lambda v, n=name: setattr(c, n, v))))
+            self._units[name] = unit
+        for name, (unit, desc, field) in OUTPUTS.items():
+            self.register_variable(Real(
+                name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
+                initial=Fmi2Initial.calculated, description=desc,
+                getter=(lambda f=field: getattr(c, f))))
+            self._units[name] = unit
+        for name, (desc, field) in BOOLEAN_OUTPUTS.items():
+            self.register_variable(Boolean(
+                name, causality=Fmi2Causality.output, variability=Fmi2Variability.discrete,
+                initial=Fmi2Initial.calculated, description=desc,
+                getter=(lambda f=field: getattr(c, f))))
+
+    # ---------------------------------------------------------------------------------------
+    # model description: units, InitialUnknowns (PythonFMU writes neither)
+    # ---------------------------------------------------------------------------------------
+    def to_xml(self, model_options=None):
+        root = super().to_xml(model_options or {})
+        unit_defs = Element("UnitDefinitions")
+        for unit in sorted(set(self._units.values())):
+            u = SubElement(unit_defs, "Unit", {"name": unit})
+            SubElement(u, "BaseUnit", {k: str(v) for k, v in UNITS[unit].items()})
+        children = list(root)
+        position = [i for i, ch in enumerate(children) if ch.tag == "CoSimulation"][0] + 1
+        root.insert(position, unit_defs)
+        names = [v.name for v in self.vars.values()]
+        for node in root.find("ModelVariables"):
+            unit = self._units.get(node.get("name"))
+            real = node.find("Real")
+            if unit is not None and real is not None:
+                real.set("unit", unit)
+        structure = root.find("ModelStructure")
+        initial = SubElement(structure, "InitialUnknowns")
+        for index, var in enumerate(self.vars.values(), start=1):
+            if var.causality == Fmi2Causality.output:
+                SubElement(initial, "Unknown", {"index": str(index)})
+        assert len(names) == len(set(names))
+        return root
+
+    # ---------------------------------------------------------------------------------------
+    # initialisation: read the scene, build only the effects it switches on
+    # ---------------------------------------------------------------------------------------
+    def _parameter_values(self):
+        values = {name: getattr(self, name) for name, _ in _SCENE_PARAMETERS}
+        for spec in _scene.FMU_PARAMETERS:
+            values[spec.name] = getattr(self, spec.name)
+        return values
+
+    def _resolve_scene(self, values):
+        base = None
+        if values["scene_file"]:
+            path = Path(values["scene_file"])
+            bundled = (Path(self.resources) / "scenes" / f"{values['scene_file']}.toml"
+                       if self.resources else None)
+            if not path.exists() and bundled is not None and bundled.exists():
+                path = bundled
+            try:
+                text = path.read_text(encoding="utf-8")
+            except OSError as exc:
+                raise _scene.SceneError(f"scene_file: cannot read {str(path)!r}: "
+                                        f"{exc.strerror}") from None
+            base = _scene.tomllib.loads(text) if text else {}
+        elif values["scene_toml"]:
+            try:
+                base = _scene.tomllib.loads(values["scene_toml"])
+            except _scene.tomllib.TOMLDecodeError as exc:
+                raise _scene.SceneError(f"scene_toml: not valid TOML: {exc}") from None
+        data = _scene.parameters_to_scene_dict(values, base=base)
+        try:
+            return _scene.scene_from_dict(data)
+        except _scene.SceneError as exc:
+            raise _scene.SceneError(_name_parameter(str(exc))) from None
+
+    def _build(self, values):
+        scene = self._resolve_scene(values)
+        self._pipeline = _effects.build_pipeline(scene, tables_dir=None,
+                                                 warn=self._warn_once)
+        self._steps = tuple(e.step for e in self._pipeline.effects.values())
+        self._contact.friction_coefficient = scene.friction_coefficient
+        self._built_from = values
+        self.log(f"scene {scene.name!r}: effects on: {', '.join(self._pipeline.effects)}",
+                 Fmi2Status.ok)
+
+    def _warn_once(self, message):
+        if message not in self._warned:
+            self._warned.add(message)
+            self.log(message, Fmi2Status.warning)
+
+    def exit_initialization_mode(self):
+        try:
+            self._build(self._parameter_values())
+            self._check_inputs()
+            self._evaluate()
+        except ValueError as exc:   # SceneError is a ValueError
+            self.log(f"invalid parameter: {exc}", Fmi2Status.error)
+            raise
+        except Exception as exc:    # report, then let PythonFMU return fmi2Fatal
+            self.log(f"initialisation failed: {exc!r}", Fmi2Status.fatal)
+            raise
+
+    # ---------------------------------------------------------------------------------------
+    # stepping
+    # ---------------------------------------------------------------------------------------
+    def _check_inputs(self):
+        c = self._contact
+        total = (c.normal_force + c.creepage_longitudinal + c.creepage_lateral + c.spin
+                 + c.rolling_speed + c.rail_position)
+        if math.isfinite(total) and c.normal_force >= 0.0 and c.rolling_speed >= 0.0:
+            return
+        for name, lower in (("normal_force", 0.0), ("creepage_longitudinal", None),
+                            ("creepage_lateral", None), ("spin", None),
+                            ("rolling_speed", 0.0), ("rail_position", None)):
+            _rc.check_range(name, getattr(c, name), _scene.INPUTS[name][0], lower, None)
+
+    def _evaluate(self):
+        c = self._contact
+        for step in self._steps:
+            step(c)
+
+    def do_step(self, current_time, step_size):
+        try:
+            self._check_inputs()
+        except ValueError as exc:
+            self.log(f"invalid input at t = {current_time:g} s: {exc}", Fmi2Status.error)
+            raise
+        for step in self._steps:
+            step(self._contact)
+        return True
+
+    # ---------------------------------------------------------------------------------------
+    # FMU state: everything (parameters, inputs, outputs, effect state, warnings logged)
+    # ---------------------------------------------------------------------------------------
+    def _get_fmu_state(self):
+        return {
+            "parameters": dict(self._parameter_values()),
+            "contact": self._contact.as_dict(),
+            "built_from": None if self._built_from is None else dict(self._built_from),
+            "effects": None if self._pipeline is None else self._pipeline.get_state(),
+            "warned": sorted(self._warned),
+        }
+
+    def _set_fmu_state(self, state):
+        for name, value in state["parameters"].items():
+            setattr(self, name, value)
+        built_from = state["built_from"]
+        if built_from is None:
+            self._pipeline, self._steps, self._built_from = None, (), None
+        elif built_from != self._built_from:
+            self._build(dict(built_from))
+        for name, value in state["contact"].items():
+            setattr(self._contact, name, value)
+        if state["effects"] is not None:
+            self._pipeline.set_state(state["effects"])
+        self._warned = set(state["warned"])
+
+    @staticmethod
+    def _fmu_state_to_bytes(state):
+        return json.dumps(state, sort_keys=True).encode("utf-8")
+
+    @staticmethod
+    def _fmu_state_from_bytes(state):
+        return json.loads(state.decode("utf-8"))
+
+
+def _name_parameter(message):
+    """Prefix a scene error with the FMU parameter that sets the offending key, if any."""
+    for spec in _scene.FMU_PARAMETERS:
+        if message.startswith(".".join(spec.path) + " "):
+            return f"parameter {spec.name} ({message})"
+    return message

@@ -1,0 +1,532 @@
+r"""Scenes: which effects a WheelRailContact run switches on, and the input signals that drive it.
+
+A scene is a small TOML file (``examples/scenes/*.toml``) read with :mod:`tomllib`. It names the
+material, the contact geometry, the friction coefficient, the effects that are on (and for each
+whether the answer comes from the analytic solver or from a shipped table) and, for
+``python -m railcontact.run``, the time grid and the input signals. The FMU reads the same text
+(parameter ``scene_file`` or ``scene_toml``) or builds the same structure from its individual
+parameters (:data:`FMU_PARAMETERS`).
+
+Example (``examples/scenes/creep_only_analytic.toml``)::
+
+    [scene]
+    name = "creep_only_analytic"
+    description = "3-D creep forces, modified strip theory, analytic"
+
+    [material]
+    youngs_modulus = 210e9      # [Pa]
+    poisson_ratio = 0.28        # [-]
+
+    [geometry]
+    kind = "curvatures"
+    curvature_longitudinal = 1.25   # A' = 1/(2 R'_x) [1/m]
+    curvature_lateral = 3.3         # B' = 1/(2 R'_y) [1/m]
+
+    [friction]
+    friction_coefficient = 0.3  # [-]
+
+    [effects.creep]
+    method = "modified_strip"   # linear | she | strip | modified_strip
+    source = "analytic"         # analytic | table
+    spin = true
+
+    [simulation]
+    start_time = 0.0
+    stop_time = 1.0
+    step_size = 1e-3
+
+    [inputs]
+    normal_force = 80e3
+    creepage_longitudinal = { kind = "ramp", start_value = -0.01, end_value = 0.01 }
+
+Every error is a :class:`SceneError` (a ``ValueError``) naming the offending key by its dotted
+TOML path (``material.poisson_ratio must be in [0, 0.5) [-]; got 0.6``).
+
+Input signals
+-------------
+Each entry of ``[inputs]`` is a number (constant) or an inline table with ``kind``:
+
+* ``"constant"``: ``value``;
+* ``"ramp"``: ``start_value`` at ``start_time`` to ``end_value`` at ``end_time`` (defaults: the
+  simulation interval), held constant outside;
+* ``"sine"``: ``mean + amplitude sin(2 pi frequency t + phase)``;
+* ``"points"``: ``time = [...]``, ``value = [...]``, piecewise linear, held outside;
+* ``"travel"`` (``rail_position`` only): ``start_value + integral of rolling_speed dt``
+  (trapezoidal rule on the output grid).
+
+Inputs not named are held at the FMU's start values (:data:`INPUT_DEFAULTS`).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ._validation import check_range
+
+__all__ = [
+    "SceneError", "Scene", "load_scene", "parse_scene", "scene_from_dict", "EFFECTS",
+    "CREEP_METHODS", "SOURCES", "INPUTS", "INPUT_DEFAULTS", "FMU_PARAMETERS", "ParameterSpec",
+    "scene_to_parameters", "parameters_to_scene_dict", "DEFAULT_SCENE",
+]
+
+
+class SceneError(ValueError):
+    """A scene (TOML text or FMU parameters) is invalid; the message names the key."""
+
+
+#: Effects a scene can switch on, in the order the FMU evaluates them.
+EFFECTS = ("velocity_friction", "roughness", "corrugation", "creep", "nonsteady", "wear")
+#: 3-D creep theories of :func:`railcontact.creep3d.creep_force_3d`.
+CREEP_METHODS = ("linear", "she", "strip", "modified_strip")
+#: Where an effect takes its answer from.
+SOURCES = ("analytic", "table")
+#: FMU inputs: name -> (unit, description).
+INPUTS = {
+    "normal_force": ("N", "Normal contact force N pressing wheel and rail together, >= 0"),
+    "creepage_longitudinal": ("1", "Longitudinal creepage xi_x = (V_x1 - V_x2)/V_m, wheel "
+                                   "relative to rail (Nielsen Eq. (2.15))"),
+    "creepage_lateral": ("1", "Lateral creepage xi_y = (V_y1 - V_y2)/V_m"),
+    "spin": ("1/m", "Spin creepage phi = (Omega_z1 - Omega_z2)/V_m"),
+    "rolling_speed": ("m/s", "Mean rolling speed V_m of the contact along the rail, >= 0"),
+    "rail_position": ("m", "Position of the contact along the rail (for corrugated or rough "
+                           "rail surfaces)"),
+}
+#: Start values of the inputs (used when a scene does not drive them).
+INPUT_DEFAULTS = {"normal_force": 0.0, "creepage_longitudinal": 0.0, "creepage_lateral": 0.0,
+                  "spin": 0.0, "rolling_speed": 20.0, "rail_position": 0.0}
+
+_SIGNAL_KINDS = ("constant", "ramp", "sine", "points", "travel")
+
+DEFAULT_SCENE = {
+    "scene": {"name": "default", "description": ""},
+    "material": {"youngs_modulus": 210e9, "poisson_ratio": 0.28},
+    "geometry": {"kind": "curvatures", "curvature_longitudinal": 1.25,
+                 "curvature_lateral": 3.3, "semi_axis_longitudinal": 6e-3,
+                 "semi_axis_lateral": 5e-3},
+    "friction": {"friction_coefficient": 0.3},
+    "effects": {"creep": {"enabled": True, "method": "modified_strip", "source": "analytic",
+                          "spin": True, "table": "creep3d"}},
+    "simulation": {"start_time": 0.0, "stop_time": 1.0, "step_size": 1e-3},
+    "inputs": {},
+}
+
+# Allowed keys per section (typos are errors, not silently ignored).
+_SECTION_KEYS = {
+    "scene": {"name", "description"},
+    "material": {"youngs_modulus", "poisson_ratio"},
+    "geometry": {"kind", "curvature_longitudinal", "curvature_lateral",
+                 "semi_axis_longitudinal", "semi_axis_lateral"},
+    "friction": {"friction_coefficient"},
+    "simulation": {"start_time", "stop_time", "step_size"},
+}
+_EFFECT_KEYS = {
+    "creep": {"enabled", "method", "source", "spin", "table"},
+    "corrugation": {"enabled", "source", "wavelengths", "amplitudes", "evolve"},
+    "wear": {"enabled", "source", "wear_coefficient"},
+    "velocity_friction": {"enabled", "source", "law", "static_friction_coefficient",
+                          "kinetic_friction_coefficient", "decay"},
+    "roughness": {"enabled", "source"},
+    "nonsteady": {"enabled", "source"},
+}
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene.
+
+    Attributes
+    ----------
+    name, description : str
+        Identification.
+    youngs_modulus : float
+        Young's modulus of wheel and rail. [Pa]
+    poisson_ratio : float
+        Poisson's ratio of wheel and rail. [-]
+    geometry : dict
+        ``kind`` ("curvatures" or "semi_axes") and the values it needs. [1/m] or [m]
+    friction_coefficient : float
+        Coulomb friction coefficient mu. [-]
+    effects : dict
+        Effect name -> options (``enabled``, ``source``, ...), only effects switched on.
+    simulation : dict
+        ``start_time``, ``stop_time``, ``step_size``. [s]
+    inputs : dict
+        Input name -> signal specification (validated).
+    """
+
+    name: str
+    description: str
+    youngs_modulus: float
+    poisson_ratio: float
+    geometry: dict
+    friction_coefficient: float
+    effects: dict
+    simulation: dict
+    inputs: dict = field(default_factory=dict)
+
+    def enabled(self, effect):
+        """Whether ``effect`` is switched on."""
+        return effect in self.effects
+
+    def time_grid(self):
+        """Communication points from ``start_time`` to ``stop_time`` by ``step_size``. [s]"""
+        sim = self.simulation
+        n = int(round((sim["stop_time"] - sim["start_time"]) / sim["step_size"]))
+        return sim["start_time"] + sim["step_size"] * np.arange(n + 1)
+
+    def input_signals(self, time=None):
+        """Input values on ``time`` (default :meth:`time_grid`) as a structured array.
+
+        Returns
+        -------
+        ndarray
+            Fields ``time`` and every input of :data:`INPUTS`, float64, the layout
+            :func:`fmpy.simulate_fmu` takes as ``input``.
+        """
+        t = self.time_grid() if time is None else np.asarray(time, dtype=float)
+        out = np.zeros(t.shape, dtype=[("time", float)] + [(k, float) for k in INPUTS])
+        out["time"] = t
+        for name in INPUTS:
+            if name == "rail_position":
+                continue
+            out[name] = _evaluate_signal(self.inputs.get(name, INPUT_DEFAULTS[name]), t,
+                                         self.simulation)
+        spec = self.inputs.get("rail_position", INPUT_DEFAULTS["rail_position"])
+        if isinstance(spec, dict) and spec["kind"] == "travel":
+            speed = out["rolling_speed"]
+            steps = 0.5 * (speed[1:] + speed[:-1]) * np.diff(t)
+            out["rail_position"] = spec.get("start_value", 0.0) + np.concatenate(
+                ([0.0], np.cumsum(steps)))
+        else:
+            out["rail_position"] = _evaluate_signal(spec, t, self.simulation)
+        return out
+
+
+def load_scene(path):
+    """Read and validate a scene TOML file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.toml`` file.
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    SceneError
+        If the file is missing, is not TOML, or a value is invalid (the message names the key).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise SceneError(f"scene_file: cannot read {str(path)!r}: {exc.strerror}") from exc
+    return parse_scene(text, origin=str(path))
+
+
+def parse_scene(text, origin="<scene_toml>"):
+    """Parse and validate scene TOML text (see the module docstring for the format)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{origin}: not valid TOML: {exc}") from exc
+    return scene_from_dict(data)
+
+
+def _merge(base, update):
+    out = copy.deepcopy(base)
+    for key, value in update.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = _merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def _number(path, value, unit, lower=None, upper=None, **kwargs):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SceneError(f"{path} must be a number [{unit}]; got {value!r}")
+    try:
+        return float(check_range(path, value, unit, lower, upper, **kwargs))
+    except ValueError as exc:
+        raise SceneError(str(exc)) from None
+
+
+def _choice(path, value, choices):
+    if value not in choices:
+        raise SceneError(f"{path} must be one of {list(choices)}; got {value!r}")
+    return value
+
+
+def _boolean(path, value):
+    if not isinstance(value, bool):
+        raise SceneError(f"{path} must be true or false; got {value!r}")
+    return value
+
+
+def _check_keys(path, table, allowed):
+    if not isinstance(table, dict):
+        raise SceneError(f"{path} must be a table; got {table!r}")
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise SceneError(f"{path}: unknown key {unknown[0]!r}; allowed keys are "
+                         f"{sorted(allowed)}")
+
+
+def scene_from_dict(data):
+    """Validate a scene given as nested dicts (the parsed TOML), filling defaults.
+
+    Missing sections and keys take the values of :data:`DEFAULT_SCENE`; the creep effect is on
+    unless ``effects.creep.enabled = false``; other effects are on when their table is present
+    (and ``enabled`` is not false).
+    """
+    if not isinstance(data, dict):
+        raise SceneError(f"scene must be a table; got {data!r}")
+    allowed_sections = set(_SECTION_KEYS) | {"effects", "inputs"}
+    _check_keys("scene", data, allowed_sections)
+    for section, keys in _SECTION_KEYS.items():
+        if section in data:
+            _check_keys(section, data[section], keys)
+    effects_in = data.get("effects", {})
+    _check_keys("effects", effects_in, set(_EFFECT_KEYS))
+    for name, opts in effects_in.items():
+        _check_keys(f"effects.{name}", opts, _EFFECT_KEYS[name])
+    merged = _merge(DEFAULT_SCENE, data)
+
+    meta = merged["scene"]
+    for key in ("name", "description"):
+        if not isinstance(meta[key], str):
+            raise SceneError(f"scene.{key} must be a string; got {meta[key]!r}")
+    mat = merged["material"]
+    youngs = _number("material.youngs_modulus", mat["youngs_modulus"], "Pa", 0.0, None,
+                     lower_closed=False)
+    nu = _number("material.poisson_ratio", mat["poisson_ratio"], "-", 0.0, 0.5,
+                 upper_closed=False)
+
+    geo = merged["geometry"]
+    kind = _choice("geometry.kind", geo["kind"], ("curvatures", "semi_axes"))
+    if kind == "curvatures":
+        geometry = {"kind": kind,
+                    "curvature_longitudinal": _number(
+                        "geometry.curvature_longitudinal", geo["curvature_longitudinal"],
+                        "1/m", 0.0, None, lower_closed=False),
+                    "curvature_lateral": _number(
+                        "geometry.curvature_lateral", geo["curvature_lateral"], "1/m", 0.0,
+                        None, lower_closed=False)}
+    else:
+        geometry = {"kind": kind,
+                    "semi_axis_longitudinal": _number(
+                        "geometry.semi_axis_longitudinal", geo["semi_axis_longitudinal"], "m",
+                        0.0, None, lower_closed=False),
+                    "semi_axis_lateral": _number(
+                        "geometry.semi_axis_lateral", geo["semi_axis_lateral"], "m", 0.0,
+                        None, lower_closed=False)}
+    mu = _number("friction.friction_coefficient", merged["friction"]["friction_coefficient"],
+                 "-", 0.0, None)
+
+    effects = {}
+    for name, opts in merged["effects"].items():
+        enabled = _boolean(f"effects.{name}.enabled", opts.get("enabled", True))
+        if not enabled:
+            continue
+        opts = dict(opts)
+        opts["enabled"] = True
+        opts["source"] = _choice(f"effects.{name}.source", opts.get("source", "analytic"),
+                                 SOURCES)
+        if name == "creep":
+            opts["method"] = _choice("effects.creep.method", opts.get("method"),
+                                     CREEP_METHODS)
+            opts["spin"] = _boolean("effects.creep.spin", opts.get("spin", True))
+            if not isinstance(opts.get("table", "creep3d"), str):
+                raise SceneError(f"effects.creep.table must be a string; got "
+                                 f"{opts['table']!r}")
+        effects[name] = opts
+    if "creep" not in effects and any(e in effects for e in ("nonsteady", "wear")):
+        raise SceneError("effects.creep.enabled must be true when nonsteady or wear is on "
+                         "(they act on the creep solution)")
+
+    sim = merged["simulation"]
+    start = _number("simulation.start_time", sim["start_time"], "s")
+    stop = _number("simulation.stop_time", sim["stop_time"], "s", start, None,
+                   lower_closed=False)
+    step = _number("simulation.step_size", sim["step_size"], "s", 0.0, stop - start,
+                   lower_closed=False)
+    n_steps = (stop - start) / step
+    if abs(n_steps - round(n_steps)) > 1e-9 * max(1.0, n_steps):
+        raise SceneError(f"simulation.step_size must divide stop_time - start_time [s]; "
+                         f"got {step:g} for an interval of {stop - start:g}")
+
+    inputs = {}
+    ins = merged["inputs"]
+    _check_keys("inputs", ins, set(INPUTS))
+    for name, spec in ins.items():
+        inputs[name] = _validate_signal(f"inputs.{name}", name, spec)
+
+    return Scene(name=meta["name"], description=meta["description"], youngs_modulus=youngs,
+                 poisson_ratio=nu, geometry=geometry, friction_coefficient=mu,
+                 effects=effects, simulation={"start_time": start, "stop_time": stop,
+                                              "step_size": step},
+                 inputs=inputs)
+
+
+_SIGNAL_KEYS = {
+    "constant": {"kind", "value"},
+    "ramp": {"kind", "start_value", "end_value", "start_time", "end_time"},
+    "sine": {"kind", "mean", "amplitude", "frequency", "phase"},
+    "points": {"kind", "time", "value"},
+    "travel": {"kind", "start_value"},
+}
+
+
+def _validate_signal(path, name, spec):
+    unit = INPUTS[name][0]
+    if not isinstance(spec, dict):
+        return _number(path, spec, unit)
+    kind = _choice(f"{path}.kind", spec.get("kind"), _SIGNAL_KINDS)
+    _check_keys(path, spec, _SIGNAL_KEYS[kind])
+    out = {"kind": kind}
+    if kind == "constant":
+        out["value"] = _number(f"{path}.value", spec.get("value"), unit)
+    elif kind == "ramp":
+        for key in ("start_value", "end_value"):
+            out[key] = _number(f"{path}.{key}", spec.get(key), unit)
+        for key in ("start_time", "end_time"):
+            if key in spec:
+                out[key] = _number(f"{path}.{key}", spec[key], "s")
+        if "start_time" in out and "end_time" in out and out["end_time"] <= out["start_time"]:
+            raise SceneError(f"{path}.end_time must be > start_time [s]; got "
+                             f"{out['end_time']:g}")
+    elif kind == "sine":
+        out["mean"] = _number(f"{path}.mean", spec.get("mean", 0.0), unit)
+        out["amplitude"] = _number(f"{path}.amplitude", spec.get("amplitude"), unit)
+        out["frequency"] = _number(f"{path}.frequency", spec.get("frequency"), "Hz", 0.0)
+        out["phase"] = _number(f"{path}.phase", spec.get("phase", 0.0), "rad")
+    elif kind == "points":
+        try:
+            t = check_range(f"{path}.time", spec.get("time"), "s")
+            v = check_range(f"{path}.value", spec.get("value"), unit)
+        except ValueError as exc:
+            raise SceneError(str(exc)) from None
+        if t.ndim != 1 or t.shape != v.shape or t.size < 2:
+            raise SceneError(f"{path}.time and {path}.value must be lists of equal length >= 2")
+        if np.any(np.diff(t) <= 0):
+            raise SceneError(f"{path}.time must be strictly increasing [s]")
+        out["time"], out["value"] = t.tolist(), v.tolist()
+    else:  # travel
+        if name != "rail_position":
+            raise SceneError(f"{path}.kind = 'travel' is only allowed for rail_position")
+        out["start_value"] = _number(f"{path}.start_value", spec.get("start_value", 0.0), unit)
+    return out
+
+
+def _evaluate_signal(spec, t, simulation):
+    if not isinstance(spec, dict):
+        return np.full(t.shape, float(spec))
+    kind = spec["kind"]
+    if kind == "constant":
+        return np.full(t.shape, spec["value"])
+    if kind == "ramp":
+        t0 = spec.get("start_time", simulation["start_time"])
+        t1 = spec.get("end_time", simulation["stop_time"])
+        return np.interp(t, [t0, t1], [spec["start_value"], spec["end_value"]])
+    if kind == "sine":
+        return spec["mean"] + spec["amplitude"] * np.sin(
+            2.0 * math.pi * spec["frequency"] * t + spec["phase"])
+    return np.interp(t, spec["time"], spec["value"])
+
+
+# --------------------------------------------------------------------------------------------
+# FMU parameters <-> scene
+# --------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class ParameterSpec:
+    """One FMU parameter and the scene key it sets."""
+
+    name: str
+    path: tuple
+    kind: str          # "real", "string" or "boolean"
+    unit: str          # FMI unit ("" for strings and booleans)
+    description: str
+
+
+#: The FMU's structural parameters, each mapped to a scene key. Their start values are those
+#: of :data:`DEFAULT_SCENE`.
+FMU_PARAMETERS = (
+    ParameterSpec("youngs_modulus", ("material", "youngs_modulus"), "real", "Pa",
+                  "Young's modulus E of wheel and rail"),
+    ParameterSpec("poisson_ratio", ("material", "poisson_ratio"), "real", "1",
+                  "Poisson's ratio nu of wheel and rail, in [0, 0.5)"),
+    ParameterSpec("geometry_kind", ("geometry", "kind"), "string", "",
+                  "Contact geometry: 'curvatures' (Hertz ellipse from A', B' and the normal "
+                  "force) or 'semi_axes' (fixed ellipse a0, b0)"),
+    ParameterSpec("curvature_longitudinal", ("geometry", "curvature_longitudinal"), "real",
+                  "1/m", "A' = 1/(2 R'_x), relative curvature (gap coefficient) in the "
+                  "rolling direction"),
+    ParameterSpec("curvature_lateral", ("geometry", "curvature_lateral"), "real", "1/m",
+                  "B' = 1/(2 R'_y), lateral relative curvature (gap coefficient)"),
+    ParameterSpec("semi_axis_longitudinal", ("geometry", "semi_axis_longitudinal"), "real",
+                  "m", "Fixed semi-axis a0 along the rolling direction (geometry_kind = "
+                  "'semi_axes')"),
+    ParameterSpec("semi_axis_lateral", ("geometry", "semi_axis_lateral"), "real", "m",
+                  "Fixed lateral semi-axis b0 (geometry_kind = 'semi_axes')"),
+    ParameterSpec("friction_coefficient", ("friction", "friction_coefficient"), "real", "1",
+                  "Coulomb friction coefficient mu, >= 0"),
+    ParameterSpec("creep_method", ("effects", "creep", "method"), "string", "",
+                  "3-D creep theory: linear | she | strip | modified_strip"),
+    ParameterSpec("creep_source", ("effects", "creep", "source"), "string", "",
+                  "Creep forces from the 'analytic' solver or the shipped 'table'"),
+    ParameterSpec("creep_spin", ("effects", "creep", "spin"), "boolean", "",
+                  "Include the spin input in the creep forces"),
+)
+
+
+def _get_path(d, path):
+    for key in path:
+        d = d[key]
+    return d
+
+
+def _set_path(d, path, value):
+    for key in path[:-1]:
+        d = d.setdefault(key, {})
+    d[path[-1]] = value
+
+
+def parameters_to_scene_dict(values, base=None, only_changed=True):
+    """Scene dict from FMU parameter values.
+
+    Parameters
+    ----------
+    values : dict
+        FMU parameter name -> value.
+    base : dict, optional
+        Parsed scene TOML the parameters override (default: :data:`DEFAULT_SCENE`).
+    only_changed : bool
+        With a ``base``, only parameters whose value differs from their start value override
+        it (a parameter left at its start value does not touch the scene).
+    """
+    out = copy.deepcopy(DEFAULT_SCENE if base is None else base)
+    for spec in FMU_PARAMETERS:
+        if spec.name not in values:
+            continue
+        value = values[spec.name]
+        if base is not None and only_changed and value == _get_path(DEFAULT_SCENE, spec.path):
+            continue
+        _set_path(out, spec.path, value)
+    return out
+
+
+def scene_to_parameters(scene_dict=None):
+    """FMU parameter start values from a scene dict (default :data:`DEFAULT_SCENE`)."""
+    merged = _merge(DEFAULT_SCENE, scene_dict or {})
+    return {spec.name: _get_path(merged, spec.path) for spec in FMU_PARAMETERS}

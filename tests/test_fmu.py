@@ -1,0 +1,292 @@
+"""WheelRailContact.fmu through real importers: fmpy (in process) and libcosimpy (subprocess).
+
+The FMU is built once per session into a temporary directory (``build_fmu.py --dest``). Each
+bundled scene is simulated with :func:`fmpy.simulate_fmu` and compared with results computed by
+calling ``railcontact`` directly (Hertz per load with :func:`railcontact.hertz.hertz_3d`, creep
+with :func:`railcontact.creep3d.creep_solution_3d`), both with :func:`fmpy.util.validate_result`
+and point by point.
+"""
+
+import glob
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+fmpy = pytest.importorskip("fmpy")
+from fmpy import read_model_description, extract  # noqa: E402
+from fmpy.fmi1 import FMICallException  # noqa: E402
+from fmpy.fmi2 import FMU2Slave  # noqa: E402
+from fmpy.util import validate_result  # noqa: E402
+from fmpy.validation import validate_fmu  # noqa: E402
+
+from railcontact.creep3d import creep_solution_3d  # noqa: E402
+from railcontact.hertz import hertz_3d  # noqa: E402
+from railcontact.scene import INPUTS, load_scene  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))
+MAIN_SCENE = str(ROOT / "examples" / "scenes" / "creep_only_analytic.toml")
+OUTPUTS = ["Fx", "Fy", "a0", "b0", "p0", "stick_area_fraction", "stick_width_ratio", "r_a0"]
+
+
+@pytest.fixture(scope="session")
+def fmu_path(tmp_path_factory):
+    dest = tmp_path_factory.mktemp("fmu")
+    subprocess.run([sys.executable, str(ROOT / "build_fmu.py"), "--dest", str(dest)],
+                   check=True, capture_output=True, text=True)
+    path = dest / "WheelRailContact.fmu"
+    assert path.is_file()
+    return path
+
+
+def _collect():
+    messages = []
+
+    def logger(_env, _instance, status, category, message):
+        messages.append((int(status), message.decode(errors="replace")))
+    return messages, logger
+
+
+def simulate(fmu_path, scene_path, **kwargs):
+    scene = load_scene(scene_path)
+    messages, logger = _collect()
+    sim = scene.simulation
+    start_values = {"scene_file": str(scene_path)}
+    start_values.update(kwargs.pop("start_values", {}))
+    result = fmpy.simulate_fmu(str(fmu_path), start_time=sim["start_time"],
+                               stop_time=sim["stop_time"], output_interval=sim["step_size"],
+                               input=kwargs.pop("input", scene.input_signals()),
+                               start_values=start_values, debug_logging=True, logger=logger,
+                               **kwargs)
+    return scene, result, messages
+
+
+def reference_result(scene, inputs=None):
+    """Outputs computed by calling railcontact directly, on the FMU's output grid.
+
+    Co-simulation sample and hold: the row at t_k (k >= 1) is the solution for the inputs at
+    t_(k-1); the row at t_0 the solution for the inputs at t_0 (after initialisation).
+    """
+    inputs = scene.input_signals() if inputs is None else inputs
+    held = np.concatenate((inputs[:1], inputs[:-1]))
+    n_load = held["normal_force"]
+    geo = scene.geometry
+    if geo["kind"] == "curvatures":
+        a0, b0, p0 = hertz_3d(n_load, geo["curvature_longitudinal"], geo["curvature_lateral"],
+                              scene.youngs_modulus, scene.poisson_ratio)
+    else:
+        a0 = np.full(n_load.shape, geo["semi_axis_longitudinal"])
+        b0 = np.full(n_load.shape, geo["semi_axis_lateral"])
+        p0 = 1.5 * n_load / (np.pi * a0 * b0)
+    opts = scene.effects["creep"]
+    spin = held["spin"] if opts["spin"] else np.zeros(n_load.shape)
+    sol = creep_solution_3d(held["creepage_longitudinal"], held["creepage_lateral"], spin,
+                            n_load, a0, b0, scene.youngs_modulus, scene.poisson_ratio,
+                            scene.friction_coefficient, opts["method"])
+    contact = n_load > 0
+    r_a0 = (np.ones(n_load.shape) if opts["method"] == "linear"
+            else 1.0 - np.minimum(sol.normalised_creepage, 1.0))
+    cols = {"Fx": sol.tx, "Fy": sol.ty, "a0": a0, "b0": b0, "p0": p0,
+            "stick_area_fraction": np.where(contact, sol.stick_area_fraction, 1.0),
+            "stick_width_ratio": np.where(contact, sol.stick_width_ratio, 1.0),
+            "r_a0": np.where(contact, r_a0, 1.0)}
+    out = np.zeros(len(inputs), dtype=[("time", float)] + [(k, float) for k in OUTPUTS])
+    out["time"] = inputs["time"]
+    for k in OUTPUTS:
+        out[k] = cols[k]
+    return out
+
+
+def test_fmpy_validate_is_clean(fmu_path):
+    assert validate_fmu(str(fmu_path)) == []
+    proc = subprocess.run([sys.executable, "-m", "fmpy", "validate",
+                           str(fmu_path)], capture_output=True, text=True)
+    assert "No problems found" in proc.stdout, proc.stdout + proc.stderr
+
+
+def test_every_variable_has_description_and_unit(fmu_path):
+    md = read_model_description(str(fmu_path))
+    for v in md.modelVariables:
+        assert v.description, v.name
+        if v.type == "Real":
+            assert v.unit, v.name
+    names = {v.name for v in md.modelVariables}
+    assert set(INPUTS) <= names
+    assert set(OUTPUTS) <= names
+    assert md.coSimulation.canGetAndSetFMUstate and md.coSimulation.canSerializeFMUstate
+
+
+def test_bundled_names_cannot_collide(fmu_path):
+    import zipfile
+    with zipfile.ZipFile(fmu_path) as zf:
+        module = zf.read("resources/slavemodule.txt").decode().strip()
+        names = zf.namelist()
+    assert module.startswith("wheelrailcontact_") and len(module) > len("wheelrailcontact_")
+    assert f"resources/{module}.py" in names
+    assert f"resources/{module}_railcontact/__init__.py" in names
+    assert not any(n.startswith("resources/railcontact/") for n in names)
+    assert "resources/requirements.txt" in names
+
+
+@pytest.mark.parametrize("scene_path", [s for s in SCENES if "table" not in Path(s).name],
+                         ids=lambda s: Path(s).stem)
+def test_scene_matches_direct_railcontact(fmu_path, scene_path):
+    scene, result, messages = simulate(fmu_path, scene_path)
+    reference = reference_result(scene)
+    assert validate_result(result, reference) == 0
+    for name in OUTPUTS:
+        np.testing.assert_allclose(result[name], reference[name], rtol=1e-12,
+                                   atol=1e-12 * np.abs(reference[name]).max(), err_msg=name)
+    for name in result.dtype.names:
+        assert np.all(np.isfinite(result[name].astype(float))), name
+    assert any("effects on: normal, creep" in m for _, m in messages)
+
+
+def test_switched_off_creep_is_not_built(fmu_path, tmp_path):
+    scene_file = tmp_path / "normal_only.toml"
+    scene_file.write_text('[effects.creep]\nenabled = false\n[simulation]\nstop_time = 0.02\n'
+                          'step_size = 0.01\n[inputs]\nnormal_force = 1e5\n'
+                          'creepage_longitudinal = 0.01\n')
+    _, result, messages = simulate(fmu_path, scene_file)
+    assert any(m.endswith("effects on: normal") for _, m in messages)
+    assert np.all(result["Fx"] == 0.0) and np.all(result["a0"] > 0.0)
+
+
+@pytest.mark.parametrize("start_values, name", [
+    ({"poisson_ratio": 0.6}, "poisson_ratio"),
+    ({"youngs_modulus": -1.0}, "youngs_modulus"),
+    ({"creep_method": "bogus"}, "creep_method"),
+    ({"friction_coefficient": float("nan")}, "friction_coefficient"),
+    ({"geometry_kind": "semi_axes", "semi_axis_lateral": 0.0}, "semi_axis_lateral"),
+    ({"scene_file": "/nonexistent/scene.toml"}, "scene_file"),
+    ({"scene_file": "", "scene_toml": "[effects.creep]\nmethodd = 'she'\n"}, "methodd"),
+])
+def test_bad_parameter_gives_fmi_error_naming_it(fmu_path, start_values, name):
+    scene_path = MAIN_SCENE
+    with pytest.raises(FMICallException, match="fmi2ExitInitializationMode"):
+        simulate(fmu_path, scene_path, start_values=start_values)
+    # fmpy surfaces the FMU's log; the error names the parameter
+    _, logger = _collect()
+    messages, logger = _collect()
+    try:
+        fmpy.simulate_fmu(str(fmu_path), start_values={"scene_file": scene_path, **start_values},
+                          stop_time=0.01, output_interval=0.01, debug_logging=True,
+                          logger=logger)
+    except FMICallException:
+        pass
+    errors = [m for s, m in messages if s == 3]
+    assert errors and name in errors[0], messages
+
+
+@pytest.mark.parametrize("name, value", [("creepage_longitudinal", np.nan),
+                                         ("normal_force", -5.0), ("spin", np.inf),
+                                         ("rolling_speed", -1.0)])
+def test_invalid_input_gives_fmi_error_not_nan(fmu_path, name, value):
+    scene = load_scene(MAIN_SCENE)
+    inputs = scene.input_signals()
+    inputs[name][10:] = value
+    messages, logger = _collect()
+    with pytest.raises(FMICallException, match="fmi2DoStep"):
+        fmpy.simulate_fmu(str(fmu_path), stop_time=scene.simulation["stop_time"],
+                          output_interval=scene.simulation["step_size"], input=inputs,
+                          start_values={"scene_file": MAIN_SCENE}, debug_logging=True,
+                          logger=logger)
+    errors = [m for s, m in messages if s == 3]
+    assert errors and name in errors[0], messages
+
+
+def _instantiate(fmu_path, scene_path, unzipdir):
+    md = read_model_description(str(fmu_path))
+    fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
+                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName="state")
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmu.instantiate()
+    fmu.setupExperiment(startTime=0.0)
+    fmu.setString([vr["scene_file"]], [str(scene_path)])
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    return fmu, vr
+
+
+def test_state_save_restore_is_bit_identical(fmu_path, tmp_path):
+    scene = load_scene(MAIN_SCENE)
+    inputs = scene.input_signals()
+    h = scene.simulation["step_size"]
+    unzipdir = extract(str(fmu_path), str(tmp_path / "x"))
+    fmu, vr = _instantiate(fmu_path, MAIN_SCENE, unzipdir)
+    in_refs = [vr[n] for n in INPUTS]
+    out_refs = [vr[n] for n in OUTPUTS]
+
+    def run(k0, k1):
+        rows = []
+        for k in range(k0, k1):
+            fmu.setReal(in_refs, [float(inputs[n][k]) for n in INPUTS])
+            fmu.doStep(inputs["time"][k], h)
+            rows.append(fmu.getReal(out_refs))
+        return np.array(rows)
+
+    try:
+        run(0, 50)
+        at_t1 = fmu.getReal(out_refs)
+        state = fmu.getFMUState()
+        first = run(50, 120)
+        fmu.setFMUState(state)
+        assert fmu.getReal(out_refs) == at_t1
+        second = run(50, 120)
+        blob = fmu.serializeFMUstate(state)
+        fmu.freeFMUState(state)
+        state2 = fmu.deSerializeFMUstate(blob)
+        fmu.setFMUState(state2)
+        third = run(50, 120)
+        fmu.freeFMUState(state2)
+        assert json.loads(bytes(blob).decode())["effects"]["creep"]["calls"] == 51
+    finally:
+        fmu.terminate()
+        fmu.freeInstance()
+    assert first.tobytes() == second.tobytes() == third.tobytes()
+    assert not np.array_equal(first[0], first[-1])
+
+
+def test_libcosim_agrees_with_fmpy(fmu_path, tmp_path):
+    pytest.importorskip("libcosimpy")
+    scene_path = MAIN_SCENE
+    out_csv = tmp_path / "cosim.csv"
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "fmu_src"), env.get("PYTHONPATH", "")])
+    proc = subprocess.run([sys.executable, str(ROOT / "tests" / "_cosim_runner.py"),
+                           str(fmu_path), scene_path, str(out_csv)],
+                          capture_output=True, text=True, env=env, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    cosim = np.genfromtxt(out_csv, delimiter=",", names=True)
+    _, result, _ = simulate(fmu_path, scene_path)
+    assert len(cosim) == len(result) - 1
+    np.testing.assert_allclose(cosim["time"], result["time"][1:], rtol=0, atol=1e-12)
+    for name in OUTPUTS:
+        np.testing.assert_allclose(cosim[name], result[name][1:], rtol=1e-14, atol=0,
+                                   err_msg=name)
+
+
+def test_run_command_writes_csv_and_plot(fmu_path, tmp_path):
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "railcontact.run", MAIN_SCENE, "--out",
+                           str(out), "--fmu", str(fmu_path)], capture_output=True, text=True,
+                          cwd=ROOT)
+    assert proc.returncode == 0, proc.stderr
+    name = load_scene(MAIN_SCENE).name
+    data = np.genfromtxt(out / f"{name}.csv", delimiter=",", names=True)
+    assert set(INPUTS) <= set(data.dtype.names) and "Fx" in data.dtype.names
+    assert (out / f"{name}.png").stat().st_size > 1000
+
+
+def test_run_command_reports_bad_scene(tmp_path, fmu_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[material]\npoisson_ratio = 0.7\n")
+    proc = subprocess.run([sys.executable, "-m", "railcontact.run", str(bad), "--fmu",
+                           str(fmu_path)], capture_output=True, text=True, cwd=ROOT)
+    assert proc.returncode == 2
+    assert "material.poisson_ratio must be in [0, 0.5)" in proc.stderr
