@@ -1,0 +1,187 @@
+"""Effect objects of the FMU and the slave class itself (in Python, without an importer).
+
+* The Hertz stage (N^(1/3) scaling of one ``hertz_3d`` call) against ``hertz_3d`` per load.
+* ``r_a0`` of the strip theory against Carter's 2-D stick ratio of the centre strip (an
+  independent closed form, Eq. (2.51)).
+* Only switched-on effects are built and called: counted by wrapping the model functions.
+* Unavailable models give a scene error, never a placeholder.
+"""
+
+import importlib
+import math
+
+import numpy as np
+import pytest
+
+import railcontact.creep3d as creep3d
+import railcontact.hertz as hertz
+from railcontact import effects
+from railcontact.carter import carter_stick_ratio
+from railcontact.effects import ContactPoint, EffectUnavailable, build_pipeline
+from railcontact.scene import parse_scene
+
+E, NU = 210e9, 0.28
+
+
+def _contact(**values):
+    c = ContactPoint()
+    for k, v in values.items():
+        setattr(c, k, v)
+    return c
+
+
+@pytest.mark.parametrize("curv", [(1.087, 1.667), (3.0, 0.2), (0.5, 0.5), (1.0, 40.0)])
+def test_hertz_scaling_matches_hertz_3d(curv):
+    scene = parse_scene(f"[geometry]\ncurvature_longitudinal = {curv[0]}\n"
+                        f"curvature_lateral = {curv[1]}\n")
+    pipe = build_pipeline(scene)
+    loads = np.array([0.0, 1e-3, 1.0, 3.3e3, 8e4, 2.5e5, 1e7])
+    ref = hertz.hertz_3d(loads, curv[0], curv[1], E, NU)
+    for i, n in enumerate(loads):
+        c = _contact(normal_force=n, friction_coefficient=0.3)
+        pipe.effects["normal"].step(c)
+        for got, want in ((c.a0, ref.a0[i]), (c.b0, ref.b0[i]), (c.p0, ref.p0[i])):
+            assert got == pytest.approx(want, rel=2e-15, abs=0.0)
+
+
+def test_fixed_semi_axes_pressure():
+    scene = parse_scene("[geometry]\nkind = 'semi_axes'\nsemi_axis_longitudinal = 6e-3\n"
+                        "semi_axis_lateral = 4e-3\n")
+    c = _contact(normal_force=6e4)
+    build_pipeline(scene).effects["normal"].step(c)
+    assert (c.a0, c.b0) == (6e-3, 4e-3)
+    assert c.p0 == pytest.approx(3 * 6e4 / (2 * math.pi * 6e-3 * 4e-3), rel=1e-15)
+
+
+@pytest.mark.parametrize("xi", [0.0, 1e-5, 3e-4, -8e-4, 2e-3, 1e-2])
+def test_r_a0_of_strip_theory_is_carters_centre_strip(xi):
+    """Centre strip y = 0 of the strip theory = Carter's cylinder with the same a0 and p0."""
+    scene = parse_scene("[effects.creep]\nmethod = 'strip'\nspin = false\n")
+    pipe = build_pipeline(scene)
+    c = _contact(normal_force=8e4, creepage_longitudinal=xi, friction_coefficient=0.3)
+    pipe.step(c)
+    # 2-D equivalent: p0 = 2 N'/(pi a0) and a0^2 = 8 N' R (1 - nu^2)/(pi E) (Eq. (2.40))
+    n_line = math.pi * c.a0 * c.p0 / 2.0
+    radius = c.a0 ** 2 * math.pi * E / (8.0 * n_line * (1.0 - NU ** 2))
+    want = carter_stick_ratio(xi, n_line, radius, E, NU, 0.3)
+    assert c.r_a0 == pytest.approx(float(want), rel=1e-12, abs=1e-14)
+
+
+@pytest.mark.parametrize("method", ["linear", "she", "strip", "modified_strip"])
+def test_creep_effect_returns_the_solver_values(method):
+    scene = parse_scene(f"[effects.creep]\nmethod = '{method}'\n")
+    pipe = build_pipeline(scene)
+    c = _contact(normal_force=7e4, creepage_longitudinal=-1e-3, creepage_lateral=5e-4,
+                 spin=0.1, friction_coefficient=0.3)
+    pipe.step(c)
+    ref = creep3d.creep_solution_3d(-1e-3, 5e-4, 0.1, 7e4, c.a0, c.b0, E, NU, 0.3, method)
+    assert (c.Fx, c.Fy) == (ref.tx, ref.ty)
+    assert c.stick_area_fraction == ref.stick_area_fraction
+    assert c.creep_within_validity == bool(ref.within_validity)
+    assert math.hypot(c.Fx, c.Fy) <= 0.3 * 7e4 * (1 + 1e-12) or method == "linear"
+
+
+def test_spin_switch_ignores_spin_input():
+    on = build_pipeline(parse_scene("[effects.creep]\nspin = true\n"))
+    off = build_pipeline(parse_scene("[effects.creep]\nspin = false\n"))
+    kw = dict(normal_force=7e4, creepage_longitudinal=0.0, creepage_lateral=1e-4, spin=0.5,
+              friction_coefficient=0.3)
+    c_on, c_off, c_ref = _contact(**kw), _contact(**kw), _contact(**dict(kw, spin=0.0))
+    on.step(c_on)
+    off.step(c_off)
+    on.step(c_ref)
+    assert c_off.Fy == c_ref.Fy != c_on.Fy
+
+
+def test_no_contact_gives_zero_forces_not_nan():
+    pipe = build_pipeline(parse_scene(""))
+    c = _contact(normal_force=0.0, creepage_longitudinal=0.01, friction_coefficient=0.3)
+    pipe.step(c)
+    assert (c.Fx, c.Fy, c.a0, c.b0, c.p0) == (0.0, 0.0, 0.0, 0.0, 0.0)
+    assert c.r_a0 == 1.0 and c.stick_area_fraction == 1.0
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    """Wrap the model entry points with call counters."""
+    counts = {"hertz_3d": 0, "creep_solution_3d": 0}
+
+    def wrap(module, name):
+        original = getattr(module, name)
+
+        def counter(*args, **kwargs):
+            counts[name] += 1
+            return original(*args, **kwargs)
+        monkeypatch.setattr(module, name, counter)
+
+    wrap(hertz, "hertz_3d")
+    wrap(creep3d, "creep_solution_3d")
+    return counts
+
+
+def _slave():
+    module = importlib.import_module("WheelRailContact")
+    return module.WheelRailContact(instance_name="test", resources=None)
+
+
+def _run_slave(slave, steps):
+    c = slave._contact
+    c.normal_force = 5e4
+    if slave._pipeline is None:
+        slave.exit_initialization_mode()
+    for k in range(steps):
+        c.normal_force = 5e4 + 10.0 * k
+        c.creepage_longitudinal = 1e-4 * k
+        slave.do_step(k * 1e-3, 1e-3)
+    return slave
+
+
+def test_slave_calls_only_switched_on_effects(counted):
+    slave = _slave()
+    slave.scene_toml = "[effects.creep]\nenabled = false\n"
+    _run_slave(slave, 25)
+    assert list(slave._pipeline.effects) == ["normal"]
+    assert slave._pipeline.calls() == {"normal": 26}
+    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0}
+    assert slave._contact.Fx == 0.0
+
+
+def test_slave_creep_scene_calls_creep_once_per_step(counted):
+    slave = _run_slave(_slave(), 25)
+    assert slave._pipeline.calls() == {"normal": 26, "creep": 26}
+    # Hertz once at build (N^(1/3) scaling afterwards), creep once per step + once at init
+    assert counted == {"hertz_3d": 1, "creep_solution_3d": 26}
+    assert slave._contact.Fx < 0.0
+
+
+def test_unavailable_model_is_a_scene_error(monkeypatch):
+    real_import = importlib.import_module
+
+    def fake(name, *args):
+        if name.endswith(".creep3d"):
+            raise ImportError("No module named creep3d")
+        return real_import(name, *args)
+
+    monkeypatch.setattr(effects.importlib, "import_module", fake)
+    with pytest.raises(EffectUnavailable, match="effect creep .analytic. not available in this "
+                                                "build"):
+        build_pipeline(parse_scene(""))
+
+
+def test_slave_bad_parameter_logs_error_naming_it():
+    slave = _slave()
+    slave.poisson_ratio = 0.7
+    with pytest.raises(ValueError, match="poisson_ratio"):
+        slave.exit_initialization_mode()
+    assert slave.log_queue[-1].status == 3
+    assert "parameter poisson_ratio" in slave.log_queue[-1].msg
+
+
+def test_slave_state_round_trip_in_python():
+    slave = _run_slave(_slave(), 10)
+    state = slave._get_fmu_state()
+    blob = slave._fmu_state_to_bytes(state)
+    fx = slave._contact.Fx
+    _run_slave(slave, 3)
+    slave._set_fmu_state(slave._fmu_state_from_bytes(blob))
+    assert slave._contact.Fx == fx and slave._pipeline.calls()["creep"] == 11

@@ -1,0 +1,133 @@
+"""Scene files: parsing, defaults, validation errors naming the key, input signals."""
+
+import glob
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from railcontact.scene import (DEFAULT_SCENE, FMU_PARAMETERS, INPUTS, SceneError, load_scene,
+                               parameters_to_scene_dict, parse_scene, scene_from_dict,
+                               scene_to_parameters)
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))
+
+
+@pytest.mark.parametrize("path", SCENES, ids=lambda p: Path(p).stem)
+def test_bundled_scenes_load(path):
+    scene = load_scene(path)
+    assert scene.name == Path(path).stem
+    assert scene.description
+    signals = scene.input_signals()
+    assert signals.dtype.names == ("time",) + tuple(INPUTS)
+    assert len(signals) == len(scene.time_grid())
+    for name in INPUTS:
+        assert np.all(np.isfinite(signals[name]))
+    assert np.all(signals["normal_force"] >= 0) and np.all(signals["rolling_speed"] >= 0)
+
+
+def test_defaults_fill_missing_sections():
+    scene = parse_scene("")
+    assert scene.youngs_modulus == DEFAULT_SCENE["material"]["youngs_modulus"]
+    assert scene.effects == {"creep": {"enabled": True, "method": "modified_strip",
+                                       "source": "analytic", "spin": True, "table": "creep3d"}}
+    assert scene.geometry["kind"] == "curvatures"
+    assert scene.inputs == {}
+
+
+def test_effect_switched_off_is_absent():
+    scene = parse_scene("[effects.creep]\nenabled = false\n")
+    assert scene.effects == {} and not scene.enabled("creep")
+
+
+@pytest.mark.parametrize("text, match", [
+    ("[material]\npoisson_ratio = 0.6\n", r"material.poisson_ratio must be in \[0, 0.5\) "
+                                          r"\[-\]; got 0.6"),
+    ("[material]\nyoungs_modulus = 0\n", "material.youngs_modulus"),
+    ("[material]\nyoungs_modulus = 'steel'\n", "material.youngs_modulus must be a number"),
+    ("[material]\nyoung = 1\n", "material: unknown key 'young'"),
+    ("[materials]\n", "unknown key 'materials'"),
+    ("[geometry]\nkind = 'ellipse'\n", "geometry.kind must be one of"),
+    ("[geometry]\ncurvature_lateral = -1\n", "geometry.curvature_lateral"),
+    ("[geometry]\nkind = 'semi_axes'\nsemi_axis_longitudinal = 0\n",
+     "geometry.semi_axis_longitudinal"),
+    ("[friction]\nfriction_coefficient = -0.1\n", "friction.friction_coefficient"),
+    ("[effects.creep]\nmethod = 'kalker'\n", "effects.creep.method must be one of"),
+    ("[effects.creep]\nsource = 'lookup'\n", "effects.creep.source must be one of"),
+    ("[effects.creep]\nspin = 1\n", "effects.creep.spin must be true or false"),
+    ("[effects.magic]\n", "effects: unknown key 'magic'"),
+    ("[effects.creep]\nenabled = false\n[effects.wear]\n", "effects.creep.enabled must be true"),
+    ("[simulation]\nstop_time = 0\n", "simulation.stop_time"),
+    ("[simulation]\nstep_size = 0.3\n", "simulation.step_size must divide"),
+    ("[inputs]\nforce = 1\n", "inputs: unknown key 'force'"),
+    ("[inputs]\nnormal_force = { kind = 'square' }\n", "inputs.normal_force.kind"),
+    ("[inputs]\nnormal_force = { kind = 'ramp', start_value = 1 }\n",
+     "inputs.normal_force.end_value must be a number"),
+    ("[inputs]\nspin = { kind = 'travel' }\n", "only allowed for rail_position"),
+    ("[inputs]\nspin = { kind = 'points', time = [0, 0], value = [1, 2] }\n",
+     "strictly increasing"),
+    ("[inputs]\nspin = { kind = 'points', time = [0, 1], value = [1] }\n", "equal length"),
+    ("[inputs]\nspin = nan\n", "inputs.spin must be in"),
+    ("x = [", "not valid TOML"),
+])
+def test_invalid_scene_names_the_key(text, match):
+    with pytest.raises(SceneError, match=match):
+        parse_scene(text)
+
+
+def test_scene_error_is_value_error():
+    assert issubclass(SceneError, ValueError)
+
+
+def test_missing_file_names_scene_file(tmp_path):
+    with pytest.raises(SceneError, match="scene_file: cannot read"):
+        load_scene(tmp_path / "nope.toml")
+
+
+def test_signals():
+    scene = parse_scene("""
+[simulation]
+start_time = 0.0
+stop_time = 1.0
+step_size = 0.25
+[inputs]
+normal_force = { kind = "ramp", start_value = 0.0, end_value = 100.0, start_time = 0.25, end_time = 0.75 }
+creepage_longitudinal = { kind = "sine", mean = 1.0, amplitude = 2.0, frequency = 1.0 }
+creepage_lateral = { kind = "points", time = [0.0, 1.0], value = [0.0, -4.0] }
+spin = 0.5
+rolling_speed = { kind = "points", time = [0.0, 0.5, 1.0], value = [10.0, 20.0, 20.0] }
+rail_position = { kind = "travel", start_value = 3.0 }
+""")
+    s = scene.input_signals()
+    np.testing.assert_array_equal(s["time"], [0.0, 0.25, 0.5, 0.75, 1.0])
+    np.testing.assert_array_equal(s["normal_force"], [0.0, 0.0, 50.0, 100.0, 100.0])
+    np.testing.assert_allclose(s["creepage_longitudinal"], [1.0, 3.0, 1.0, -1.0, 1.0],
+                               atol=1e-15)
+    np.testing.assert_array_equal(s["creepage_lateral"], [0.0, -1.0, -2.0, -3.0, -4.0])
+    np.testing.assert_array_equal(s["spin"], 0.5)
+    # travel = 3 + integral of the (piecewise linear) speed: exact for the trapezoidal rule
+    np.testing.assert_allclose(s["rail_position"], [3.0, 6.125, 10.5, 15.5, 20.5])
+    np.testing.assert_array_equal(s["creepage_lateral"], scene.input_signals(s["time"])[
+        "creepage_lateral"])
+
+
+def test_undriven_inputs_take_fmu_start_values():
+    s = parse_scene("").input_signals()
+    assert np.all(s["rolling_speed"] == 20.0) and np.all(s["normal_force"] == 0.0)
+
+
+def test_fmu_parameters_round_trip_and_override():
+    defaults = scene_to_parameters()
+    assert set(defaults) == {p.name for p in FMU_PARAMETERS}
+    # without a base, the parameters define the scene completely
+    scene = scene_from_dict(parameters_to_scene_dict(dict(defaults, poisson_ratio=0.3)))
+    assert scene.poisson_ratio == 0.3
+    # with a base scene, parameters left at their start value do not override it ...
+    base = {"material": {"poisson_ratio": 0.25}, "effects": {"creep": {"method": "she"}}}
+    scene = scene_from_dict(parameters_to_scene_dict(defaults, base=base))
+    assert scene.poisson_ratio == 0.25 and scene.effects["creep"]["method"] == "she"
+    # ... changed ones do
+    scene = scene_from_dict(parameters_to_scene_dict(dict(defaults, creep_method="linear"),
+                                                     base=base))
+    assert scene.effects["creep"]["method"] == "linear" and scene.poisson_ratio == 0.25
