@@ -1,0 +1,671 @@
+r"""A cylinder rolling on a corrugated surface: normal and tangential problem (Nielsen Ch. 4.2).
+
+The 2-D contact of a cylinder (equivalent radius ``R``) rolling over a rail surface
+
+.. math:: Z_2(X) = \sum_{m=1}^{M} Z_{A,m}\cos(k_m X) + Z_{B,m}\sin(k_m X),
+          \qquad k_m = 2\pi/L_m,                                                   \quad (4.1)
+
+solved exactly within the polynomial approach (Eqs. (4.11)-(4.73) of [1]_), quasi-statically at
+every rail position ``X`` of the cylinder axis.
+
+Conventions
+-----------
+* ``X`` is the rail position of the cylinder axis; the cylinder rolls towards **+X**; the patch is
+  ``|x| <= a`` in the patch coordinate ``x`` (origin at the patch centre, which lies at
+  ``X + Delta`` on the rail); the **leading edge is x = +a** (package convention, as in
+  :mod:`railcontact.reference.halfspace2d`). Carter's stick zone is ``[a - 2 a*, a]``.
+* The thesis solves the tangential problem with the stick zone at ``x = -a`` (its (2.55)-(2.56),
+  (4.47)), i.e. for rolling towards -X. All in-phase ("1") coefficients are the same in both
+  orientations; the quadrature ("2") coefficients and every phase change sign:
+  ``c_ours = conj(c_thesis)``. The figure script plots in the thesis' orientation.
+* One harmonic, linear response: a quantity ``Q(X) = Q0 + Q_A cos kX + Q_B sin kX`` responds to
+  the surface through ``Q_A + i Q_B = c (Z_A + i Z_B)``; ``c = Q1 + i Q2`` carries the thesis'
+  matrix ``[[Q1, -Q2], [Q2, Q1]]`` (e.g. (4.60)), amplitude ``|c| sqrt(Z_A^2 + Z_B^2)`` and phase
+  ``arg c`` ((4.63)-(4.64): the response peaks ``arg(c)/k`` after the surface crest in +X).
+* Magnitudes: creepage enters through Carter's stick ratio ``r_a0 = a0*/a0`` (Eq. (4.65));
+  ``T`` is the magnitude of the tangential force, ``T0 = mu N (1 - r_a0^2)`` (Carter (2.53)).
+
+Method (what is exact and what is linearised)
+---------------------------------------------
+With ``g'(xb) = xb/R - dZ2/dX`` the slope of the undeformed separation and the Chebyshev expansion
+(Jacobi-Anger) ``exp(i b u) = J0(b) + 2 sum_n i^n J_n(b) T_n(u)``, the polynomial approach (3.16)
+gives the pressure as the Chebyshev series
+
+.. math:: p(x) = \frac{1}{\pi C}\sum_{n\ge1} c_n \sin(n\theta), \quad x = a\cos\theta,\quad
+          C = \frac{4(1-\nu^2)}{\pi E},
+
+``c_1 = a/R + 2 sum_m k_m J_1(k_m a) Re[zeta_m e^{i phi_m}]``,
+``c_n = -2 sum_m k_m J_n(k_m a) Re[i^(n+1) zeta_m e^{i phi_m}]`` (n >= 2), ``zeta = Z_A - i Z_B``,
+``phi_m = k_m (X + Delta)``. This is the thesis' series (4.18)-(4.26) re-expanded in Chebyshev
+polynomials, which is what makes the Bessel functions of (4.31)-(4.37) appear (they only appear
+with the (k!)^2 form of (3.10)/(3.13), see the seed errata). The two conditions (bounded at both
+edges, given load) are exactly (4.31) and (4.33); the stick zone obeys the same equations on
+``[a - 2a*, a]`` (the creepage condition, mirrored (4.57); the force, mirrored (4.67)), and the
+slip in the slip zone is the analytic continuation ``s = mu (sum d_n w^n - g2'(x))``,
+``w = v + sqrt(v^2 - 1)`` (v < -1), so no power series with cancellation is ever summed.
+``degree`` truncates the series (the user knob of (4.18)-(4.28)); the estimate (4.28) is returned
+by :func:`series_truncation_error`.
+
+References
+----------
+.. [1] J.B. Nielsen, New Developments in the Theory of Wheel/Rail Contact Mechanics,
+   IMM-PHD-1998-51, DTU, 1998, Secs. 4.2.1-4.2.3, Eqs. (4.1)-(4.73).
+.. [2] F.W. Carter, On the action of a locomotive driving wheel, Proc. R. Soc. A 112 (1926).
+.. [3] N.I. Muskhelishvili, Singular Integral Equations, Noordhoff, 1953 (finite Hilbert
+   transform of Chebyshev polynomials).
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+from scipy.special import j0, j1, jv
+
+from ._validation import check_range
+
+__all__ = [
+    "normal_response", "stick_zone_response", "tangential_force_response",
+    "contact_point_shift_coefficient", "series_truncation_error", "series_degree",
+    "solve_normal_exact", "solve_stick_zone_exact", "corrugated_contact",
+    "contact_distributions", "CorrugatedContact", "ContactDistributions",
+    "check_no_contact_loss",
+]
+
+_TWO_PI = 2.0 * np.pi
+
+
+# ---------------------------------------------------------------------------------------------
+# input helpers
+# ---------------------------------------------------------------------------------------------
+def _ratio(a0_over_wavelength):
+    return check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                       lower_closed=False)
+
+
+def _stick(stick_ratio):
+    return check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
+
+
+def check_no_contact_loss(curvature_amplitude):
+    r"""Check condition (4.2), ``k^2 R sqrt(Z_A^2 + Z_B^2) < 1`` for every harmonic.
+
+    Parameters
+    ----------
+    curvature_amplitude : array_like
+        ``k_m^2 R sqrt(Z_A,m^2 + Z_B,m^2)``, the surface curvature amplitude relative to the
+        cylinder curvature. [-]
+
+    Returns
+    -------
+    ndarray
+        The input as a float array.
+
+    Raises
+    ------
+    ValueError
+        If any value reaches 1: the surface is more curved than the cylinder somewhere, a
+        second contact (impact, multiple contact) appears and the model is out of scope.
+    """
+    return check_range("curvature_amplitude", curvature_amplitude, "-", 0.0, 1.0,
+                       upper_closed=False,
+                       condition="Eq. (4.2) k^2 R |Z| < 1: multiple contact / impact is out of "
+                                 "scope")
+
+
+# ---------------------------------------------------------------------------------------------
+# linear closed forms, one harmonic, normalised (vectorised over grids)
+# ---------------------------------------------------------------------------------------------
+def normal_response(a0_over_wavelength):
+    r"""Linear response of the patch shift and half-width to one harmonic, (4.34)-(4.37).
+
+    ``Delta(X) = -k R J0(k a0) [Z_A sin kX - Z_B cos kX]`` (4.36) and
+    ``a(X) = a0 - k R J1(k a0) [Z_A cos kX + Z_B sin kX]`` (4.37), at constant normal load.
+
+    Parameters
+    ----------
+    a0_over_wavelength : array_like
+        Hertz half-width over wave length ``a0/L``, > 0. [-]
+
+    Returns
+    -------
+    delta : ndarray of complex
+        ``c_Delta / (k R) = -i J0(2 pi a0/L)``; ``|c|`` is Fig. 4.3. [-]
+    half_width : ndarray of complex
+        ``c_a / (k R) = -J1(2 pi a0/L)``; ``|c|`` is Fig. 4.4 (maximum 0.5819 at a0/L = 0.2930). [-]
+
+    Notes
+    -----
+    Verified in the tests against the exact nonlinear solution of (4.31), (4.33)
+    (:func:`solve_normal_exact`) at small amplitude, and against the discretised half-space
+    solver :func:`railcontact.reference.halfspace2d.solve_normal_2d`.
+    """
+    beta = _TWO_PI * _ratio(a0_over_wavelength)
+    return -1j * j0(beta), -j1(beta) + 0j
+
+
+def contact_point_shift_coefficient():
+    r"""Linear coefficient of the contact-point shift Delta_c (4.41), normalised by ``k R``.
+
+    ``Delta_c(X) = -k R [Z_A sin kX - Z_B cos kX]``, i.e. ``c = -i``; compare ``Delta`` = ``J0(k
+    a0) Delta_c`` (4.42).
+
+    # erratum: (4.40) as printed has cos/sin swapped on the right-hand side; the tangency
+    # condition is Delta_c/sqrt(R^2 - Delta_c^2) = dZ2/dX = -k sum [Z_A sin - Z_B cos](k(X+Delta_c)),
+    # whose first-order solution is the printed (4.41); verified by finite differences in the tests.
+
+    Returns
+    -------
+    complex
+        ``-1j``. [-]
+    """
+    return -1j
+
+
+def stick_zone_response(a0_over_wavelength, stick_ratio):
+    r"""Linear response of the stick-zone half-width a* to one harmonic, (4.58)-(4.64).
+
+    In the package orientation (rolling towards +X, stick zone at the leading edge ``+a``):
+
+    ``c_a* / (k R) = -J1(k a0) + J0(k a0*) sin(k d) - i [J0(k a0) - J0(k a0*) cos(k d)]``,
+    ``d = a0 - a0*``. The thesis' (4.61)-(4.62) are the complex conjugate (its orientation).
+
+    Parameters
+    ----------
+    a0_over_wavelength : array_like
+        ``a0/L``, > 0. [-]
+    stick_ratio : array_like
+        Carter stick ratio ``r_a0 = a0*/a0`` in [0, 1]. [-]
+
+    Returns
+    -------
+    ndarray of complex
+        ``c_a* / (k R)``; amplitude is Fig. 4.6 (top), ``-arg`` its phase (bottom). [-]
+    """
+    beta = _TWO_PI * _ratio(a0_over_wavelength)
+    r = _stick(stick_ratio)
+    kd = beta * (1.0 - r)
+    js = j0(beta * r)
+    return (-j1(beta) + js * np.sin(kd)) - 1j * (j0(beta) - js * np.cos(kd))
+
+
+def tangential_force_response(a0_over_wavelength, stick_ratio):
+    r"""Linear response of the tangential force magnitude T to one harmonic, (4.68)-(4.73).
+
+    ``c_T = -k a0* [c_a*/(k R) + J1(k a0*) exp(-i k d)]`` in units of
+    ``mu pi E / (4 (1 - nu^2))`` per unit surface amplitude (the normalisation of Fig. 4.8);
+    conjugate of (4.70)-(4.71) (orientation, see module docstring). ``T0 = mu N (1 - r_a0^2)``.
+
+    Parameters
+    ----------
+    a0_over_wavelength : array_like
+        ``a0/L``, > 0. [-]
+    stick_ratio : array_like
+        ``r_a0`` in [0, 1]. [-]
+
+    Returns
+    -------
+    ndarray of complex
+        ``c_T / (mu pi E / (4 (1 - nu^2)))``. [-]
+    """
+    beta = _TWO_PI * _ratio(a0_over_wavelength)
+    r = _stick(stick_ratio)
+    kd = beta * (1.0 - r)
+    return -beta * r * (stick_zone_response(a0_over_wavelength, r)
+                        + j1(beta * r) * np.exp(-1j * kd))
+
+
+# ---------------------------------------------------------------------------------------------
+# series truncation (4.27)-(4.28)
+# ---------------------------------------------------------------------------------------------
+def series_truncation_error(ka, degree):
+    r"""Truncation-error estimates of the polynomial series (4.18) of degree ``degree``.
+
+    Parameters
+    ----------
+    ka : array_like
+        ``k a`` (wave number times half-width), >= 0. [-]
+    degree : array_like of int
+        Highest power of x kept in ``sum B_n x^n`` (= highest Chebyshev index), >= 1. [-]
+
+    Returns
+    -------
+    ratio : ndarray
+        The thesis' estimate (4.28), ``k a / (degree + 1)``: ratio of the errors of the degree-n
+        and degree-(n+1) truncations near the edge (< 1 once the series converges). [-]
+    relative_error : ndarray
+        ``sum_{j > degree} |J_j(k a)| / max_j |J_j(k a)|``: the neglected Chebyshev-Bessel
+        coefficients relative to the largest one, i.e. the relative error of the corrugation part
+        of the pressure and slope (the size (4.27) ``(k a)^n / n!`` with the exact constants). [-]
+    """
+    ka = check_range("ka", ka, "-", 0.0, None)
+    n = check_range("degree", degree, "-", 1, None)
+    nmax = int(np.max(n)) + 60 + int(np.max(ka)) * 2
+    j = np.arange(1, nmax + 1)
+    shape = np.broadcast(ka, n).shape
+    kab = np.broadcast_to(ka, shape)[..., None]
+    nb = np.broadcast_to(n, shape)[..., None]
+    terms = np.abs(jv(j, kab))
+    biggest = np.maximum(terms.max(axis=-1), 1e-300)
+    tail = np.where(j > nb, terms, 0.0).sum(axis=-1)
+    return ka / (n + 1.0), np.where(np.squeeze(kab, -1) > 0, tail / biggest, 0.0)
+
+
+def series_degree(ka, tolerance=1e-10, max_degree=400):
+    r"""Smallest series degree whose truncation error (:func:`series_truncation_error`) is below
+    ``tolerance``.
+
+    Parameters
+    ----------
+    ka : array_like
+        ``k a``, >= 0. [-]
+    tolerance : float
+        Relative tolerance, in (0, 1). [-]
+    max_degree : int
+        Largest degree allowed. [-]
+
+    Returns
+    -------
+    int
+        The degree (maximum over the array).
+
+    Raises
+    ------
+    ValueError
+        If the tolerance cannot be met with ``max_degree`` (the series does converge for every
+        ``k a``, like ``(k a/2)^n/n!``, but needs about ``e k a / 2`` terms before it does).
+    """
+    ka = check_range("ka", ka, "-", 0.0, None)
+    tol = float(check_range("tolerance", tolerance, "-", 0.0, 1.0, lower_closed=False,
+                            upper_closed=False))
+    kamax = float(np.max(ka)) if ka.size else 0.0
+    for n in range(1, int(max_degree) + 1):
+        if n > kamax and series_truncation_error(kamax, n)[1] < tol:
+            return n
+    raise ValueError(f"degree must be <= max_degree = {max_degree} [-]; the series for "
+                     f"k a = {kamax:g} needs more terms to reach tolerance {tol:g} "
+                     "(increase max_degree)")
+
+
+# ---------------------------------------------------------------------------------------------
+# exact nonlinear solution at given rail positions (any number of harmonics)
+# ---------------------------------------------------------------------------------------------
+def _surface_terms(y, k, za, zb):
+    """S = Z_A sin ky - Z_B cos ky and Zc = Z_A cos ky + Z_B sin ky (last axis = harmonics)."""
+    s, c = np.sin(k * y), np.cos(k * y)
+    return za * s - zb * c, za * c + zb * s
+
+
+def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumbers, amplitudes_cos,
+                       amplitudes_sin, *, a_start=None, tol=1e-13, max_iter=60):
+    r"""Solve the exact normal equations (4.31) and (4.33) for ``a`` and ``Delta`` (Newton).
+
+    ``0 = Delta + R sum k J0(k a) [Z_A sin k(X+Delta) - Z_B cos k(X+Delta)]`` (4.31),
+    ``N C = a^2/(2R) + sum k a J1(k a) [Z_A cos k(X+Delta) + Z_B sin k(X+Delta)]`` (4.33).
+
+    Parameters
+    ----------
+    rail_position : array_like
+        Axis position(s) X. [m]
+    normal_load_compliance : float
+        ``N C = N 4 (1 - nu^2)/(pi E)``, i.e. ``a0^2 / (2 R)``. [m]
+    radius : float
+        Equivalent radius R. [m]
+    wavenumbers, amplitudes_cos, amplitudes_sin : array_like, shape (M,)
+        ``k_m`` [1/m], ``Z_A,m`` [m], ``Z_B,m`` [m].
+
+    Returns
+    -------
+    a, delta, d_a_dx, d_delta_dx : ndarray
+        Half-width [m], patch-centre shift relative to the axis [m], and their derivatives with
+        respect to X (implicit differentiation) [-].
+
+    Raises
+    ------
+    ValueError
+        If Newton does not converge (surface out of the range (4.2)).
+    """
+    x = np.asarray(rail_position, dtype=float)[..., None]
+    k = np.asarray(wavenumbers, float)
+    za = np.asarray(amplitudes_cos, float)
+    zb = np.asarray(amplitudes_sin, float)
+    big_r = float(radius)
+    nc = float(normal_load_compliance)
+    a0 = np.sqrt(2.0 * big_r * nc)
+    a = np.full(x.shape[:-1], a0 if a_start is None else 0.0) + (0.0 if a_start is None
+                                                                else np.asarray(a_start))
+    d = np.zeros(x.shape[:-1])
+    for _ in range(max_iter):
+        s, c = _surface_terms(x + d[..., None], k, za, zb)
+        ka = k * a[..., None]
+        jz, jo = j0(ka), j1(ka)
+        f1 = d + big_r * np.sum(k * jz * s, -1)
+        f2 = a * a / (2 * big_r) + np.sum(k * a[..., None] * jo * c, -1) - nc
+        j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
+        j12 = -big_r * np.sum(k * k * jo * s, -1)
+        j21 = -np.sum(k * k * a[..., None] * jo * s, -1)
+        j22 = a / big_r + np.sum(k * k * a[..., None] * jz * c, -1)
+        det = j11 * j22 - j12 * j21
+        dd = (f1 * j22 - f2 * j12) / det
+        da = (j11 * f2 - j21 * f1) / det
+        d = d - dd
+        a = a - da
+        if np.all(np.abs(dd) + np.abs(da) < tol * a0):
+            break
+    else:
+        raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) k^2 R |Z| << 1 "
+                         "[m]: the normal problem (4.31), (4.33) did not converge")
+    if np.any(a <= 0) or np.any(det <= 0):
+        raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) [m]: no "
+                         "single-patch solution")
+    s, c = _surface_terms(x + d[..., None], k, za, zb)
+    ka = k * a[..., None]
+    jz, jo = j0(ka), j1(ka)
+    j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
+    j12 = -big_r * np.sum(k * k * jo * s, -1)
+    j21 = -np.sum(k * k * a[..., None] * jo * s, -1)
+    j22 = a / big_r + np.sum(k * k * a[..., None] * jz * c, -1)
+    det = j11 * j22 - j12 * j21
+    g1 = big_r * np.sum(k * k * jz * c, -1)              # dF1/dX
+    g2 = -np.sum(k * k * a[..., None] * jo * s, -1)      # dF2/dX
+    dd_dx = -(g1 * j22 - g2 * j12) / det
+    da_dx = -(j11 * g2 - j21 * g1) / det
+    return a, d, da_dx, dd_dx
+
+
+def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radius, wavenumbers,
+                           amplitudes_cos, amplitudes_sin, *, tol=1e-13, max_iter=60):
+    r"""Solve the exact creepage condition for the stick half-width ``a*`` (mirrored (4.57)).
+
+    ``xi/mu = xs/R + sum k J0(k a*) [Z_A sin k(X+xs) - Z_B cos k(X+xs)]``, with the stick-zone
+    centre ``xs = Delta + a - a*`` (relative to the axis; leading edge at +a). ``a*`` is limited
+    to ``[0, a]`` (0: full slip, a: no slip anywhere at this position).
+
+    Parameters
+    ----------
+    rail_position, a, delta : array_like
+        Axis position, half-width and patch shift from :func:`solve_normal_exact`. [m]
+    creepage_over_friction : float
+        ``|xi| / mu = (a0 - a0*)/R`` (Carter (2.52)). [-]
+    radius : float
+        R. [m]
+    wavenumbers, amplitudes_cos, amplitudes_sin : array_like, shape (M,)
+        Surface harmonics. [1/m], [m], [m]
+
+    Returns
+    -------
+    ndarray
+        ``a*``. [m]
+    """
+    x = np.asarray(rail_position, dtype=float)[..., None]
+    a = np.asarray(a, float)
+    d = np.asarray(delta, float)
+    k = np.asarray(wavenumbers, float)
+    za = np.asarray(amplitudes_cos, float)
+    zb = np.asarray(amplitudes_sin, float)
+    big_r = float(radius)
+    xi = float(creepage_over_friction)
+    ast = np.clip(a - xi * big_r, 0.0, a)
+    for _ in range(max_iter):
+        xs = d + a - ast
+        s, c = _surface_terms(x + xs[..., None], k, za, zb)
+        kas = k * ast[..., None]
+        f = xs / big_r + np.sum(k * j0(kas) * s, -1) - xi
+        df = -1.0 / big_r + np.sum(-k * k * j1(kas) * s - k * k * j0(kas) * c, -1)
+        step = f / df
+        new = np.clip(ast - step, 0.0, a)
+        if np.all(np.abs(new - ast) < tol * np.maximum(a, 1e-300)):
+            ast = new
+            break
+        ast = new
+    return ast
+
+
+CorrugatedContact = namedtuple("CorrugatedContact", [
+    "half_width", "patch_shift", "stick_half_width", "tangential_force", "normal_load",
+    "wear_depth"])
+CorrugatedContact.__doc__ = """Result of :func:`corrugated_contact`.
+
+half_width : ndarray
+    Contact half-width a at the rail position. [m]
+patch_shift : ndarray
+    Delta: patch centre relative to the axis (rail coordinate of the centre is X + Delta). [m]
+stick_half_width : ndarray
+    a*: stick-zone half-width; the stick zone is [a - 2a*, a] in the patch coordinate. [m]
+tangential_force : ndarray
+    |T|: magnitude of the tangential force per unit length (opposes the creepage). [N/m]
+normal_load : ndarray
+    Normal load per unit length (constant here). [N/m]
+wear_depth : ndarray or None
+    Wear depth per passage at the *material point* X (same array as the rail position) from the
+    linearised model ``wear_model`` (:func:`railcontact.wear.wear_coefficients`), or None when
+    no ``wear_coefficient`` was given. [m]
+"""
+
+
+def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
+                       friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
+                       wavelengths, *, method="exact", wear_coefficient=None,
+                       wear_model="material_point"):
+    r"""One contact on a corrugated rail at given axis positions, physical units (Ch. 4.2-4.3).
+
+    Parameters
+    ----------
+    rail_position : array_like
+        Axis position(s) X along the rail. [m]
+    normal_load : float
+        Normal load per unit length N, > 0. [N/m]
+    radius : float
+        Equivalent radius R, > 0. [m]
+    youngs_modulus : float
+        E of both bodies, > 0. [Pa]
+    poisson_ratio : float
+        nu, in [0, 0.5). [-]
+    friction_coefficient : float
+        Coulomb mu, > 0. [-]
+    creepage : float
+        Longitudinal creepage; only ``|creepage|`` matters here (T is returned as a magnitude),
+        ``|creepage| <= mu a0 / R`` (beyond: full slip, a* = 0). [-]
+    amplitudes_cos, amplitudes_sin : array_like, shape (M,)
+        Surface harmonics Z_A,m, Z_B,m of (4.1) (rail surface height, up positive). [m]
+    wavelengths : array_like, shape (M,)
+        L_m, > 0. [m]
+    method : {"exact", "linear"}
+        "exact": the nonlinear equations (4.31), (4.33), (4.57), (4.67) solved by Newton;
+        "linear": the closed forms (4.36)-(4.37), (4.59)-(4.62), (4.68)-(4.71).
+    wear_coefficient : float, optional
+        Wear coefficient K of (4.74), >= 0. [m^2/N] If given, ``wear_depth`` is the linearised
+        wear per passage W(X) of (4.94) at the material points ``rail_position``.
+    wear_model : str
+        See :func:`railcontact.wear.wear_coefficients` (default "material_point").
+
+    Returns
+    -------
+    CorrugatedContact
+
+    Raises
+    ------
+    ValueError
+        Bad input, or condition (4.2) violated (multiple contact / impact: out of scope).
+    """
+    from .hertz import hertz_2d
+
+    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
+    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
+                              lower_closed=False))
+    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
+    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
+                           lower_closed=False))
+    xi = abs(float(check_range("creepage", creepage, "-")))
+    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
+    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
+    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
+                                    lower_closed=False))
+    if not (za.shape == zb.shape == lam.shape) or za.ndim != 1:
+        raise ValueError("amplitudes_cos, amplitudes_sin, wavelengths must be 1-D of equal "
+                         f"length [m]; got shapes {za.shape}, {zb.shape}, {lam.shape}")
+    if method not in ("exact", "linear"):
+        raise ValueError(f"method must be one of ['exact', 'linear']; got {method!r}")
+    x = check_range("rail_position", rail_position, "m")
+    k = _TWO_PI / lam
+    check_no_contact_loss(k * k * big_r * np.hypot(za, zb))
+    a0 = float(hertz_2d(n_load, big_r, e_mod, nu).a0)
+    comp = 4.0 * (1.0 - nu * nu) / (np.pi * e_mod)
+    a0s = max(a0 - xi * big_r / mu, 0.0)
+    if method == "exact":
+        a, d, _, _ = solve_normal_exact(x, n_load * comp, big_r, k, za, zb)
+        ast = solve_stick_zone_exact(x, a, d, xi / mu, big_r, k, za, zb)
+        xs = d + a - ast
+        s, c = _surface_terms(x[..., None] + xs[..., None], k, za, zb)
+        t = mu * n_load - mu / comp * (ast ** 2 / (2 * big_r)
+                                       + np.sum(k * ast[..., None] * j1(k * ast[..., None]) * c,
+                                                -1))
+    else:
+        ratio = a0 / lam
+        r = a0s / a0
+        zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])     # Z_A + i Z_B rotated
+        cd, ca = normal_response(ratio)
+        cs = stick_zone_response(ratio, r)
+        ct = tangential_force_response(ratio, r)
+        # Q(X) = Re[conj(c) zeta e^{ikX}] = Re[c (Z_A + i Z_B) e^{-ikX}]
+        a = a0 + np.sum(np.real(k * big_r * ca * zc), -1)
+        d = np.sum(np.real(k * big_r * cd * zc), -1)
+        ast = a0s + np.sum(np.real(k * big_r * cs * zc), -1)
+        t = mu * n_load * (1 - (a0s / a0) ** 2) + np.sum(np.real(mu / comp * ct * zc), -1)
+    wear = None
+    if wear_coefficient is not None:
+        from .wear import wear_coefficients
+        kw = float(check_range("wear_coefficient", wear_coefficient, "m^2/N", 0.0, None))
+        r = a0s / a0
+        w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
+        cw = wear_coefficients(a0 / lam, r, wear_model=wear_model)
+        zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])
+        wear = w0 + np.sum(np.real(kw * mu * mu * n_load / a0 * cw * zc), -1)
+    shape = np.shape(x)
+    return CorrugatedContact(np.reshape(a, shape), np.reshape(d, shape), np.reshape(ast, shape),
+                             np.reshape(t, shape), np.full(shape, n_load),
+                             None if wear is None else np.reshape(wear, shape))
+
+
+# ---------------------------------------------------------------------------------------------
+# distributions (pressure, traction, slip) from the Chebyshev-Bessel series
+# ---------------------------------------------------------------------------------------------
+ContactDistributions = namedtuple("ContactDistributions", [
+    "pressure", "traction", "slip", "degree", "truncation_ratio", "truncation_error"])
+ContactDistributions.__doc__ = """Result of :func:`contact_distributions`.
+
+pressure : ndarray
+    p(x) (4.18). [Pa]
+traction : ndarray
+    |q(x)|, tangential stress magnitude (mu p in the slip zone). [Pa]
+slip : ndarray
+    |s(x)|, slip magnitude (relative sliding velocity over the rolling speed), 0 in the stick
+    zone. [-]
+degree : int
+    Series degree used.
+truncation_ratio, truncation_error : float
+    Estimates of :func:`series_truncation_error` for that degree (worst harmonic). [-]
+"""
+
+
+def _cheb_coeffs(n_max, ka, phase_term, k, half_width, radius):
+    """Chebyshev coefficients c_1..c_n of g' over an interval of half-width ``half_width``.
+
+    ``phase_term`` = zeta e^{i k centre} per harmonic (complex, last axis M)."""
+    n = np.arange(1, n_max + 1)
+    jn = jv(n[:, None], ka[None, :])                                   # (n, M)
+    ipow = (1j) ** ((n + 1) % 4)
+    coeff = -2.0 * np.sum(k[None, :] * jn * np.real(ipow[:, None] * phase_term[None, :]), -1)
+    coeff[0] += half_width / radius
+    return coeff
+
+
+def contact_distributions(x, rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
+                          friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
+                          wavelengths, *, degree=None, tolerance=1e-10):
+    r"""Pressure, traction and slip along the patch at one rail position (Figs. 4.5, 4.7).
+
+    Uses the exact a, Delta, a* (:func:`solve_normal_exact`, :func:`solve_stick_zone_exact`) and
+    the series of the module docstring truncated at ``degree``.
+
+    Parameters
+    ----------
+    x : array_like
+        Patch coordinates (origin at the patch centre, leading edge +a). [m]
+    rail_position : float
+        Axis position X. [m]
+    normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage
+        As in :func:`corrugated_contact`.
+    amplitudes_cos, amplitudes_sin, wavelengths : array_like, shape (M,)
+        Surface harmonics. [m]
+    degree : int, optional
+        Series degree (user knob of (4.18)-(4.28)); default: :func:`series_degree` for
+        ``tolerance``.
+    tolerance : float
+        Requested relative truncation error when ``degree`` is None. [-]
+
+    Returns
+    -------
+    ContactDistributions
+    """
+    from .hertz import hertz_2d
+
+    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
+    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
+                              lower_closed=False))
+    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
+    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
+                           lower_closed=False))
+    xi = abs(float(check_range("creepage", creepage, "-")))
+    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
+    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
+    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
+                                    lower_closed=False))
+    xs_in = check_range("x", x, "m")
+    xpos = float(check_range("rail_position", rail_position, "m"))
+    k = _TWO_PI / lam
+    check_no_contact_loss(k * k * big_r * np.hypot(za, zb))
+    comp = 4.0 * (1.0 - nu * nu) / (np.pi * e_mod)
+    a, d, _, _ = solve_normal_exact(xpos, n_load * comp, big_r, k, za, zb)
+    ast = solve_stick_zone_exact(xpos, a, d, xi / mu, big_r, k, za, zb)
+    a, d, ast = float(a), float(d), float(ast)
+    if degree is None:
+        degree = series_degree(k * a, tolerance)
+    degree = int(check_range("degree", degree, "-", 1, 10000))
+    ratio, err = series_truncation_error(k * a, degree)
+    zeta = za - 1j * zb
+    cn = _cheb_coeffs(degree, k * a, zeta * np.exp(1j * k * (xpos + d)), k, a, big_r)
+    n = np.arange(1, degree + 1)
+    u = np.clip(xs_in / a, -1.0, 1.0)
+    theta = np.arccos(u)
+    inside = np.abs(xs_in) < a
+    p = np.where(inside, np.sin(np.multiply.outer(theta, n)) @ cn / (np.pi * comp), 0.0)
+    q = mu * p
+    s = np.zeros_like(p)
+    if ast > 0:
+        xc = a - ast                                   # stick-zone centre (patch coordinate)
+        dn = _cheb_coeffs(degree, k * ast, zeta * np.exp(1j * k * (xpos + d + xc)), k, ast,
+                          big_r)
+        v = (xs_in - xc) / ast
+        in_stick = inside & (np.abs(v) < 1)
+        phi = np.arccos(np.clip(v, -1, 1))
+        p2 = np.sin(np.multiply.outer(phi, n)) @ dn / (np.pi * comp)
+        q = np.where(in_stick, mu * (p - p2), q)
+        in_slip = inside & (v <= -1)
+        vv = np.minimum(v, -1.0)
+        w = vv + np.sqrt(vv * vv - 1.0)
+        g2 = ((d + xs_in) / big_r
+              + np.sum(k * np.real(-1j * zeta * np.exp(1j * k * (xpos + d + xs_in[..., None]))),
+                       -1)
+              - xi / mu)
+        s = np.where(in_slip, mu * np.abs(np.power.outer(w, n) @ dn - g2), 0.0)
+    else:
+        g2 = ((d + xs_in) / big_r
+              + np.sum(k * np.real(-1j * zeta * np.exp(1j * k * (xpos + d + xs_in[..., None]))),
+                       -1)
+              - xi / mu)
+        s = np.where(inside, mu * np.abs(g2), 0.0)
+    return ContactDistributions(p, np.abs(q), s, degree, float(np.max(ratio)),
+                                float(np.max(err)))

@@ -1,0 +1,386 @@
+r"""Frictional wear of a corrugated rail under a rolling cylinder (Nielsen Sec. 4.3), and the
+choice of wear model.
+
+The wear per passage at a rail point ``X0`` is the frictional work (Frederick's hypothesis),
+Eq. (4.74) of [1]_:
+
+.. math:: W(X_0) = K V \int q(X_0, t)\, s(X_0, t)\, dt ,
+
+a **time integral at a material point**. With the patch quasi-static at every axis position
+``X_c = V t`` and the material point at patch coordinate ``x = X0 - X_c - Delta(X_c)``,
+``V dt = dX_c = dx / (1 + dDelta/dX)``: over a crest the patch centre moves more slowly along the
+rail (``Delta' < 0``), so every point dwells longer in the slip zone.
+
+Wear models (``wear_model=``)
+-----------------------------
+``"material_point"`` (default)
+    (4.74) evaluated exactly as written: ``W = K int q s dX_c``, dwell factor ``1/(1 + Delta')``
+    included. Verified against a direct evaluation of (4.74) with the discretised half-space
+    solver (quasi-static rolling at every rail position, see ``docs/wear_finding.md``).
+``"patch_coordinate"``
+    ``W = K int q s dx`` along the path of the material point, i.e. the dwell factor dropped.
+``"nielsen1998"``
+    The thesis' closed form (4.92) ``W = |K V N R/a0^2 (mu pi B0/a)^2 tau (1 - r - r^2 + r^3)|``,
+    ``r = tau*/tau``, with the passage times tau, tau* of (4.81)-(4.87). Reproduces the thesis'
+    Figs. 4.10, 4.11, 4.14, 4.15, 4.21. The thesis' tau (4.83) follows from (4.76)-(4.78) only if
+    the patch shift enters with the sign of the *opposite* rolling direction (``Delta -> -Delta``;
+    checked in the tests), so its passage time carries the factor ``(1 + Delta')`` instead of
+    ``1/(1 + Delta')``: the dwell acts the wrong way round. See ``docs/wear_finding.md``.
+``"time_domain_carter"``
+    (4.92) with tau, tau* from the consistent kinematics (our orientation, Delta with its sign):
+    the thesis' heuristic with the sign error removed; an approximation of ``"material_point"``.
+
+Linearised result (one harmonic): ``W = W0 + W_A cos kX + W_B sin kX``,
+``W_A + i W_B = (W1 + i W2)(Z_A + i Z_B)`` (4.94)-(4.95), ``W0 = K mu^2 N a0/R (1-r)^2 (1+r)``
+(4.96). :func:`wear_coefficients` returns ``w = (W1 + i W2) a0 / (K mu^2 N)``, a function of
+``(a0/L, r_a0)`` only; the growth factor per passage is ``1 - 2 W1`` ((4.104),
+:func:`railcontact.evolution.growth_factor`).
+
+Errata of (4.96)-(4.98), found while deriving the linearisation:
+
+* (4.97) is dimensionally inconsistent: the first term carries ``k_m V/R`` where ``V/R`` is
+  right (W1 must be dimensionless; tau_1 already contains k R / V), the second term lacks a
+  factor ``k_m``. ``B^_0`` (never defined) is ``int_0^{k a0} J0(t) dt`` and the bracket is
+  ``[int_0^{k a0} J0 - J1(k a0)]`` with a plus sign in front (from B0 = a p(0) C, the pressure
+  at the patch centre; checked against the exact B0 by finite differences).
+* (4.98) prints ``3 r^3``; the linearisation gives ``(1 + 2 r - 3 r^2)`` as in (4.97).
+* (4.86) prints ``J0(k a0)[3 sin k(2a0* - a0) - sin k a0]``; (4.76)-(4.77) give ``+ sin k a0``.
+
+References
+----------
+.. [1] J.B. Nielsen, New Developments in the Theory of Wheel/Rail Contact Mechanics,
+   IMM-PHD-1998-51, DTU, 1998, Sec. 4.3, Eqs. (4.74)-(4.98).
+.. [2] T.F.J. Quinn / Frederick: wear proportional to frictional work (thesis ref. [17]).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import itj0y0, j0, j1, jv
+
+from ._validation import check_choice, check_range
+from .corrugation import _TWO_PI, solve_normal_exact, solve_stick_zone_exact, _surface_terms
+
+__all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
+           "passage_time_response", "wear_first_harmonic_exact", "wear_shape_function"]
+
+WEAR_MODELS = ("material_point", "patch_coordinate", "nielsen1998", "time_domain_carter")
+DEFAULT_WEAR_MODEL = "material_point"
+
+
+def wear_shape_function(stick_ratio):
+    r"""Carter's slip-zone wear shape ``(1 - r)^2 (1 + r) = 1 - r - r^2 + r^3`` of (4.92), (4.96).
+
+    Parameters
+    ----------
+    stick_ratio : array_like
+        ``r_a0`` in [0, 1]. [-]
+
+    Returns
+    -------
+    ndarray
+        ``(1 - r)^2 (1 + r)``; ``int_slip q s dx = mu^2 (E/(4(1-nu^2) R)) (pi/2) a^3`` times it
+        for Carter (checked by quadrature in the tests). [-]
+    """
+    r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
+    return (1.0 - r) ** 2 * (1.0 + r)
+
+
+def mean_wear(wear_coefficient, friction_coefficient, normal_load, radius, a0, stick_ratio):
+    r"""Mean wear per passage W0 = K mu^2 N a0/R (1 - r)^2 (1 + r), Eq. (4.96).
+
+    Parameters
+    ----------
+    wear_coefficient : array_like
+        K of (4.74), >= 0. [m^2/N]
+    friction_coefficient : array_like
+        mu, >= 0. [-]
+    normal_load : array_like
+        N per unit length, >= 0. [N/m]
+    radius : array_like
+        R, > 0. [m]
+    a0 : array_like
+        Hertz half-width, > 0. [m]
+    stick_ratio : array_like
+        r_a0 in [0, 1]. [-]
+
+    Returns
+    -------
+    ndarray
+        W0 (equal to the wear of a smooth rail, Carter). [m]
+    """
+    kw = check_range("wear_coefficient", wear_coefficient, "m^2/N", 0.0, None)
+    mu = check_range("friction_coefficient", friction_coefficient, "-", 0.0, None)
+    n = check_range("normal_load", normal_load, "N/m", 0.0, None)
+    big_r = check_range("radius", radius, "m", 0.0, None, lower_closed=False)
+    a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
+    return kw * mu * mu * n * a0 / big_r * wear_shape_function(stick_ratio)
+
+
+# ---------------------------------------------------------------------------------------------
+# linear response, normalised units a0 = R = C = mu = K = V = 1 (so N = 1/2)
+# ---------------------------------------------------------------------------------------------
+def _h_basic(beta, r):
+    """Coefficients h (Q = Re[h zeta e^{ikX}]) of Delta, a, a*, our orientation (R = a0 = 1)."""
+    k = beta
+    e_kd = np.exp(1j * k * (1.0 - r))
+    h_d = 1j * k * j0(beta)
+    h_a = -k * j1(beta) + 0j
+    h_as = h_d + h_a - 1j * k * j0(beta * r) * e_kd
+    return h_d, h_a, h_as, e_kd
+
+
+def passage_time_response(a0_over_wavelength, stick_ratio, *, convention="consistent"):
+    r"""Linear response of the half passage times |tau| and |tau*| to one harmonic, (4.81)-(4.87).
+
+    ``|tau|(X0) = a0/V + Re[...]``: ``c_tau``, ``c_tau*`` in units of ``k R / V`` with
+    ``(tau_A + i tau_B) = c (Z_A + i Z_B)`` for the *magnitudes* (the thesis' tau is negative).
+
+    Parameters
+    ----------
+    a0_over_wavelength : array_like
+        a0/L, > 0. [-]
+    stick_ratio : array_like
+        r_a0 in [0, 1]. [-]
+    convention : {"consistent", "nielsen1998", "printed"}
+        "consistent": from (4.76)-(4.78) written for our orientation (rolling +X, the patch at
+        ``X + Delta``, stick zone at the leading edge) -- the times a material point really spends
+        in the patch and the stick zone. "nielsen1998": (4.76)-(4.78) with the thesis' a*
+        (4.59)-(4.62) and the patch at ``X - Delta`` (the only reading that reproduces (4.83) and
+        the tau*_2 of (4.86)), in the thesis' orientation. "printed": (4.83), (4.86) as printed
+        (including the sign erratum of (4.86) noted in the module docstring).
+
+    Returns
+    -------
+    tau, tau_star : ndarray of complex
+        ``c_|tau| / (k R / V)``, ``c_|tau*| / (k R / V)``. [-]
+    """
+    beta = _TWO_PI * check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                                 lower_closed=False)
+    r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
+    check_choice("convention", convention, ("consistent", "nielsen1998", "printed"))
+    k = beta
+    if convention == "printed":
+        b, bs, bm = beta, beta * r, beta * (2 * r - 1)
+        t1 = j0(b) * np.sin(b) + j1(b) * np.cos(b)
+        ts1 = 0.5 * (j0(b) * (3 * np.sin(bm) - np.sin(b)) + j1(b) * (np.cos(bm) + np.cos(b))
+                     - 2 * j0(bs) * np.sin(bs))
+        ts2 = -0.5 * (j0(b) * (3 * np.cos(bm) - np.cos(b)) - j1(b) * (np.sin(bm) - np.sin(b))
+                      - 2 * j0(bs) * np.cos(bs))
+        # thesis tau < 0: magnitudes are minus the printed coefficients
+        return -(t1 + 0j), -(ts1 + 1j * ts2)
+    h_d, h_a, h_as, _ = _h_basic(beta, r)
+
+    def at(h, s):  # coefficient of Q(X0 + s) in terms of zeta e^{ikX0}
+        return h * np.exp(1j * k * s)
+
+    if convention == "consistent":
+        s = -1.0 + 2.0 * r
+        tau = 0.5 * (at(h_a, 1) - at(h_d, 1) + at(h_a, -1) + at(h_d, -1))
+        taus = 0.5 * (-at(h_a, s) + 2 * at(h_as, s) - at(h_d, s) + at(h_a, -1) + at(h_d, -1))
+        return np.conj(tau) / k, np.conj(taus) / k
+    # nielsen1998: thesis orientation, its a* = conj of ours, Delta -> -Delta in (4.76)-(4.78)
+    a1 = k * (-j1(beta) - j0(beta * r) * np.sin(k * (r - 1)))
+    a2 = k * (j0(beta) - j0(beta * r) * np.cos(k * (r - 1)))
+    h_as_th = a1 - 1j * a2
+    s1 = 1.0 - 2.0 * r
+    sig = -1.0
+    tau = 0.5 * (-at(h_a, -1) - at(h_a, 1) - sig * at(h_d, -1) + sig * at(h_d, 1))
+    taus = 0.5 * (-sig * at(h_d, s1) - 2 * at(h_as_th, s1) + at(h_a, s1) + sig * at(h_d, 1)
+                  - at(h_a, 1))
+    return -np.conj(tau) / k, -np.conj(taus) / k
+
+
+def _linear_patch_integrals(beta, r, n_nodes, degree):
+    """I = int h_P(x) e^{-ikx} dx and I0 = int P0(x) e^{-ikx} dx over the slip zone (a0=1)."""
+    k = beta[..., None]
+    rr = r[..., None]
+    h_d, h_a, h_as, e_kd = (np.asarray(q)[..., None] for q in _h_basic(beta, r))
+    j = np.arange(1, n_nodes + 1)
+    t = np.cos((2 * j - 1) * np.pi / (2 * n_nodes))
+    wq = np.pi / n_nodes * np.sqrt(1 - t * t)
+    half = 1.0 - rr
+    x = -rr + half * t                                 # slip zone [-1, 1 - 2r]
+    u = x
+    sin_t = np.sqrt(1.0 - u * u)
+    theta = np.arccos(u)
+    xm1 = x - 1.0
+    s0 = np.sqrt(xm1 * (xm1 + 2 * rr))                 # r sqrt(v^2 - 1)
+    v = xm1 / rr + 1.0
+    root = np.sqrt(v * v - 1.0)
+    w = 1.0 / (v - root)                               # v + sqrt(v^2-1), computed stably
+    p0 = sin_t / np.pi
+    # pressure perturbation
+    h_c1 = k * j1(k)
+    hp = u * u * h_a / sin_t + h_c1 * sin_t
+    # slip perturbation
+    h_d1 = h_as + 2 * k * j1(k * rr) * e_kd
+    hs = h_d1 * w + (w / root) * (-h_a + (1.0 - v) * h_as) - (h_d - 1j * k * np.exp(1j * k * x))
+    wn = w.copy()
+    for n in range(2, degree + 1):
+        ipow = (1j) ** ((n + 1) % 4)
+        hp = hp - 2 * ipow * k * jv(n, k) * np.sin(n * theta)
+        wn = wn * w
+        hs = hs - 2 * ipow * k * jv(n, k * rr) * e_kd * wn
+    hp = hp / np.pi
+    h_pp = hp * s0 + p0 * hs
+    phase = np.exp(-1j * k * x)
+    integral = np.sum(h_pp * phase * wq, -1) * half[..., 0]
+    integral0 = np.sum(p0 * s0 * phase * wq, -1) * half[..., 0]
+    return integral, integral0
+
+
+def wear_coefficients(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *,
+                      n_nodes=48, degree=None):
+    r"""Linearised wear coefficients ``w = (W1 + i W2) a0 / (K mu^2 N)`` of one harmonic.
+
+    ``W_A + i W_B = (W1 + i W2)(Z_A + i Z_B)`` (4.95) with ``W1 + i W2 = K mu^2 N / a0 * w``.
+    ``W1 > 0`` levels the corrugation, ``W1 < 0`` amplifies it (4.106); ``W2`` shifts its phase
+    (4.111)-(4.112). Package orientation (rolling +X); the thesis' W2 is ``-Im(w)`` times the
+    scale.
+
+    Parameters
+    ----------
+    a0_over_wavelength : array_like
+        a0/L, > 0 (hard cases tested from 1e-3 to 2). [-]
+    stick_ratio : array_like
+        r_a0 = a0*/a0 in [0, 1] (0: full slip, 1: full stick; the limits are the one-sided limits
+        of the linear theory, W -> 0 at r = 1). [-]
+    wear_model : str
+        One of :data:`WEAR_MODELS` (module docstring); default ``"material_point"``.
+    n_nodes : int
+        Gauss-Chebyshev nodes across the slip zone (the integrand times the weight is smooth,
+        so the quadrature converges spectrally; 48 gives ~1e-12 up to a0/L = 2). [-]
+    degree : int, optional
+        Series degree (Chebyshev-Bessel terms); default ``ceil(e k a0) + 12``. [-]
+
+    Returns
+    -------
+    ndarray of complex
+        ``w``, broadcast over the inputs. [-]
+    """
+    ratio = check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                        lower_closed=False)
+    r_in = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
+    check_choice("wear_model", wear_model, WEAR_MODELS)
+    nq = int(check_range("n_nodes", n_nodes, "-", 4, 100000))
+    ratio, r_in = np.broadcast_arrays(ratio, r_in)
+    beta = _TWO_PI * ratio
+    r = np.clip(r_in, 1e-9, 1.0 - 1e-9)
+    f = (1 - r) ** 2 * (1 + r)
+    if wear_model in ("material_point", "patch_coordinate"):
+        if degree is None:
+            degree = int(np.ceil(np.e * np.max(beta, initial=0.0))) + 12
+        deg = int(check_range("degree", degree, "-", 1, 100000))
+        integral, integral0 = _linear_patch_integrals(beta, r, nq, deg)
+        if wear_model == "material_point":
+            integral = integral + beta * beta * j0(beta) * integral0
+        # normalised units: K mu^2 N / a0 = 1/2
+        w = 2.0 * np.conj(integral)
+    else:
+        conv = "nielsen1998" if wear_model == "nielsen1998" else "consistent"
+        c_tau, c_taus = passage_time_response(ratio, r, convention=conv)
+        c_tau, c_taus = beta * c_tau, beta * c_taus          # units a0/V per unit Z (R = 1)
+        big_j0 = itj0y0(beta)[0]
+        c_b = beta * (big_j0 - j1(beta))                     # (delta B0/B0 - delta a/a)
+        fprime = -(1 - r) * (1 + 3 * r)
+        w = f * (2 * c_b + c_tau) + fprime * (c_taus - r * c_tau)
+        if wear_model == "nielsen1998":
+            w = np.conj(w)                                   # thesis orientation -> ours
+    return np.where(r_in >= 1.0, 0.0, w)
+
+
+# ---------------------------------------------------------------------------------------------
+# exact (nonlinear) evaluation of the wear integral
+# ---------------------------------------------------------------------------------------------
+def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitude, *,
+                              phase=0.0, n_positions=64, n_nodes=64, degree=None):
+    r"""Exact wear per passage, first harmonic, from the exact contact at every rail position.
+
+    The exact nonlinear a, Delta, a* (:func:`railcontact.corrugation.solve_normal_exact`,
+    :func:`railcontact.corrugation.solve_stick_zone_exact`) and the exact pressure and slip
+    series are evaluated at ``n_positions`` axis positions per wave length; the frictional work
+    ``P = q |s|`` is integrated over the slip zone (Gauss-Chebyshev) and over the rail positions
+    (periodic trapezoid, spectrally accurate):
+
+    ``int W(X0) e^{-ikX0} dX0 = K int dX_c w(X_c) int_slip P(x; X_c) e^{-ik(X_c + Delta + x)} dx``
+
+    with ``w = 1`` for (4.74) at a material point and ``w = 1 + Delta'(X_c)`` for the
+    patch-coordinate integral.
+
+    Parameters
+    ----------
+    a0_over_wavelength : float
+        a0/L, > 0. [-]
+    stick_ratio : float
+        r_a0 in (0, 1). [-]
+    relative_amplitude : float
+        ``k R sqrt(Z_A^2 + Z_B^2) / a0``, > 0; condition (4.2) requires
+        ``relative_amplitude * 2 pi a0/L < 1``. [-]
+    phase : float
+        ``arg(Z_A + i Z_B)``. [rad]
+    n_positions, n_nodes : int
+        Rail positions per wave length, quadrature nodes across the slip zone. [-]
+    degree : int, optional
+        Series degree. [-]
+
+    Returns
+    -------
+    dict
+        ``{"material_point": w, "patch_coordinate": w, "mean": W0 / (K mu^2 N)}`` with ``w`` the
+        normalised complex coefficient of :func:`wear_coefficients` (first harmonic divided by the
+        surface amplitude; equal to the linear coefficient up to O(amplitude^2)). [-]
+    """
+    ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                              lower_closed=False))
+    r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
+                          upper_closed=False))
+    eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
+                            lower_closed=False))
+    k = _TWO_PI * ratio
+    from .corrugation import check_no_contact_loss
+    check_no_contact_loss(eps * k)
+    npos = int(n_positions)
+    lam = 1.0 / ratio
+    xc = np.arange(npos) * lam / npos
+    amp = eps / k                                     # |Z| with R = a0 = 1
+    za, zb = amp * np.cos(phase), amp * np.sin(phase)
+    a, d, _, dd = solve_normal_exact(xc, 0.5, 1.0, [k], [za], [zb])
+    ast = solve_stick_zone_exact(xc, a, d, 1.0 - r, 1.0, [k], [za], [zb])
+    if degree is None:
+        degree = int(np.ceil(np.e * k)) + 14
+    n = np.arange(1, degree + 1)
+    zeta = za - 1j * zb
+    jn_a = jv(n[None, :], k * a[:, None])
+    jn_s = jv(n[None, :], k * ast[:, None])
+    ipow = (1j) ** ((n + 1) % 4)
+    cn = -2 * k * jn_a * np.real(ipow[None, :] * zeta * np.exp(1j * k * (xc + d))[:, None])
+    cn[:, 0] += a
+    xs_c = a - ast                                    # stick centre, patch coordinate
+    dn = -2 * k * jn_s * np.real(ipow[None, :] * zeta
+                                 * np.exp(1j * k * (xc + d + xs_c))[:, None])
+    dn[:, 0] += ast
+    jq = np.arange(1, n_nodes + 1)
+    t = np.cos((2 * jq - 1) * np.pi / (2 * n_nodes))
+    wq = np.pi / n_nodes * np.sqrt(1 - t * t)
+    half = (a - ast)[:, None]
+    x = -ast[:, None] + half * t[None, :]
+    theta = np.arccos(np.clip(x / a[:, None], -1, 1))
+    p = np.einsum("pjn,pn->pj", np.sin(theta[..., None] * n), cn) / np.pi
+    v = (x - xs_c[:, None]) / np.maximum(ast[:, None], 1e-300)
+    v = np.minimum(v, -1.0)
+    w = 1.0 / (v - np.sqrt(v * v - 1.0))
+    g2 = ((d[:, None] + x) + k * np.real(-1j * zeta * np.exp(1j * k * (xc[:, None] + d[:, None]
+                                                                        + x)))
+          - (1.0 - r))
+    s = np.abs(np.einsum("pjn,pn->pj", w[..., None] ** n, dn) - g2)
+    dens = np.sum(p * s * np.exp(-1j * k * x) * wq, -1) * half[:, 0]
+    base = np.exp(-1j * k * (xc + d)) * lam / npos
+    out = {}
+    for name, weight in (("material_point", 1.0), ("patch_coordinate", 1.0 + dd)):
+        first = np.sum(weight * dens * base) / lam      # (1/L) int W e^{-ikX0} dX0, K = 1
+        # W = W0 + Re[H zeta e^{ikX0}] -> first = H zeta / 2 ; c = conj(H); w = c / (1/2)
+        h = 2 * first / zeta
+        out[name] = 2 * np.conj(h)
+    out["mean"] = 2.0 * float(np.sum(np.sum(p * s * wq, -1) * half[:, 0])) / npos
+    return out
