@@ -292,7 +292,8 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
     w_abs = np.hypot(w_x, w_y)
     w_sat = np.broadcast_to(_saturation_w(n_load, a0, b0, e_mod, nu, mu), shape)
     has_force = (mu_n > 0.0) & (w_sat > 0.0)
-    z = np.divide(w_abs, w_sat, out=np.where(w_abs > 0.0, np.inf, 0.0), where=w_sat > 0.0)
+    with np.errstate(over="ignore"):             # w_sat ~ 1e-300 (N -> 0): z = inf is meant
+        z = np.divide(w_abs, w_sat, out=np.where(w_abs > 0.0, np.inf, 0.0), where=w_sat > 0.0)
     stiffness = np.broadcast_to(g_mod * a0 * b0, shape)     # G a0 b0 [N]
 
     if method == "linear":
@@ -301,8 +302,9 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
         t_lin = stiffness * w_abs
         u = np.divide(t_lin, mu_n, out=np.where(t_lin > 0.0, np.inf, 0.0), where=mu_n > 0.0)
         small = u <= 3.0
-        factor_small = stiffness * (1.0 - u / 3.0 + u * u / 27.0)
-        factor_big = np.divide(mu_n, w_abs, out=np.zeros(shape), where=w_abs > 0.0)
+        u_c = np.minimum(u, 3.0)
+        factor_small = stiffness * (1.0 - u_c / 3.0 + u_c * u_c / 27.0)
+        factor_big = np.divide(mu_n, w_abs, out=np.zeros(shape), where=(w_abs > 0.0) & ~small)
         factor = np.where(small, factor_small, factor_big)
         factor = np.where(has_force | (w_abs == 0.0), factor, 0.0)
     else:
@@ -311,7 +313,7 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
         zc = np.minimum(z, 1.0)
         k_sat = np.divide(mu_n, w_sat, out=np.zeros(shape), where=w_sat > 0.0)
         factor_small = k_sat * _f_over_z(zc)
-        factor_big = np.divide(mu_n, w_abs, out=np.zeros(shape), where=w_abs > 0.0)
+        factor_big = np.divide(mu_n, w_abs, out=np.zeros(shape), where=(w_abs > 0.0) & ~below)
         factor = np.where(below, factor_small, factor_big)
         factor = np.where(has_force, factor, 0.0)
     tx = -factor * w_x

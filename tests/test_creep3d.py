@@ -1,0 +1,308 @@
+"""Tests of railcontact.creep3d (linear theory, SHE, strip theory, modified strip theory).
+
+Independent checks: the strip-theory force (2.87) and stick area against direct numerical
+integration of the per-strip Carter traction (2.79)-(2.83); the combined-creepage formula
+against the printed component equations (2.91)-(2.96) solved separately; initial slopes against
+the linear theory by finite differences; CONTACT's exact creep curve (Vollebregt, Apache-2.0);
+hard cases and a hypothesis property test.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import quad
+
+from railcontact import (creep_force_3d, creep_solution_3d, kalker_coefficients,
+                         normalised_creepage_3d, saturation_creepage_3d, spin_coefficient,
+                         strip_force_function)
+from railcontact.creep3d import METHODS
+
+# CONTACT tractcurv case (Eurosprinter): a/b = 0.5
+G_MOD, NU, MU = 82e9, 0.28, 0.33
+E = 2 * G_MOD * (1 + NU)
+A0, B0, N = 6.304e-3, 12.61e-3, 106.7e3
+P0 = 1.5 * N / (np.pi * A0 * B0)
+ARGS = (N, A0, B0, E, NU, MU)
+DATA = Path(__file__).parent / "data" / "contact_tractcurv_series1_coulomb.csv"
+
+
+def _contact_curve():
+    return np.loadtxt(DATA, delimiter=",", comments="#", skiprows=1 + 4)
+
+
+# ------------------------------------------------------------------ CONTACT
+def test_modified_strip_against_contact_tractcurv():
+    """Issue requirement: within 0.5 % of mu N at every one of the 30 CONTACT points.
+
+    Measured (this code): max |error| = 0.350 % of mu N at cksi = 0.0008 (SHE: 3.84 % at 0.002,
+    strip: 4.21 % at 0.0012). Part of the remaining error is CONTACT's 48x44 grid: its initial
+    slope at cksi = 1e-5 is 1.7 % above Kalker's C11."""
+    curve = _contact_curve()
+    assert curve.shape == (30, 2)
+    errors = {}
+    for method in ("modified_strip", "she", "strip"):
+        tx = creep_force_3d(curve[:, 0], 0.0, 0.0, *ARGS, method=method).tx / (MU * N)
+        errors[method] = np.abs(tx - curve[:, 1])
+    print({m: f"{e.max() * 100:.3f} % of mu N" for m, e in errors.items()})
+    assert errors["modified_strip"].max() < 0.005
+    assert errors["modified_strip"].max() == pytest.approx(0.0034994, abs=2e-6)  # regression pin
+    # the thesis's claim (Fig. 2.7): the modified strip theory is more accurate than SHE
+    assert errors["she"].max() > 5 * errors["modified_strip"].max()
+
+
+# ------------------------------------------------------------------ strip theory itself
+def _strip_force_by_quadrature(z):
+    """mu N - int int q2 over the stick zones of all strips (Eq. (2.86)), q2 from (2.81) with
+    a*(y) = a(y) - a0 z (Eq. (2.83)); per strip int q2 dx = (mu p0/a0) pi a*^2 / 2."""
+    def per_strip(y):
+        a_y = A0 * np.sqrt(1 - (y / B0) ** 2)
+        a_star = max(a_y - A0 * z, 0.0)
+        return MU * P0 / A0 * np.pi * a_star**2 / 2
+
+    b_star = B0 * np.sqrt(max(1 - z**2, 0.0))
+    stick_force = quad(per_strip, -b_star, b_star, epsabs=0, epsrel=1e-12)[0] if b_star else 0
+    stick_area = quad(lambda y: 2 * max(A0 * np.sqrt(1 - (y / B0) ** 2) - A0 * z, 0.0),
+                      -b_star, b_star, epsabs=0, epsrel=1e-12)[0] if b_star else 0
+    return 1 - stick_force / (MU * N), stick_area / (np.pi * A0 * B0)
+
+
+@pytest.mark.parametrize("z", [1e-3, 0.1, 0.37, 0.8, 0.99, 1.0])
+def test_strip_formula_2_87_against_quadrature(z):
+    force, area = _strip_force_by_quadrature(z)
+    assert strip_force_function(z) == pytest.approx(force, rel=1e-10, abs=1e-13)
+    # the same z through the public API: pure longitudinal creepage with the strip method
+    xi = z * saturation_creepage_3d(*ARGS, method="strip")
+    sol = creep_solution_3d(xi, 0.0, 0.0, *ARGS, method="strip")
+    assert sol.normalised_creepage == pytest.approx(z, rel=1e-12)
+    assert -sol.tx / (MU * N) == pytest.approx(force, rel=1e-10, abs=1e-13)
+    assert sol.stick_area_fraction == pytest.approx(area, rel=1e-9, abs=1e-12)
+    assert sol.stick_width_ratio == pytest.approx(np.sqrt(1 - z**2), rel=1e-12)
+
+
+def test_strip_function_small_z_no_cancellation():
+    # series: F(z) = 3 pi z / 4 - 3 z^2 / 2 + O(z^3)
+    for z in (1e-12, 1e-8, 1e-5):
+        series = 3 * np.pi * z / 4 - 1.5 * z**2
+        assert strip_force_function(z) == pytest.approx(series, rel=1e-9)
+    assert strip_force_function(0.0) == 0.0
+    assert strip_force_function(1.0) == 1.0 and strip_force_function(7.0) == 1.0
+
+
+def test_saturation_kink_is_c2_not_c3():
+    """F'(z) = 1.5 (arccos z - z sqrt(1-z^2)) and F'' = -3 sqrt(1-z^2) both vanish at z = 1
+    (checked by finite differences); beyond z = 1 F = 1."""
+    h = 1e-4
+    z = np.array([0.3, 0.7, 0.95])
+    d1 = (strip_force_function(z + h) - strip_force_function(z - h)) / (2 * h)
+    d2 = (strip_force_function(z + h) - 2 * strip_force_function(z) +
+          strip_force_function(z - h)) / h**2
+    np.testing.assert_allclose(d1, 1.5 * (np.arccos(z) - z * np.sqrt(1 - z**2)), rtol=1e-6)
+    np.testing.assert_allclose(d2, -3 * np.sqrt(1 - z**2), rtol=1e-4)
+    left = (1.0 - strip_force_function(1 - h)) / h          # ~ (2 sqrt 2 / 5) h^(3/2)... -> 0
+    assert left < 1e-5
+    curv_left = (strip_force_function(1.0) - 2 * strip_force_function(1 - h)
+                 + strip_force_function(1 - 2 * h)) / h**2
+    assert abs(curv_left) < 0.1                               # F'' ~ -3 sqrt(2 (1-z)) -> 0
+
+
+# ------------------------------------------------------------------ initial slopes
+@pytest.mark.parametrize("method", ["modified_strip", "she", "linear"])
+@pytest.mark.parametrize("direction", ["x", "y", "spin"])
+def test_initial_slope_equals_linear_theory(method, direction):
+    c11, c22, c23 = kalker_coefficients(A0 / B0, NU)
+    h = 1e-14            # z ~ 3e-12: the curvature term 2z/pi is far below the tolerance
+    xi = {"x": (h, 0, 0), "y": (0, h, 0), "spin": (0, 0, h / np.sqrt(A0 * B0))}[direction]
+    t = creep_force_3d(*xi, *ARGS, method=method)
+    expected = {"x": (-G_MOD * A0 * B0 * c11 * h, 0.0), "y": (0.0, -G_MOD * A0 * B0 * c22 * h),
+                "spin": (0.0, -G_MOD * A0 * B0 * c23 * h)}[direction]
+    assert t.tx == pytest.approx(expected[0], rel=1e-10, abs=1e-30)
+    assert t.ty == pytest.approx(expected[1], rel=1e-10, abs=1e-30)
+
+
+def test_strip_slope_equals_linear_for_narrow_ellipse():
+    """Eq. (2.89): the strip theory's slope is G a b pi^2/(4(1-nu)), Kalker's C11 for a0/b0->0."""
+    b0 = A0 / 0.05
+    h = 1e-14
+    strip = creep_force_3d(h, 0, 0, N, A0, b0, E, NU, MU, method="strip").tx
+    assert strip == pytest.approx(-G_MOD * A0 * b0 * np.pi**2 / (4 * (1 - NU)) * h, rel=1e-10)
+    linear = creep_force_3d(h, 0, 0, N, A0, b0, E, NU, MU, method="linear").tx
+    assert strip == pytest.approx(linear, rel=0.02)   # Kalker at 0.05 vs its asymptote
+    b0 = A0 / 1e-4
+    strip = creep_force_3d(h, 0, 0, N, A0, b0, E, NU, MU, method="strip").tx
+    linear = creep_force_3d(h, 0, 0, N, A0, b0, E, NU, MU, method="linear").tx
+    assert strip == pytest.approx(linear, rel=1e-3)
+
+
+# ------------------------------------------------------------------ combined creepage
+def test_combined_creepage_matches_component_equations_2_91_to_2_96():
+    """Solve the printed system (2.91)-(2.96) component-wise and compare."""
+    c11, c22, c23 = kalker_coefficients(A0 / B0, NU)
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        xi_x, xi_y = rng.uniform(-3e-3, 3e-3, 2)
+        phi = rng.uniform(-0.2, 0.2)
+        wy = c22 * xi_y + np.sqrt(A0 * B0) * c23 * phi           # (2.99)
+        # (2.95)-(2.96): p0x/p0y = C11 xi_x / wy, p0x^2 + p0y^2 = p0^2
+        p0x = P0 * abs(c11 * xi_x) / np.hypot(c11 * xi_x, wy)
+        p0y = P0 * abs(wy) / np.hypot(c11 * xi_x, wy)
+        zx = E * c11 * abs(xi_x) / (np.pi**2 * (1 + NU) * MU * p0x)   # (2.93)
+        zy = E * abs(wy) / (np.pi**2 * (1 + NU) * MU * p0y)            # (2.94)
+
+        def f(z):   # (2.87) as printed, with the thesis creepage -z
+            zt = -min(z, 1.0)
+            return 1 - (1 + zt**2 / 2) * np.sqrt(1 - zt**2) - 1.5 * zt * np.arcsin(
+                np.sqrt(1 - zt**2))
+        tx = -np.sign(xi_x) * MU * N * p0x / P0 * f(zx)               # (2.91)
+        ty = -np.sign(wy) * MU * N * p0y / P0 * f(zy)                 # (2.92)
+        got = creep_force_3d(xi_x, xi_y, phi, *ARGS)
+        assert got.tx == pytest.approx(tx, rel=1e-9)
+        assert got.ty == pytest.approx(ty, rel=1e-9)
+
+
+def test_saturation_creepage_puts_kink_at_z_one():
+    for theta in (0.0, 0.6, np.pi / 2, 2.5):
+        s_sat = saturation_creepage_3d(*ARGS, direction=theta)
+        xi = s_sat * np.array([np.cos(theta), np.sin(theta)])
+        z = normalised_creepage_3d(xi[0], xi[1], 0.0, *ARGS)
+        assert z == pytest.approx(1.0, rel=1e-13)
+        t = creep_force_3d(xi[0], xi[1], 0.0, *ARGS)
+        assert np.hypot(t.tx, t.ty) == pytest.approx(MU * N, rel=1e-13)
+        t = creep_force_3d(0.99 * xi[0], 0.99 * xi[1], 0.0, *ARGS)
+        assert np.hypot(t.tx, t.ty) < MU * N
+    c11 = kalker_coefficients(A0 / B0, NU).c11
+    assert saturation_creepage_3d(*ARGS) == pytest.approx(
+        np.pi**2 * MU * P0 / (2 * G_MOD * c11), rel=1e-13)
+
+
+# ------------------------------------------------------------------ hard cases
+@pytest.mark.parametrize("method", METHODS)
+def test_zero_creepage_is_exact_zero(method):
+    sol = creep_solution_3d(0.0, 0.0, 0.0, *ARGS, method=method)
+    assert sol.tx == 0.0 and sol.ty == 0.0
+    assert not np.signbit(sol.tx) and not np.signbit(sol.ty)
+    assert sol.stick_area_fraction == 1.0 and sol.spin_coefficient == 0.0
+    assert sol.within_validity
+
+
+@pytest.mark.parametrize("method", ["modified_strip", "she", "strip"])
+def test_tiny_creepage_relative_accuracy(method):
+    lin = creep_force_3d(1e-14, 0, 0, *ARGS, method="linear").tx
+    if method == "strip":
+        lin = lin * np.pi**2 / (4 * (1 - NU)) / kalker_coefficients(A0 / B0, NU).c11
+    t = creep_force_3d(1e-14, 0, 0, *ARGS, method=method).tx
+    assert t == pytest.approx(lin, rel=1e-10)
+    assert creep_force_3d(5e-324, 0, 0, *ARGS, method=method).tx < 0    # subnormal, no underflow
+
+
+@pytest.mark.parametrize("method", ["modified_strip", "she", "strip"])
+def test_far_beyond_saturation_is_mu_n_exactly(method):
+    for xi in (0.05, 1.0, 1e3, 1e300):
+        assert creep_force_3d(xi, 0.0, 0.0, *ARGS, method=method).tx == -MU * N
+        assert creep_force_3d(-xi, 0.0, 0.0, *ARGS, method=method).tx == MU * N
+        assert creep_force_3d(0.0, xi, 0.0, *ARGS, method=method).ty == -MU * N
+    for xi_x, xi_y, phi in ((0.3, 0.4, 0.0), (1e3, -7e2, 5.0), (1e-2, 3e-2, -1.0)):
+        t = creep_force_3d(xi_x, xi_y, phi, *ARGS, method=method)
+        assert np.hypot(t.tx, t.ty) <= MU * N
+        assert np.hypot(t.tx, t.ty) == pytest.approx(MU * N, rel=1e-15)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_zero_load_and_zero_friction_give_zeros(method):
+    for args in ((0.0, A0, B0, E, NU, MU), (N, A0, B0, E, NU, 0.0), (0.0, 0.0, 0.0, E, NU, MU),
+                 (1e-300, A0, B0, E, NU, MU)):
+        sol = creep_solution_3d(1e-3, -2e-3, 0.5, *args, method=method)
+        assert np.isfinite(sol.tx) and np.isfinite(sol.ty)
+        assert abs(sol.tx) <= args[0] * args[-1] or method == "linear"
+        if args[0] * args[-1] == 0 and method != "linear":
+            assert sol.tx == 0.0 and sol.ty == 0.0
+        assert np.isfinite(sol.stick_area_fraction)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_odd_in_creepage(method):
+    rng = np.random.default_rng(3)
+    xi = rng.uniform(-5e-3, 5e-3, (3, 50))
+    xi[2] *= 100
+    plus = creep_force_3d(*xi, *ARGS, method=method)
+    minus = creep_force_3d(*(-xi), *ARGS, method=method)
+    np.testing.assert_array_equal(plus.tx, -minus.tx)
+    np.testing.assert_array_equal(plus.ty, -minus.ty)
+
+
+@pytest.mark.parametrize("ratio", [0.05, 20.0])
+def test_extreme_axis_ratios(ratio):
+    a0 = np.sqrt(A0 * B0 * ratio)
+    b0 = a0 / ratio
+    s_sat = saturation_creepage_3d(N, a0, b0, E, NU, MU)
+    xi = np.linspace(-2, 2, 81) * s_sat
+    for method in ("modified_strip", "she", "strip"):
+        t = creep_force_3d(xi, 0.3 * xi, 0.0, N, a0, b0, E, NU, MU, method=method)
+        assert np.all(np.isfinite(t.tx)) and np.all(np.hypot(t.tx, t.ty) <= MU * N)
+        assert np.all(np.diff(t.tx) <= 1e-14 * MU * N)          # monotone (to rounding)
+
+
+def test_large_spin_flagged():
+    """Phi > 1: the same formulas are evaluated (|T| <= mu N), within_validity is False."""
+    phi = 3.0 / np.hypot(A0, B0) * 1e-3                 # Phi = 3 for |xi| = 1e-3
+    sol = creep_solution_3d(1e-3, 0.0, phi, *ARGS)
+    assert sol.spin_coefficient == pytest.approx(3.0, rel=1e-12)
+    assert not sol.within_validity
+    assert np.hypot(sol.tx, sol.ty) <= MU * N and sol.ty < 0
+    ok = creep_solution_3d(1e-3, 0.0, phi / 6, *ARGS)
+    assert ok.within_validity and ok.spin_coefficient == pytest.approx(0.5, rel=1e-12)
+    assert spin_coefficient(0.0, 0.0, 1.0, A0, B0) == np.inf
+    assert spin_coefficient(0.0, 0.0, 0.0, A0, B0) == 0.0
+    # linear theory: flagged beyond the Coulomb limit
+    assert not creep_solution_3d(1e-2, 0, 0, *ARGS, method="linear").within_validity
+
+
+@pytest.mark.parametrize("index,name", [(0, "creepage_longitudinal"), (1, "creepage_lateral"),
+                                        (2, "spin"), (3, "normal_load"), (4, "a0"), (5, "b0"),
+                                        (6, "youngs_modulus"), (7, "poisson_ratio"),
+                                        (8, "friction_coefficient")])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_nan_inf_raise(index, name, bad):
+    args = [1e-3, 0.0, 0.0, *ARGS]
+    args[index] = bad
+    with pytest.raises(ValueError, match=name):
+        creep_force_3d(*args)
+
+
+def test_bad_method_raises():
+    with pytest.raises(ValueError, match="method"):
+        creep_force_3d(1e-3, 0, 0, *ARGS, method="fastsim")
+
+
+# ------------------------------------------------------------------ property test
+creep = st.floats(-1.0, 1.0, allow_nan=False).map(lambda v: np.sign(v) * 10 ** (-8 * (1 - abs(v)))
+                                                  * 1e-1 if v else 0.0)
+
+
+@settings(max_examples=200, deadline=None, derandomize=True)
+@given(xi_x=creep, xi_y=creep, spin=st.floats(-5.0, 5.0),
+       ratio=st.floats(0.05, 20.0), load=st.floats(0.0, 2e5), mu=st.floats(0.0, 1.0),
+       method=st.sampled_from(["modified_strip", "she", "strip"]))
+def test_property_bounded_odd_finite_vectorised(xi_x, xi_y, spin, ratio, load, mu, method):
+    a0 = 5e-3 * np.sqrt(ratio)
+    b0 = a0 / ratio
+    args = (load, a0, b0, E, NU, mu)
+    t = creep_force_3d(xi_x, xi_y, spin, *args, method=method)
+    assert np.isfinite(t.tx) and np.isfinite(t.ty)
+    assert np.hypot(t.tx, t.ty) <= mu * load
+    neg = creep_force_3d(-xi_x, -xi_y, -spin, *args, method=method)
+    assert neg.tx == -t.tx and neg.ty == -t.ty
+    vec = creep_force_3d(np.array([xi_x, 0.5 * xi_x]), np.array([xi_y, xi_y]), spin, *args,
+                         method=method)
+    assert vec.tx[0] == t.tx and vec.ty[0] == t.ty
+
+
+def test_vectorised_broadcasting_shapes():
+    xi = np.linspace(-1e-2, 1e-2, 7)[:, None]
+    loads = np.array([5e4, 1e5, 2e5])[None, :]
+    sol = creep_solution_3d(xi, 0.0, 0.0, loads, A0, B0, E, NU, MU)
+    assert sol.tx.shape == (7, 3) and sol.within_validity.shape == (7, 3)
+    single = creep_solution_3d(xi[2, 0], 0.0, 0.0, loads[0, 1], A0, B0, E, NU, MU)
+    assert single.tx == sol.tx[2, 1] and single.stick_area_fraction == sol.stick_area_fraction[2, 1]
