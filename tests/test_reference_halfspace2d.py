@@ -22,7 +22,10 @@ from railcontact.reference.halfspace2d import (
     combined_compliance,
     log_influence_matrix,
     solve_normal_2d,
+    solve_quasistatic_corrugated_2d,
     solve_rolling_2d,
+    solve_transient_rolling_2d,
+    tangential_reference_length,
 )
 
 DATA = Path(__file__).parent / "data" / "contact_carter2d.csv"
@@ -475,3 +478,139 @@ def test_hertz_carter_fine_grids():
         # first order, constant oscillating in [0.1, 0.45] with the position of the contact
         # edge inside the outermost element (measured for n = 100 ... 2400)
         assert abs(rr.tangential_force / force - 1) < 0.5 * h
+
+
+# ------------------------------------------------------------------------------------------
+# quasi-static series on a moving corrugated rail
+# ------------------------------------------------------------------------------------------
+def test_quasistatic_long_wave_is_local_hertz():
+    """Wave length 60 a0 >> a0: at each position the contact is Hertz with the local curvature
+    1/R_eff = 1/R - Z2'' and its centre shifts by R_eff Z2' towards +x (minimum of
+    x^2/(2 R_eff) - Z2' x); independent of the solver, up to O((k a)^2)."""
+    lam, amp = 60 * A0, 2e-6
+    k = 2 * np.pi / lam
+    z2 = lambda X: amp * np.cos(k * X)  # noqa: E731
+    pos = np.array([0.0, 0.15, 0.3, 0.5]) * lam
+    res = solve_quasistatic_corrugated_2d(pos, z2, R, N, E, NU, -1.6 * A0, 1.6 * A0, 200)
+    r_eff = 1 / (1 / R + amp * k**2 * np.cos(k * pos))       # Z2'' = -amp k^2 cos
+    a_eff = np.sqrt(8 * N * r_eff * (1 - NU**2) / (np.pi * E))
+    shift = r_eff * (-amp * k * np.sin(k * pos))             # R_eff Z2'
+    np.testing.assert_allclose(res.half_width, a_eff, rtol=3e-3)
+    np.testing.assert_allclose(res.centre_shift, shift, atol=4e-3 * A0)
+    assert np.all(res.n_zones == 1) and np.all(np.isnan(res.tangential_force))
+    # flat rail: every position is the same Hertz contact
+    flat = solve_quasistatic_corrugated_2d(pos, lambda X: 0 * X, R, N, E, NU, -1.6 * A0,
+                                           1.6 * A0, 100, creepage=-1e-4)
+    np.testing.assert_allclose(flat.pressure, np.repeat(flat.pressure[[0]], 4, axis=0), rtol=1e-10,
+                               atol=1e-6 * P0)
+    np.testing.assert_allclose(flat.tangential_force, flat.tangential_force[0], rtol=1e-10)
+
+
+def test_quasistatic_short_wave_periodic_and_mirrored():
+    lam, amp = 1.5 * A0, 1.5e-6
+    z2 = lambda X: amp * np.cos(2 * np.pi * X / lam)  # noqa: E731
+    pos = np.array([0.2, 0.2 + lam, -0.2]) * lam
+    pos[1] = pos[0] + lam
+    res = solve_quasistatic_corrugated_2d(pos, z2, R, N, E, NU, -1.5 * A0, 1.5 * A0, 150,
+                                          tangential_force=0.2 * N, friction=0.3)
+    np.testing.assert_allclose(res.pressure[1], res.pressure[0], rtol=1e-8, atol=1e-8 * P0)
+    # x -> -x mirror of the rail position mirrors the pressure (grid symmetric about 0)
+    np.testing.assert_allclose(res.pressure[2], res.pressure[0][::-1], rtol=1e-8, atol=1e-8 * P0)
+    assert np.isclose(res.centre_shift[2], -res.centre_shift[0], atol=1e-3 * A0)
+    np.testing.assert_allclose(res.tangential_force, 0.2 * N, rtol=1e-10)
+    assert res.creepage[0] != res.creepage[2]  # rolling breaks the mirror symmetry
+    with pytest.raises(ValueError, match="rail_positions"):
+        solve_quasistatic_corrugated_2d([[0.0]], z2, R, N, E, NU, -A0, A0, 50)
+    with pytest.raises(ValueError, match="creepage and tangential_force"):
+        solve_quasistatic_corrugated_2d([0.0], z2, R, N, E, NU, -2 * A0, 2 * A0, 50,
+                                        creepage=1e-4, tangential_force=1.0)
+
+
+# ------------------------------------------------------------------------------------------
+# transient rolling
+# ------------------------------------------------------------------------------------------
+def _strip_displacement(x0, traction, a, b):
+    """u_x at (x0, 0) of a traction q(x) uniform over -b < y < b, from the 3-D Cerruti kernel
+    (C.8) integrated analytically over y, then by quadrature over x (independent of the 2-D
+    kernel and its datum)."""
+    c = 2 * (1 + NU) / (np.pi * E)
+
+    def ky(zeta):
+        big_x = abs(x0 - zeta)
+        return c * (2 * (1 - NU) * np.arcsinh(b / big_x) + 2 * NU * b / np.hypot(big_x, b))
+
+    return quad(lambda z: traction(z) * ky(z), -a, a, points=[x0], limit=400)[0]
+
+
+def test_thesis_7_15_7_20_and_strip_datum():
+    """(7.15) (uniform traction) and (7.20) (elliptic traction) for a strip of width 2b equal the
+    3-D strip displacement for b >> a; and both equal the 2-D kernel with the datum
+    L = tangential_reference_length(b, nu) = 2 b exp(nu/(1-nu))."""
+    a, b, force = 1e-3, 0.2, 1e5
+    ell = tangential_reference_length(b, NU)
+    assert np.isclose(ell, 2 * b * np.exp(NU / (1 - NU)), rtol=1e-15)
+    for x0 in (0.0, 0.3 * a, -0.6 * a):
+        g715 = 1 / (1 - NU) + np.log(2 * b) + 0.5 * x0 / a * np.log((a - x0) / (a + x0)) \
+            - 0.5 * np.log(a**2 - x0**2)
+        u3 = _strip_displacement(x0, lambda z: force / (2 * a) + 0 * z, a, b)
+        assert np.isclose(u3, K * force * g715, rtol=2e-5)
+        g720 = (1 + NU) / (2 * (1 - NU)) + np.log(4 * b) - np.log(a) - (x0 / a) ** 2
+        ell_q = lambda z: 2 * force / (np.pi * a**2) * np.sqrt(max(a * a - z * z, 0))  # noqa
+        u3e = _strip_displacement(x0, ell_q, a, b)
+        assert np.isclose(u3e, K * force * g720, rtol=2e-5)
+        u2 = -K * quad(lambda z: ell_q(z) * np.log(abs(x0 - z) / ell), -a, a, points=[x0],
+                       limit=400)[0]
+        assert np.isclose(u2, u3e, rtol=2e-5)
+
+
+def test_transient_first_step_is_cattaneo():
+    """From rest, a sudden force T: stick zone |x| < c = a sqrt(1 - T/(mu N)) and
+    q = mu p0/a (sqrt(a^2 - x^2) - sqrt(c^2 - x^2)) (Cattaneo 1938, 2-D; Johnson Sec. 7.2)."""
+    mu, frac = 0.3, 0.5
+    c = A0 * np.sqrt(1 - frac)
+    errs = []
+    for n in (100, 200, 400):
+        r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.27 * A0, n)
+        tr = solve_transient_rolling_2d(r.x, r.pressure, E, NU, tangential_force=[frac * mu * N],
+                                        friction=mu, reference_length=0.1)
+        q_cat = mu * P0 / A0 * (np.sqrt(np.clip(A0**2 - r.x**2, 0, None))
+                                - np.sqrt(np.clip(c**2 - r.x**2, 0, None)))
+        st = np.flatnonzero(tr.stick[0])
+        errs.append((np.sqrt(np.mean((tr.traction[0] - q_cat)[r.contact_mask] ** 2)) / (mu * P0),
+                     abs(r.x[st[0]] + c) / A0, abs(r.x[st[-1]] - c) / A0))
+    print("\nCattaneo first step: rms dq/(mu p0), |stick start + c|/a, |stick end - c|/a:", errs)
+    assert errs[-1][0] < 2e-3 and errs[-1][1] < 5e-3 and errs[-1][2] < 5e-3
+    assert errs[-1][0] < errs[0][0]
+
+
+def test_transient_reaches_steady_solution():
+    """Constant input: the time stepping ends in the steady solution of solve_rolling_2d
+    (same discretisation): geometric convergence, for force control ~3e-9 p0 after 6 transits
+    (measured), for creepage control after the slower 2-D datum drift (time constant growing
+    with ln(L/a)); with force control the datum changes only the first step's creepage."""
+    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 80)
+    mu = 0.3
+    force = 0.4 * mu * N
+    steady = solve_rolling_2d(r.x, r.pressure, E, NU, tangential_force=force, friction=mu)
+    runs = [solve_transient_rolling_2d(r.x, r.pressure, E, NU, tangential_force=np.full(500, force),
+                                       friction=mu, reference_length=ell)
+            for ell in (0.01, 1.0)]
+    for tr in runs:
+        np.testing.assert_allclose(tr.traction[-1], steady.traction, rtol=1e-9, atol=1e-9 * P0)
+        assert np.isclose(tr.creepage[-1], steady.creepage, rtol=1e-9)
+        np.testing.assert_allclose(tr.tangential_force, force, rtol=1e-10)
+    assert not np.isclose(runs[0].creepage[0], runs[1].creepage[0], rtol=1e-3)  # datum matters
+    xi = steady.creepage
+    tr = solve_transient_rolling_2d(r.x, r.pressure, E, NU, creepage=np.full(1500, xi),
+                                    friction=mu, reference_length=0.01)
+    np.testing.assert_allclose(tr.traction[-1], steady.traction, rtol=1e-8, atol=1e-8 * P0)
+    assert np.all(np.diff(tr.tangential_force[:300]) > -1e-9 * force)  # monotone build-up
+    with pytest.raises(ValueError, match="reference_length"):
+        solve_transient_rolling_2d(r.x, r.pressure, E, NU, creepage=[xi], friction=mu,
+                                   reference_length=1e-5)
+    with pytest.raises(ValueError, match="tangential_force"):
+        solve_transient_rolling_2d(r.x, r.pressure, E, NU, tangential_force=[1.1 * mu * N],
+                                   friction=mu, reference_length=0.1)
+    with pytest.raises(ValueError, match="pressure"):
+        solve_transient_rolling_2d(r.x, np.ones((3, 80)), E, NU, creepage=[xi, xi],
+                                   friction=mu, reference_length=0.1)

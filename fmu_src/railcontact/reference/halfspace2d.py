@@ -65,6 +65,11 @@ __all__ = [
     "solve_rolling_2d",
     "log_influence_matrix",
     "combined_compliance",
+    "QuasiStatic2D",
+    "solve_quasistatic_corrugated_2d",
+    "TransientRolling2D",
+    "solve_transient_rolling_2d",
+    "tangential_reference_length",
 ]
 
 
@@ -485,29 +490,43 @@ def _slip_matrix(x, dx, kern):
     return (a[:-1] - a[1:]) / dx  # -(u_{i+1} - u_i)/dx per unit q; positive diagonal
 
 
-def _rolling_active_set(mmat, bound, creepage, force, dx, max_iter):
-    """Coulomb steady rolling on the contact elements, creepage or force controlled.
+def _rolling_active_set(mmat, bound, creepage, force, dx, max_iter, offset=0.0, stick0=None):
+    """Coulomb rolling on the contact elements, creepage or force controlled.
 
-    Unknown ``q`` (traction on the wheel), ``s = xi + M q``; stick ``s = 0, |q| <= g``; slip
-    ``q = -g sign(s)``. ``M`` has a positive semi-definite symmetric part, so for given creepage
-    the discrete problem is a monotone variational inequality with a unique solution (the discrete
-    Carter solution). Semismooth-Newton (primal-dual active set) iteration.
+    Unknown ``q`` (traction on the wheel), ``s = xi + offset + M q``; stick ``s = 0, |q| <= g``;
+    slip ``q = -g sign(s)``. For steady rolling ``M`` has a positive definite symmetric part (the
+    upwind difference of the log kernel; checked in the tests), for a transient step ``M`` is
+    the symmetric positive definite log-kernel matrix: for given creepage the discrete problem
+    is then a strongly monotone variational inequality with a unique solution (the discrete
+    Carter solution in steady rolling). Primal-dual active set (semismooth Newton) iteration,
+    retried with other scalings if it cycles. A force at the Coulomb bound gives full sliding
+    with the creepage at the saturation point.
     """
+    offset = np.broadcast_to(np.asarray(offset, dtype=float), bound.shape)
+    if force is not None and abs(force) >= dx * bound.sum() * (1 - 1e-12):
+        q = np.sign(force) * bound
+        s0 = offset + mmat @ q
+        # smallest |xi| with sign(s) = -sign(q) everywhere (saturation point)
+        xi = float(-(s0.max() if force > 0 else s0.min()))
+        return q, xi + s0, xi, np.zeros(bound.size, bool), 1
     for c_factor in (1.0, 0.1, 10.0, 0.01):
         try:
-            return _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor)
+            return _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor, offset,
+                                 stick0)
         except RuntimeError:
             continue
     raise RuntimeError("rolling active-set iteration cycled")
 
 
-def _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor):
+def _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor, offset, stick0):
     m = bound.size
     force_control = force is not None
     q = np.zeros(m)
     xi = 0.0 if force_control else creepage
-    stick = np.ones(m, dtype=bool)
+    stick = np.ones(m, dtype=bool) if stick0 is None else stick0.copy()
     sign = np.zeros(m)
+    if stick0 is not None:  # warm start: slip direction from the rigid part
+        sign = np.where(stick, 0.0, np.where(offset + xi >= 0, 1.0, -1.0))
     c = c_factor / np.mean(np.diag(mmat))
     seen = set()
     for it in range(1, max_iter + 1):
@@ -521,7 +540,8 @@ def _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor):
             mat[:ns, :ns] = mmat[np.ix_(st, st)]
             mat[:ns, ns] = 1.0
             mat[ns, :ns] = dx
-            rhs = np.concatenate([-mmat[np.ix_(st, sl)] @ q[sl], [force - dx * q[sl].sum()]])
+            rhs = np.concatenate([-offset[st] - mmat[np.ix_(st, sl)] @ q[sl],
+                                  [force - dx * q[sl].sum()]])
             if ns:  # (all-slip trial set: keep the previous creepage; the sets then change)
                 sol = np.linalg.solve(mat, rhs)
                 q[st] = sol[:ns]
@@ -529,8 +549,8 @@ def _rolling_pdas(mmat, bound, creepage, force, dx, max_iter, c_factor):
         else:
             if st.size:
                 q[st] = np.linalg.solve(mmat[np.ix_(st, st)],
-                                        -xi - mmat[np.ix_(st, sl)] @ q[sl])
-        s = xi + mmat @ q
+                                        -xi - offset[st] - mmat[np.ix_(st, sl)] @ q[sl])
+        s = xi + offset + mmat @ q
         # new sets: r = -q in box [-g, g]; stick if |q - c s| < g
         trial = q - c * s
         new_stick = np.abs(trial) < bound
@@ -769,16 +789,8 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
     pc = p[idx]
 
     def inner(mu_el):
-        bound = mu_el * pc
-        if force_in is not None and abs(force_in) >= dx * bound.sum() * (1 - 1e-12):
-            # full sliding at the bound: q = -sign(T)... creepage from the slip limit
-            q = np.sign(force_in) * bound
-            s = mmat @ q
-            # any xi with sign(xi + M q) = -sign(q) everywhere; choose the smallest magnitude
-            xi = float(-(s.max() if force_in > 0 else s.min()))
-            return q, xi + s, xi, np.zeros(idx.size, bool), 1
         try:
-            return _rolling_active_set(mmat, bound, xi_in, force_in, dx, max_iter)
+            return _rolling_active_set(mmat, mu_el * pc, xi_in, force_in, dx, max_iter)
         except RuntimeError:
             ctl = (f"creepage = {xi_in:g}" if xi_in is not None
                    else f"tangential_force = {force_in:g} N/m")
@@ -823,3 +835,342 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
         contact_mask=mask, creepage=float(xi), tangential_force=float(traction.sum() * dx),
         normal_load=n_load, stick_start=stick_start, stick_end=stick_end,
         friction_bound=bound_full, iterations=int(iters))
+
+
+# ---------------------------------------------------------------------------------------------
+# quasi-static series over rail positions (moving corrugated profile)
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class QuasiStatic2D:
+    """Result of :func:`solve_quasistatic_corrugated_2d`, one row per rail position (all SI).
+
+    Attributes
+    ----------
+    rail_position : ndarray, shape (m,)
+        Rail coordinate ``X_c`` of the wheel axis. [m]
+    x : ndarray, shape (n,)
+        Element centres in the wheel-axis frame (``x = X - X_c``). [m]
+    pressure, traction, slip : ndarray, shape (m, n)
+        Per position (``traction``/``slip`` zero if no tangential problem was asked). [Pa], [-]
+    stick : ndarray of bool, shape (m, n)
+    contact_start, contact_end : ndarray, shape (m,)
+        Outermost contact edges in the axis frame. [m]
+    half_width : ndarray, shape (m,)
+        ``(contact_end - contact_start) / 2``. [m]
+    centre_shift : ndarray, shape (m,)
+        ``(contact_start + contact_end) / 2``: contact centre relative to the wheel axis,
+        positive towards the leading edge (+x, the rolling direction). Nielsen's ``Delta`` (4.7)
+        is measured positive *behind* the axis, i.e. ``Delta = -centre_shift``. [m]
+    approach : ndarray, shape (m,)
+        Rigid approach in the datum ``reference_length``. [m]
+    n_zones : ndarray of int, shape (m,)
+        Number of separate contact zones.
+    normal_load, creepage, tangential_force : ndarray, shape (m,)
+        [N/m], [-], [N/m] (creepage/force ``nan`` if no tangential problem).
+    stick_start, stick_end : ndarray, shape (m,)
+        [m] (``nan`` for full slip or no tangential problem).
+    """
+
+    rail_position: np.ndarray
+    x: np.ndarray
+    pressure: np.ndarray
+    traction: np.ndarray
+    slip: np.ndarray
+    stick: np.ndarray
+    contact_start: np.ndarray
+    contact_end: np.ndarray
+    half_width: np.ndarray
+    centre_shift: np.ndarray
+    approach: np.ndarray
+    n_zones: np.ndarray
+    normal_load: np.ndarray
+    creepage: np.ndarray
+    tangential_force: np.ndarray
+    stick_start: np.ndarray
+    stick_end: np.ndarray
+
+
+def solve_quasistatic_corrugated_2d(rail_positions, rail_profile, radius, normal_load,
+                                    youngs_modulus, poisson_ratio, x_min, x_max,
+                                    n_elements=400, creepage=None, tangential_force=None,
+                                    friction=0.3, *, reference_length=1.0):
+    r"""Normal (+ steady tangential) 2-D contact of a cylinder at many positions on a rail profile.
+
+    Quasi-static: at every rail position the contact is solved as if steady (the ``du/dt`` term
+    of (2.16) is neglected), Nielsen Sec. 4.2 set-up (4.3)-(4.10): the wheel (body 1) is the
+    parabola ``x**2 / (2R)`` (second-order Taylor expansion of (4.3)) and the rail (body 2) has
+    the surface height ``Z2(X) = rail_profile(X)`` (positive towards the wheel), so the gap in
+    the frame of the wheel axis at ``X_c`` is ``h(x) = x**2/(2R) - rail_profile(X_c + x)`` (2.2).
+    The wheel rolls towards ``+x`` (leading edge at ``+x``), the convention of this module.
+
+    Parameters
+    ----------
+    rail_positions : array_like, shape (m,)
+        Positions ``X_c`` of the wheel axis along the rail. [m]
+    rail_profile : callable
+        Vectorised rail surface height ``Z2(X)`` [m] of the rail coordinate ``X`` [m], e.g.
+        ``lambda X: 20e-6 * np.cos(2 * np.pi * X / 0.05)``.
+    radius : float
+        Wheel radius ``R`` (equivalent radius), > 0. [m]
+    normal_load : float or array_like, shape (m,)
+        Normal load per unit length at each position, > 0. [N/m]
+    youngs_modulus, poisson_ratio : float
+        [Pa], [-].
+    x_min, x_max : float
+        Potential contact region in the axis frame; must contain the contact at every
+        position. [m]
+    n_elements : int
+        Number of elements. [-]
+    creepage, tangential_force : float or array_like, optional
+        At most one; if given, the steady tangential problem is solved at every position with
+        :func:`solve_rolling_2d`. [-], [N/m]
+    friction : float or callable
+        As in :func:`solve_rolling_2d`.
+    reference_length : float, optional
+        Datum of ``approach``. [m]
+
+    Returns
+    -------
+    QuasiStatic2D
+    """
+    xc = check_range("rail_positions", rail_positions, "m")
+    if xc.ndim != 1 or xc.size == 0:
+        raise ValueError(f"rail_positions must be a non-empty 1-D array [m]; got shape {xc.shape}")
+    if not callable(rail_profile):
+        raise ValueError("rail_profile must be a callable Z2(X) [m]")
+    rad = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    loads = np.broadcast_to(check_range("normal_load", normal_load, "N/m", 0.0, None,
+                                        lower_closed=False), xc.shape)
+    if creepage is not None and tangential_force is not None:
+        raise ValueError("creepage and tangential_force: give at most one of them")
+    tang = creepage is not None or tangential_force is not None
+    xis = None if creepage is None else np.broadcast_to(
+        check_range("creepage", creepage, "-"), xc.shape)
+    forces = None if tangential_force is None else np.broadcast_to(
+        check_range("tangential_force", tangential_force, "N/m"), xc.shape)
+    m = xc.size
+    n = int(n_elements)
+    out = {k: np.full(m, np.nan) for k in ("contact_start", "contact_end", "approach",
+                                           "creepage", "tangential_force", "stick_start",
+                                           "stick_end")}
+    n_zones = np.zeros(m, dtype=int)
+    pressure = np.zeros((m, n))
+    traction = np.zeros((m, n))
+    slip = np.zeros((m, n))
+    stick = np.zeros((m, n), dtype=bool)
+    x = None
+    for k in range(m):
+        r = solve_normal_2d(lambda xx, _c=xc[k]: xx**2 / (2 * rad) - rail_profile(_c + xx),
+                            loads[k], youngs_modulus, poisson_ratio, x_min, x_max, n,
+                            reference_length=reference_length)
+        x = r.x
+        pressure[k] = r.pressure
+        out["contact_start"][k] = r.contact_start
+        out["contact_end"][k] = r.contact_end
+        out["approach"][k] = r.approach
+        n_zones[k] = len(r.zones)
+        if tang:
+            rr = solve_rolling_2d(r.x, r.pressure, youngs_modulus, poisson_ratio,
+                                  creepage=None if xis is None else float(xis[k]),
+                                  tangential_force=None if forces is None else float(forces[k]),
+                                  friction=friction)
+            traction[k], slip[k], stick[k] = rr.traction, rr.slip, rr.stick
+            out["creepage"][k] = rr.creepage
+            out["tangential_force"][k] = rr.tangential_force
+            out["stick_start"][k] = rr.stick_start
+            out["stick_end"][k] = rr.stick_end
+    return QuasiStatic2D(
+        rail_position=xc, x=x, pressure=pressure, traction=traction, slip=slip, stick=stick,
+        contact_start=out["contact_start"], contact_end=out["contact_end"],
+        half_width=0.5 * (out["contact_end"] - out["contact_start"]),
+        centre_shift=0.5 * (out["contact_end"] + out["contact_start"]),
+        approach=out["approach"], n_zones=n_zones, normal_load=np.array(loads, dtype=float),
+        creepage=out["creepage"], tangential_force=out["tangential_force"],
+        stick_start=out["stick_start"], stick_end=out["stick_end"])
+
+
+# ---------------------------------------------------------------------------------------------
+# transient (non-steady) rolling, Kalker's time stepping with the du/dt term of (2.16)
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class TransientRolling2D:
+    """Result of :func:`solve_transient_rolling_2d`, one row per time step (all SI).
+
+    Step ``k`` is at ``t_k = (k + 1) dx / V`` after the initial state (the material moves one
+    element width per step).
+
+    Attributes
+    ----------
+    x : ndarray, shape (n,)
+        Element centres. [m]
+    traction, slip, displacement : ndarray, shape (steps, n)
+        Traction on the wheel [Pa], dimensionless slip [-], and ``u_x = u_x1 - u_x2`` at the
+        centres in the datum ``reference_length`` [m].
+    stick, contact_mask : ndarray of bool, shape (steps, n)
+    creepage, tangential_force, normal_load : ndarray, shape (steps,)
+        [-], [N/m], [N/m].
+    reference_length : float
+        Datum of the log kernel. [m]
+    """
+
+    x: np.ndarray
+    traction: np.ndarray
+    slip: np.ndarray
+    displacement: np.ndarray
+    stick: np.ndarray
+    contact_mask: np.ndarray
+    creepage: np.ndarray
+    tangential_force: np.ndarray
+    normal_load: np.ndarray
+    reference_length: float
+
+
+def tangential_reference_length(strip_half_width, poisson_ratio):
+    r"""Datum ``L`` of the 2-D log kernel equivalent to a 3-D strip of width ``2b`` (Appendix C).
+
+    Integrating the 3-D Cerruti kernel ``g11`` (C.8) over ``-b < y < b`` at the strip centre gives
+    ``K [ln(2b / |x|) + nu/(1 - nu)]`` for ``|x| << b``, i.e. the 2-D kernel ``-K ln(|x| / L)``
+    with ``L = 2 b exp(nu / (1 - nu))``. With it, the 2-D displacement of a uniform and of an
+    elliptic traction reproduce Nielsen's (7.15) and (7.20) (checked in the tests). For the
+    normal kernel (C.5) the same integration gives ``L = 2b`` (CONTACT's 2-D cases).
+
+    Parameters
+    ----------
+    strip_half_width : float
+        ``b``, > 0. [m]
+    poisson_ratio : float
+        [-]
+
+    Returns
+    -------
+    float
+        ``L``. [m]
+    """
+    b = float(check_range("strip_half_width", strip_half_width, "m", 0.0, None,
+                          lower_closed=False))
+    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
+    return 2.0 * b * np.exp(nu / (1.0 - nu))
+
+
+def solve_transient_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
+                               tangential_force=None, friction=0.3, *, reference_length,
+                               initial_traction=None, max_iter=200):
+    r"""Non-steady 2-D rolling, Coulomb friction: time stepping of (2.16) (Kalker's scheme).
+
+    The material moves one element width ``dx`` towards ``-x`` per step (``dt = dx / V``). The
+    slip of the particle now at ``x_i``, which was at ``x_{i+1}`` one step earlier, is
+
+    ``s_i^k = xi^k + (u_i^k - u_{i+1}^{k-1}) / dx``,
+
+    the discrete form of ``s = xi - du/dx + (1/V) du/dt`` ((2.16) for this module's rolling
+    direction). Unlike the steady problem this depends on the datum of the displacement (the 2-D
+    difficulty stated after (2.46)): ``reference_length`` ``L`` fixes it (a 3-D strip of width
+    ``2b`` corresponds to ``L = tangential_reference_length(b, nu)``, the model behind Nielsen's
+    (7.14)-(7.20)). A constant input reaches the steady solution of :func:`solve_rolling_2d`
+    exactly once the material has crossed the contact; the first step from rest under a force is
+    Cattaneo's shift problem.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Uniformly spaced element centres. [m]
+    pressure : array_like, shape (n,) or (steps, n)
+        Pressure, constant or per step (>= 0). [Pa]
+    youngs_modulus, poisson_ratio : float
+        [Pa], [-].
+    creepage, tangential_force : array_like, shape (steps,)
+        Exactly one: creepage history or tangential-force history on the wheel. [-], [N/m]
+    friction : float
+        Coulomb coefficient, >= 0. [-]
+    reference_length : float
+        Datum ``L`` of the log kernel; must exceed a quarter of the grid length (so that the
+        kernel is positive definite). [m]
+    initial_traction : array_like, shape (n,), optional
+        Traction before the first step (default zero: starting from rest). [Pa]
+    max_iter : int, optional
+        Active-set iterations per step. [-]
+
+    Returns
+    -------
+    TransientRolling2D
+    """
+    xs = check_range("x", x, "m")
+    if xs.ndim != 1 or xs.size < 4:
+        raise ValueError(f"x must be a 1-D array of >= 4 element centres [m]; got shape {xs.shape}")
+    dxs = np.diff(xs)
+    dx = float(dxs.mean())
+    if not (dx > 0 and np.allclose(dxs, dx, rtol=1e-6, atol=0.0)):
+        raise ValueError("x must be uniformly spaced and increasing [m]")
+    n = xs.size
+    e = check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False)
+    mu = float(check_range("friction", friction, "-", 0.0, None))
+    if (creepage is None) == (tangential_force is None):
+        raise ValueError("creepage and tangential_force: give exactly one of them")
+    ctrl_name = "creepage" if creepage is not None else "tangential_force"
+    ctrl = check_range(ctrl_name, creepage if creepage is not None else tangential_force,
+                       "-" if creepage is not None else "N/m")
+    ctrl = np.atleast_1d(ctrl)
+    if ctrl.ndim != 1:
+        raise ValueError(f"{ctrl_name} must be a 1-D history (one value per step)")
+    steps = ctrl.size
+    p = check_range("pressure", pressure, "Pa", 0.0, None)
+    if p.shape == (n,):
+        p = np.broadcast_to(p, (steps, n))
+    if p.shape != (steps, n):
+        raise ValueError(f"pressure must have shape ({n},) or ({steps}, {n}) [Pa]; got {p.shape}")
+    grid_length = n * dx
+    ell = float(check_range("reference_length", reference_length, "m", 0.25 * grid_length, None,
+                            lower_closed=False,
+                            condition="> (x[-1] - x[0] + dx)/4: positive definite log kernel"))
+    q_prev = np.zeros(n) if initial_traction is None else check_range(
+        "initial_traction", initial_traction, "Pa").reshape(n)
+    kern = 4.0 * (1.0 - float(nu) ** 2) / (np.pi * float(e))
+    obs = np.concatenate([xs, [xs[-1] + dx]])
+    a_ext = kern * log_influence_matrix(obs, xs - 0.5 * dx, xs + 0.5 * dx, ell)
+    a_now = a_ext[:-1]            # u_i^k = (a_now @ q^k)_i
+    a_up = a_ext[1:]              # u_{i+1}^{k-1} = (a_up @ q^{k-1})_i
+    traction = np.zeros((steps, n))
+    slip = np.zeros((steps, n))
+    disp = np.zeros((steps, n))
+    stick = np.zeros((steps, n), dtype=bool)
+    xi_out = np.zeros(steps)
+    stick_prev = None
+    for k in range(steps):
+        mask = p[k] > 0.0
+        idx = np.flatnonzero(mask)
+        offset_full = -(a_up @ q_prev) / dx
+        q = np.zeros(n)
+        if idx.size and mu * p[k, idx].sum() > 0.0:
+            mmat = a_now[np.ix_(idx, idx)] / dx
+            bound = mu * p[k, idx]
+            warm = None
+            if stick_prev is not None and stick_prev.shape == idx.shape:
+                warm = stick_prev
+            if tangential_force is not None and abs(ctrl[k]) > dx * bound.sum() * (1 + 1e-12):
+                raise ValueError(f"tangential_force must be <= mu N = {dx * bound.sum():g} "
+                                 f"[N/m] at every step; got {ctrl[k]:g} at step {k}")
+            try:
+                qc, sc, xi, st, _ = _rolling_active_set(
+                    mmat, bound, float(ctrl[k]) if creepage is not None else None,
+                    float(ctrl[k]) if tangential_force is not None else None, dx, max_iter,
+                    offset=offset_full[idx], stick0=warm)
+            except RuntimeError:
+                raise ValueError(f"max_iter: the transient active-set iteration did not converge "
+                                 f"at step {k} ({ctrl_name} = {ctrl[k]:g})") from None
+            q[idx] = qc
+            slip[k, idx] = np.where(st, 0.0, sc)
+            stick[k, idx] = st
+            stick_prev = st
+        else:
+            xi = float(ctrl[k]) if creepage is not None else 0.0
+            stick_prev = None
+        xi_out[k] = xi
+        traction[k] = q
+        disp[k] = a_now @ q
+        q_prev = q
+    forces = traction.sum(axis=1) * dx
+    return TransientRolling2D(
+        x=xs, traction=traction, slip=slip, displacement=disp, stick=stick,
+        contact_mask=p > 0.0, creepage=xi_out, tangential_force=forces,
+        normal_load=p.sum(axis=1) * dx, reference_length=ell)
