@@ -69,7 +69,7 @@ __all__ = [
     "contact_point_shift_coefficient", "series_truncation_error", "series_degree",
     "solve_normal_exact", "solve_stick_zone_exact", "corrugated_contact",
     "contact_distributions", "CorrugatedContact", "ContactDistributions",
-    "check_no_contact_loss",
+    "check_no_contact_loss", "half_width_load_term",
 ]
 
 _TWO_PI = 2.0 * np.pi
@@ -213,6 +213,43 @@ def tangential_force_response(a0_over_wavelength, stick_ratio):
     kd = beta * (1.0 - r)
     return -beta * r * (stick_zone_response(a0_over_wavelength, r)
                         + j1(beta * r) * np.exp(-1j * kd))
+
+
+def half_width_load_term(rail_position, a0, mean_normal_load, load_amplitudes_cos,
+                         load_amplitudes_sin, load_wavelengths):
+    r"""Half-width change from an oscillating normal load, the middle term of (4.39).
+
+    ``a = a0 + a0/(2 N0) sum [N_A cos(k_N X) + N_B sin(k_N X)] - (surface term of (4.37))``;
+    Delta is unchanged to first order.
+
+    Parameters
+    ----------
+    rail_position : array_like
+        Axis position X. [m]
+    a0 : float
+        Hertz half-width at the mean load N0, > 0. [m]
+    mean_normal_load : float
+        N0, > 0. [N/m]
+    load_amplitudes_cos, load_amplitudes_sin : array_like, shape (M_N,)
+        N_A,m and N_B,m of (4.38). [N/m]
+    load_wavelengths : array_like, shape (M_N,)
+        2 pi / k_N,m, > 0. [m]
+
+    Returns
+    -------
+    ndarray
+        ``a0/(2 N0) sum [...]``, to be added to a(X). [m]
+    """
+    x = check_range("rail_position", rail_position, "m")
+    a0 = float(check_range("a0", a0, "m", 0.0, None, lower_closed=False))
+    n0 = float(check_range("mean_normal_load", mean_normal_load, "N/m", 0.0, None,
+                           lower_closed=False))
+    na = np.atleast_1d(check_range("load_amplitudes_cos", load_amplitudes_cos, "N/m"))
+    nb = np.atleast_1d(check_range("load_amplitudes_sin", load_amplitudes_sin, "N/m"))
+    lam = np.atleast_1d(check_range("load_wavelengths", load_wavelengths, "m", 0.0, None,
+                                    lower_closed=False))
+    arg = _TWO_PI * x[..., None] / lam
+    return a0 / (2.0 * n0) * np.sum(na * np.cos(arg) + nb * np.sin(arg), -1)
 
 
 # ---------------------------------------------------------------------------------------------

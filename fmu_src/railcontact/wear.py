@@ -62,6 +62,7 @@ from ._validation import check_choice, check_range
 from .corrugation import _TWO_PI, solve_normal_exact, solve_stick_zone_exact, _surface_terms
 
 __all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
+           "wear_first_harmonic_reference",
            "passage_time_response", "wear_first_harmonic_exact", "wear_shape_function"]
 
 WEAR_MODELS = ("material_point", "patch_coordinate", "nielsen1998", "time_domain_carter")
@@ -383,4 +384,90 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
         h = 2 * first / zeta
         out[name] = 2 * np.conj(h)
     out["mean"] = 2.0 * float(np.sum(np.sum(p * s * wq, -1) * half[:, 0])) / npos
+    return out
+
+
+def wear_first_harmonic_reference(a0_over_wavelength, stick_ratio, relative_amplitude, *,
+                                  phase=0.0, n_positions=16, n_elements=200,
+                                  domain_half_width=1.6):
+    r"""Brute-force wear first harmonic with the discretised half-space solver (reference check).
+
+    At ``n_positions`` axis positions per wave length the normal and the steady-rolling
+    tangential problems are solved by :mod:`railcontact.reference.halfspace2d`
+    (``n_elements`` on ``[-domain_half_width a0, domain_half_width a0]`` around the axis, gap
+    ``xb^2/(2R) - Z2(X_c + xb)``, constant creepage ``mu (a0 - a0*)/R``). The frictional work
+    ``|q s|`` of every element is then integrated
+
+    * at material points (4.74): ``int W e^{-ikX0} dX0 = K sum_c dX_c sum_j dx |q s|_j
+      e^{-ik(X_c + xb_j)}`` (no derivative of anything is needed), and
+    * over the patch coordinate: the same with the weight ``1 + Delta'(X_c)``, Delta from the
+      solver's contact edges, differentiated spectrally over the positions.
+
+    Parameters
+    ----------
+    a0_over_wavelength, stick_ratio, relative_amplitude, phase
+        As in :func:`wear_first_harmonic_exact`.
+    n_positions : int
+        Rail positions per wave length (>= 4). [-]
+    n_elements : int
+        Elements of the reference solver. [-]
+    domain_half_width : float
+        Solver domain half-width in units of a0. [-]
+
+    Returns
+    -------
+    dict
+        ``{"material_point": w, "patch_coordinate": w, "half_width": c_a/(kR),
+        "patch_shift": c_Delta/(kR), "stick_half_width": c_a*/(kR)}``, first harmonics
+        normalised as in :func:`wear_coefficients` and :mod:`railcontact.corrugation`.
+    """
+    from .reference.halfspace2d import solve_normal_2d, solve_rolling_2d
+
+    ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                              lower_closed=False))
+    r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
+                          upper_closed=False))
+    eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
+                            lower_closed=False))
+    e_mod, nu, big_r, mu = 2.1e11, 0.28, 0.5, 0.3
+    comp = 4 * (1 - nu * nu) / (np.pi * e_mod)
+    a0 = 0.006
+    n_load = a0 * a0 / (2 * big_r * comp)
+    lam = a0 / ratio
+    k = _TWO_PI / lam
+    amp = eps * a0 / (k * big_r)
+    za, zb = amp * np.cos(phase), amp * np.sin(phase)
+    xi = mu * a0 * (1 - r) / big_r
+    npos = int(check_range("n_positions", n_positions, "-", 4, 100000))
+    xc = np.arange(npos) * lam / npos
+    first, a_s, d_s, as_s = [], [], [], []
+    hw = domain_half_width * a0
+    for xcv in xc:
+        def gap(xb, xcv=xcv):
+            return xb * xb / (2 * big_r) - (za * np.cos(k * (xcv + xb)) + zb * np.sin(k * (xcv + xb)))
+        nsol = solve_normal_2d(gap, n_load, e_mod, nu, -hw, hw, n_elements)
+        rsol = solve_rolling_2d(nsol.x, nsol.pressure, e_mod, nu, creepage=-xi, friction=mu)
+        dens = np.abs(rsol.traction * rsol.slip)
+        first.append(np.sum(dens * np.exp(-1j * k * (xcv + nsol.x))) * nsol.element_width)
+        a_s.append(0.5 * (nsol.contact_end - nsol.contact_start))
+        d_s.append(0.5 * (nsol.contact_end + nsol.contact_start))
+        as_s.append(0.5 * (rsol.stick_end - rsol.stick_start))
+    first = np.asarray(first)
+    d_s = np.asarray(d_s)
+    kk = np.fft.fftfreq(npos, d=lam / npos) * _TWO_PI
+    d_prime = np.real(np.fft.ifft(1j * kk * np.fft.fft(d_s)))
+    zeta = za - 1j * zb
+    scale = n_load / a0                            # K mu^2 N / a0 with K = 1 ... times mu^2
+    out = {}
+    for name, weight in (("material_point", 1.0), ("patch_coordinate", 1.0 + d_prime)):
+        f1 = np.mean(weight * first)
+        out[name] = np.conj(2 * f1 / zeta) / (mu * mu * scale)
+
+    def harmonic(vals):
+        h = 2 * np.mean(np.asarray(vals) * np.exp(-1j * k * xc)) / zeta
+        return np.conj(h) / (k * big_r)
+
+    out["half_width"] = harmonic(a_s)
+    out["patch_shift"] = harmonic(d_s)
+    out["stick_half_width"] = harmonic(as_s)
     return out

@@ -1,0 +1,247 @@
+"""Tests of railcontact.corrugation (Nielsen Ch. 4.2): every closed form against an independent
+computation -- the discretised half-space solver, a Fourier analysis of the exact nonlinear
+solution, finite differences, or a limiting case."""
+
+import time
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq, minimize_scalar
+from scipy.special import j0, j1
+
+from railcontact import corrugation as cg
+from railcontact.reference.halfspace2d import solve_normal_2d, solve_rolling_2d
+
+E, NU, R, MU = 2.1e11, 0.28, 0.5, 0.3
+COMP = 4 * (1 - NU ** 2) / (np.pi * E)
+A0 = 0.006
+N = A0 ** 2 / (2 * R * COMP)
+
+
+def _surface(ratio, eps, phase=0.4):
+    lam = A0 / ratio
+    k = 2 * np.pi / lam
+    amp = eps * A0 / (k * R)
+    return lam, k, amp * np.cos(phase), amp * np.sin(phase)
+
+
+def _first_harmonic(values, k, x, za, zb):
+    """c with Q_A + i Q_B = c (Z_A + i Z_B) from samples over one period."""
+    q = 2 * np.mean(np.asarray(values) * np.exp(1j * k * x))   # Q_A + i Q_B ... conj form
+    # Q = Q_A cos + Q_B sin -> 2 mean(Q e^{ikx}) = Q_A + i Q_B
+    return q / (za + 1j * zb)
+
+
+# --------------------------------------------------------------------------------------------
+# normal problem
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("ratio", [1e-3, 0.05, 0.2, 0.45, 1.0, 2.0])
+def test_normal_closed_forms_match_exact_small_amplitude(ratio):
+    lam, k, za, zb = _surface(ratio, 1e-4)
+    x = np.arange(32) * lam / 32
+    a, d, _, _ = cg.solve_normal_exact(x, N * COMP, R, [k], [za], [zb])
+    cd, ca = cg.normal_response(ratio)
+    assert abs(_first_harmonic(a, k, x, za, zb) / (k * R) - ca) < 1e-3 * max(abs(ca), 1e-2)
+    assert abs(_first_harmonic(d, k, x, za, zb) / (k * R) - cd) < 1e-3 * max(abs(cd), 1e-2)
+
+
+def test_normal_exact_matches_halfspace_solver():
+    """Exact (4.31), (4.33) against the discretised solver (600 elements) at 4 positions."""
+    lam, k, za, zb = _surface(0.3, 0.05)
+    for xc in np.arange(4) * lam / 4 + 0.1 * lam:
+        def gap(xb, xc=xc):
+            return xb ** 2 / (2 * R) - (za * np.cos(k * (xc + xb)) + zb * np.sin(k * (xc + xb)))
+        ref = solve_normal_2d(gap, N, E, NU, -1.5 * A0, 1.5 * A0, 600)
+        a, d, _, _ = cg.solve_normal_exact(xc, N * COMP, R, [k], [za], [zb])
+        assert abs(0.5 * (ref.contact_end - ref.contact_start) - a) < 1e-3 * A0
+        assert abs(0.5 * (ref.contact_end + ref.contact_start) - d) < 1e-3 * A0
+        # pressure from the Chebyshev-Bessel series vs the solver's element pressures
+        dist = cg.contact_distributions(ref.x - d, xc, N, R, E, NU, MU, 0.0, [za], [zb], [lam])
+        p0 = 2 * N / (np.pi * A0)
+        inner = np.abs(ref.x - d) < 0.9 * a
+        assert np.max(np.abs(dist.pressure - ref.pressure)[inner]) < 0.01 * p0
+
+
+def test_maximum_of_half_width_amplitude_thesis_text():
+    """Text after Fig. 4.4: max of a^ at a0/L ~ 0.293 with a^ ~ 0.582 k R |Z|."""
+    res = minimize_scalar(lambda q: -abs(cg.normal_response(q)[1]), bounds=(0.1, 0.5),
+                          method="bounded", options={"xatol": 1e-10})
+    assert abs(res.x - 0.293) < 5e-4
+    assert abs(-res.fun - 0.582) < 5e-4
+
+
+def test_bessel_zeros_hard_case():
+    """At the zeros of J0 (Delta) and J1 (a) the exact first harmonic vanishes (up to O(eps^2))."""
+    for zero, which in ((2.404825557695773, 0), (3.831705970207512, 1)):
+        ratio = zero / (2 * np.pi)
+        lam, k, za, zb = _surface(ratio, 1e-3)
+        x = np.arange(32) * lam / 32
+        a, d, _, _ = cg.solve_normal_exact(x, N * COMP, R, [k], [za], [zb])
+        c = _first_harmonic([d, a][which], k, x, za, zb) / (k * R)
+        assert abs(c) < 1e-4
+        assert abs(cg.normal_response(ratio)[which]) < 1e-12
+
+
+def test_contact_point_shift_and_4_42():
+    """Delta_c from the tangency condition solved numerically; Delta = J0(k a0) Delta_c (4.42)."""
+    ratio = 0.15
+    lam, k, za, zb = _surface(ratio, 1e-4)
+    for xc in (0.1 * lam, 0.37 * lam):
+        def tangency(dc, xc=xc):  # slope of the cylinder = slope of the surface at X + dc
+            return dc / np.sqrt(R ** 2 - dc ** 2) - k * (-za * np.sin(k * (xc + dc))
+                                                         + zb * np.cos(k * (xc + dc)))
+        dc = brentq(tangency, -0.5 * A0, 0.5 * A0, xtol=1e-16)
+        lin = np.real(k * R * cg.contact_point_shift_coefficient() * (za + 1j * zb)
+                      * np.exp(-1j * k * xc))
+        assert abs(dc - lin) < 1e-4 * abs(lin)
+        _, d, _, _ = cg.solve_normal_exact(xc, N * COMP, R, [k], [za], [zb])
+        assert abs(d - j0(k * A0) * lin) < 1e-3 * abs(lin)
+
+
+def test_oscillating_normal_load_4_39():
+    """(4.39): da = a0/(2 N0) dN, against the exact solve with the load changed."""
+    lam, k, za, zb = _surface(0.2, 1e-4)
+    dn = 1e-4 * N
+    term = cg.half_width_load_term(0.0, A0, N, [dn], [0.0], [lam])
+    a_plus, _, _, _ = cg.solve_normal_exact(0.0, (N + dn) * COMP, R, [k], [0.0], [0.0])
+    assert abs(term - (a_plus - A0)) < 1e-4 * abs(term)   # O(dN/N) second order
+
+
+def test_condition_4_2_raises():
+    lam = 0.03
+    k = 2 * np.pi / lam
+    too_big = 1.2 / (k * k * R)
+    with pytest.raises(ValueError, match="curvature_amplitude"):
+        cg.corrugated_contact(0.0, N, R, E, NU, MU, 1e-3, [too_big], [0.0], [lam])
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("a0_over_wavelength", dict(a0_over_wavelength=-1.0, stick_ratio=0.5)),
+    ("stick_ratio", dict(a0_over_wavelength=0.1, stick_ratio=1.5)),
+])
+def test_bad_inputs(name, kwargs):
+    with pytest.raises(ValueError, match=name):
+        cg.stick_zone_response(**kwargs)
+
+
+def test_bad_method_and_shapes():
+    with pytest.raises(ValueError, match="method"):
+        cg.corrugated_contact(0.0, N, R, E, NU, MU, 1e-3, [1e-6], [0.0], [0.05], method="x")
+    with pytest.raises(ValueError, match="amplitudes_cos"):
+        cg.corrugated_contact(0.0, N, R, E, NU, MU, 1e-3, [1e-6, 1e-6], [0.0], [0.05])
+    with pytest.raises(ValueError, match="normal_load"):
+        cg.corrugated_contact(0.0, -1.0, R, E, NU, MU, 1e-3, [1e-6], [0.0], [0.05])
+
+
+# --------------------------------------------------------------------------------------------
+# tangential problem
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("ratio, r", [(0.05, 0.5), (0.2, 0.3), (0.3, 0.6), (0.5, 0.8),
+                                      (1.0, 0.45), (2.0, 0.5)])
+def test_stick_and_force_closed_forms_match_exact(ratio, r):
+    lam, k, za, zb = _surface(ratio, 1e-4)
+    xi = MU * A0 * (1 - r) / R
+    x = np.arange(48) * lam / 48
+    res = cg.corrugated_contact(x, N, R, E, NU, MU, xi, [za], [zb], [lam])
+    cs = cg.stick_zone_response(ratio, r)
+    ct = cg.tangential_force_response(ratio, r)
+    got_s = _first_harmonic(res.stick_half_width, k, x, za, zb) / (k * R)
+    got_t = _first_harmonic(res.tangential_force, k, x, za, zb) / (MU / COMP)
+    assert abs(got_s - cs) < 2e-3 * max(abs(cs), 0.05)
+    assert abs(got_t - ct) < 2e-3 * max(abs(ct), 0.05)
+    assert abs(np.mean(res.tangential_force) - MU * N * (1 - r * r)) < 1e-6 * MU * N
+
+
+def test_thesis_orientation_is_the_conjugate():
+    """(4.61)-(4.62) as printed are the complex conjugate of the package orientation."""
+    ratio, r = 0.27, 0.35
+    beta = 2 * np.pi * ratio
+    a1 = -j1(beta) - j0(beta * r) * np.sin(beta * (r - 1))
+    a2 = j0(beta) - j0(beta * r) * np.cos(beta * (r - 1))
+    assert abs(np.conj(cg.stick_zone_response(ratio, r)) - (a1 + 1j * a2)) < 1e-14
+    t1 = beta * r * (-a1 - j1(beta * r) * np.cos(beta * (r - 1)))        # (4.70)
+    t2 = beta * r * (-a2 + j1(beta * r) * np.sin(beta * (r - 1)))        # (4.71)
+    assert abs(np.conj(cg.tangential_force_response(ratio, r)) - (t1 + 1j * t2)) < 1e-14
+
+
+def test_tangential_force_and_slip_match_halfspace_solver():
+    """Exact T, traction and slip at 3 positions vs the discretised steady-rolling solver."""
+    ratio, r = 0.25, 0.5
+    lam, k, za, zb = _surface(ratio, 0.05)
+    xi = MU * A0 * (1 - r) / R
+    for xc in (0.0, 0.3 * lam, 0.65 * lam):
+        def gap(xb, xc=xc):
+            return xb ** 2 / (2 * R) - (za * np.cos(k * (xc + xb)) + zb * np.sin(k * (xc + xb)))
+        ref_n = solve_normal_2d(gap, N, E, NU, -1.5 * A0, 1.5 * A0, 400)
+        ref_t = solve_rolling_2d(ref_n.x, ref_n.pressure, E, NU, creepage=-xi, friction=MU)
+        res = cg.corrugated_contact(xc, N, R, E, NU, MU, xi, [za], [zb], [lam])
+        assert abs(ref_t.tangential_force - res.tangential_force) < 3e-3 * MU * N
+        dist = cg.contact_distributions(ref_n.x - res.patch_shift, xc, N, R, E, NU, MU, xi,
+                                        [za], [zb], [lam])
+        p0 = 2 * N / (np.pi * A0)
+        assert np.max(np.abs(np.abs(ref_t.traction) - dist.traction)) < 0.03 * MU * p0
+        smax = np.max(dist.slip)
+        inner = (dist.slip > 0.05 * smax)
+        assert np.max(np.abs(np.abs(ref_t.slip) - dist.slip)[inner]) < 0.03 * smax
+
+
+def test_stick_ratio_limits_hard_case():
+    """r -> 0 (full slip) and r -> 1 (full stick): finite, continuous coefficients."""
+    ratio = np.array([1e-3, 0.1, 0.5, 2.0])
+    for r in (0.0, 1e-6, 1.0 - 1e-6, 1.0):
+        c = cg.stick_zone_response(ratio, r)
+        assert np.all(np.isfinite(c))
+    assert np.allclose(cg.stick_zone_response(ratio, 1e-7), cg.stick_zone_response(ratio, 0.0),
+                       atol=1e-5)
+    # full stick: a* follows a with the patch shift: c_a* = c_a + c_Delta - i J0(0) ... = c_a
+    cd, ca = cg.normal_response(ratio)
+    assert np.allclose(cg.stick_zone_response(ratio, 1.0), ca, atol=1e-12)
+    assert np.allclose(cg.tangential_force_response(ratio, 0.0), 0.0)
+
+
+# --------------------------------------------------------------------------------------------
+# series, many harmonics
+# --------------------------------------------------------------------------------------------
+def test_series_degree_and_error_estimate():
+    lam, k, za, zb = _surface(0.6, 0.05)
+    x = np.linspace(-0.95, 0.95, 41) * A0
+    best = cg.contact_distributions(x, 0.1 * lam, N, R, E, NU, MU, 0.0, [za], [zb], [lam],
+                                    degree=80)
+    p0 = 2 * N / (np.pi * A0)
+    prev = np.inf
+    for deg in (2, 4, 8, 12, 16):
+        d = cg.contact_distributions(x, 0.1 * lam, N, R, E, NU, MU, 0.0, [za], [zb], [lam],
+                                     degree=deg)
+        err = np.max(np.abs(d.pressure - best.pressure)) / p0
+        assert err <= prev + 1e-15
+        prev = err
+        # the estimate bounds the actual error relative to the corrugation part of p
+        corr = np.max(np.abs(best.pressure - p0 * np.sqrt(np.clip(1 - (x / A0) ** 2, 0, 1))))
+        assert err <= 3 * d.truncation_error * max(corr / p0, 1e-300) + 1e-12
+    assert cg.series_truncation_error(2 * np.pi * 0.05, 2)[0] == pytest.approx(
+        2 * np.pi * 0.05 / 3)
+    # a0/L = 2 (k a0 = 12.6): converges, needs more terms than e k a / 2
+    assert 17 < cg.series_degree(4 * np.pi, 1e-10) < 60
+    with pytest.raises(ValueError, match="degree"):
+        cg.series_degree(4 * np.pi, 1e-10, max_degree=10)
+
+
+def test_hundred_harmonics_vectorised():
+    """M = 100 harmonics at 500 positions: exact vs linear superposition at small amplitude."""
+    rng = np.random.default_rng(3)
+    lam = np.linspace(0.02, 0.3, 100)
+    k = 2 * np.pi / lam
+    amp = 1e-6 * A0 / (k * R) / 100
+    phase = rng.uniform(0, 2 * np.pi, 100)
+    x = np.linspace(0, 0.5, 500)
+    t0 = time.perf_counter()
+    ex = cg.corrugated_contact(x, N, R, E, NU, MU, 5e-4, amp * np.cos(phase),
+                               amp * np.sin(phase), lam)
+    elapsed = time.perf_counter() - t0
+    li = cg.corrugated_contact(x, N, R, E, NU, MU, 5e-4, amp * np.cos(phase),
+                               amp * np.sin(phase), lam, method="linear")
+    assert np.max(np.abs(ex.half_width - li.half_width)) < 1e-3 * np.max(
+        np.abs(li.half_width - A0))
+    assert np.max(np.abs(ex.stick_half_width - li.stick_half_width)) < 2e-3 * np.max(
+        np.abs(li.stick_half_width - np.mean(li.stick_half_width)))
+    assert elapsed < 20.0   # generous; the benchmark prints the real figure
