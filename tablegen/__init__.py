@@ -1,0 +1,8 @@
+"""tablegen: build the smooth (C2) railcontact lookup tables in parallel (dask) as CF netCDF.
+
+``python -m tablegen build [--only NAME] [--resolution R] [--scheduler ADDRESS]``; the readers
+are in :mod:`railcontact.tables` (the FMU ships only railcontact).
+"""
+
+from .spec import REGISTRY, Axis, TableSpec, Variable, get_spec, register  # noqa: F401
+from .build import build_table  # noqa: F401

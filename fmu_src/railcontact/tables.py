@@ -1,0 +1,822 @@
+r"""Reader for the smooth (C2) lookup tables built by ``tablegen`` (``python -m tablegen build``).
+
+A table file is a CF-1.8 netCDF file (see :data:`TABLE_FORMAT_VERSION`) holding, for each
+tabulated variable,
+
+* its values at the grid nodes (a variable on the coordinate dimensions), and
+* the coefficients of the tensor-product cubic B-spline that interpolates them
+  (``<variable>_bspline_coefficients``), with one knot vector per axis (``<axis>_knots``).
+
+The spline is exact at the nodes (it *interpolates* them: not-a-knot end conditions), C2
+everywhere except at the double knots (listed per axis in the ``double_knots`` attribute, e.g.
+the saturation line of a creep curve normalised by its saturation creepage), where it is C1 and
+does not ring past the kink. The file therefore describes its own interpolant completely: any
+de Boor evaluator (e.g. ``scipy.interpolate.NdBSpline``, or 30 lines of C) reproduces it from the
+attributes alone.
+
+Evaluation here is pure numpy/numba (no netCDF or xarray after loading): a compiled
+tensor-product de Boor kernel evaluates all variables of a table at once, with first and
+second partial derivatives.
+
+Out-of-grid behaviour (an explicit choice per axis, attribute ``out_of_range``):
+
+``"error"``
+    a coordinate outside ``[first node, last node]`` raises ``ValueError`` naming the axis,
+    its range, unit and the offending value (the default);
+``"hold"``
+    the variable is constant beyond the last node (used only where the physics makes it so,
+    e.g. full sliding beyond the saturation creepage; the file states it). The derivative
+    along that axis is zero there.
+
+No silent clamping is done anywhere else.
+
+References
+----------
+.. [1] J.B. Nielsen, New Developments in the Theory of Wheel/Rail Contact Mechanics,
+   IMM-PHD-1998-51, DTU, 1998, Sec. 2.5.4 (USETAB and the kinks of linear interpolation).
+.. [2] C. de Boor, A Practical Guide to Splines, Springer, 1978 (B-spline evaluation).
+.. [3] L. Piegl, W. Tiller, The NURBS Book, 2nd ed., Springer, 1997, Algorithm A2.3.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+from numba import njit
+from scipy.interpolate import make_interp_spline
+
+from ._validation import check_range
+
+__all__ = [
+    "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
+    "TensorSpline", "Table", "CreepTable", "default_table_path", "tables_directory",
+]
+
+#: Version of the table file layout this reader understands (global attribute
+#: ``railcontact_table_format``). Bumped when the layout changes incompatibly.
+TABLE_FORMAT_VERSION = 1
+
+#: Environment variable naming a directory searched first for table files.
+TABLES_DIR_ENV = "RAILCONTACT_TABLES_DIR"
+
+SPLINE_DEGREE = 3
+
+
+class TableFileError(ValueError):
+    """A table file is missing, unreadable, truncated or of an incompatible version."""
+
+
+# --------------------------------------------------------------------------------------------
+# Spline construction (shared by the reader and by tablegen)
+# --------------------------------------------------------------------------------------------
+
+def bspline_knots(nodes, double_knots=()):
+    """Knot vector of the cubic interpolating spline on ``nodes`` with double knots.
+
+    Not-a-knot at both ends (the interior knots are ``nodes[2:-2]``); each value in
+    ``double_knots`` (which must be an interior node) gets a second knot, and to keep as many
+    coefficients as nodes the single knot at the next node to its right (or, failing that, to
+    its left) is removed. The spline is then C1 at the double knot and C2 elsewhere.
+
+    Parameters
+    ----------
+    nodes : array_like
+        Strictly ascending grid nodes, at least 4 (5 with a double knot).
+    double_knots : sequence of float
+        Interior nodes where the interpolated function has a kink in its second derivative.
+
+    Returns
+    -------
+    ndarray
+        Knot vector of length ``len(nodes) + 4``.
+    """
+    x = np.asarray(nodes, dtype=float)
+    if x.ndim != 1 or x.size < 4 or not np.all(np.diff(x) > 0):
+        raise ValueError("nodes must be a strictly ascending 1-D array of at least 4 values")
+    interior = list(x[2:-2])
+    for value in double_knots:
+        i = int(np.argmin(np.abs(x - value)))
+        if not (0 < i < x.size - 1) or abs(x[i] - value) > 1e-12 * max(1.0, abs(value)):
+            raise ValueError(f"double knot {value!r} must be an interior node of the grid")
+        interior.append(x[i])
+        if i + 1 < x.size and x[i + 1] in interior:
+            interior.remove(x[i + 1])
+        elif x[i - 1] in interior and x[i - 1] not in double_knots:
+            interior.remove(x[i - 1])
+        else:
+            raise ValueError(f"too few nodes around the double knot {value!r}")
+    interior.sort()
+    return np.concatenate([np.full(4, x[0]), interior, np.full(4, x[-1])])
+
+
+def fit_tensor_bspline(values, nodes, knots):
+    """Coefficients of the tensor-product cubic B-spline interpolating ``values``.
+
+    Parameters
+    ----------
+    values : array_like, shape (n_1, ..., n_D) or (n_var, n_1, ..., n_D)
+        Values at the grid nodes (a leading variable axis is allowed when ``values.ndim`` is
+        ``len(nodes) + 1``).
+    nodes, knots : sequence of array_like
+        Per axis: the nodes and the knot vector (from :func:`bspline_knots`).
+
+    Returns
+    -------
+    ndarray
+        Coefficients, same shape as ``values``.
+    """
+    c = np.asarray(values, dtype=float)
+    lead = c.ndim - len(nodes)
+    for axis, (x, t) in enumerate(zip(nodes, knots)):
+        spl = make_interp_spline(np.asarray(x, float), c, k=SPLINE_DEGREE,
+                                 t=np.asarray(t, float), axis=axis + lead)
+        c = np.moveaxis(spl.c, 0, axis + lead)  # BSpline.c has the spline axis first
+    return np.ascontiguousarray(c)
+
+
+# --------------------------------------------------------------------------------------------
+# Compiled evaluator
+# --------------------------------------------------------------------------------------------
+
+@njit(cache=True)
+def _find_span(t, n_coef, x):
+    """Index ``i`` with ``t[i] <= x < t[i+1]``, ``3 <= i <= n_coef - 1`` (x clamped to range)."""
+    lo = SPLINE_DEGREE
+    hi = n_coef  # t[n_coef] is the right end
+    if x >= t[hi]:
+        return hi - 1
+    if x <= t[lo]:
+        return lo
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if t[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def _basis_ders(t, span, x, nder, out, ndu, a, left, right):
+    """Non-zero cubic basis functions and derivatives (The NURBS Book, Algorithm A2.3).
+
+    ``out[k, j]`` is the k-th derivative of N_{span-3+j,3}(x), k <= nder <= 2. ``ndu`` (4, 4),
+    ``a`` (2, 4), ``left``, ``right`` (4,) are work arrays.
+    """
+    p = SPLINE_DEGREE
+    ndu[0, 0] = 1.0
+    for j in range(1, p + 1):
+        left[j] = x - t[span + 1 - j]
+        right[j] = t[span + j] - x
+        saved = 0.0
+        for r in range(j):
+            ndu[j, r] = right[r + 1] + left[j - r]
+            temp = ndu[r, j - 1] / ndu[j, r]
+            ndu[r, j] = saved + right[r + 1] * temp
+            saved = left[j - r] * temp
+        ndu[j, j] = saved
+    for j in range(p + 1):
+        out[0, j] = ndu[j, p]
+    if nder == 0:
+        return
+    for r in range(p + 1):
+        s1 = 0
+        s2 = 1
+        a[0, 0] = 1.0
+        for k in range(1, nder + 1):
+            d = 0.0
+            rk = r - k
+            pk = p - k
+            if r >= k:
+                a[s2, 0] = a[s1, 0] / ndu[pk + 1, rk]
+                d = a[s2, 0] * ndu[rk, pk]
+            j1 = 1 if rk >= -1 else -rk
+            j2 = k - 1 if r - 1 <= pk else p - r
+            for j in range(j1, j2 + 1):
+                a[s2, j] = (a[s1, j] - a[s1, j - 1]) / ndu[pk + 1, rk + j]
+                d += a[s2, j] * ndu[rk + j, pk]
+            if r <= pk:
+                a[s2, k] = -a[s1, k - 1] / ndu[pk + 1, r]
+                d += a[s2, k] * ndu[r, pk]
+            out[k, r] = d
+            s1, s2 = s2, s1
+    fac = float(p)
+    for k in range(1, nder + 1):
+        for j in range(p + 1):
+            out[k, j] *= fac
+        fac *= p - k
+
+
+@njit(cache=True)
+def _tensor_eval(coef, shape, knots, knot_start, points, deriv, out):
+    """Evaluate a tensor-product cubic spline (all variables) at many points.
+
+    coef : (prod(shape), n_var) C-ordered coefficients (grid index first); knots: all knot vectors concatenated,
+    axis d starting at knot_start[d] (length shape[d] + 4); points (n_pts, D); deriv (D,)
+    derivative orders (0, 1 or 2); out (n_pts, n_var).
+    """
+    ndim = shape.shape[0]
+    nvar = coef.shape[1]
+    p1 = SPLINE_DEGREE + 1
+    strides = np.empty(ndim, dtype=np.int64)
+    s = 1
+    for d in range(ndim - 1, -1, -1):
+        strides[d] = s
+        s *= shape[d]
+    ncomb = p1 ** ndim
+    # relative flat offsets of the p1**D coefficients touched by one point (constant)
+    offset = np.zeros(ncomb, dtype=np.int64)
+    block = 1
+    for d in range(ndim - 1, -1, -1):
+        for c in range(block, block * p1):
+            offset[c] = offset[c % block] + (c // block) * strides[d]
+        block *= p1
+    weight = np.empty(ncomb)
+    acc = np.empty(nvar)
+    tmp = np.empty((3, p1))
+    ndu = np.empty((p1, p1))
+    work = np.empty((2, p1))
+    left = np.empty(p1)
+    right = np.empty(p1)
+    for ip in range(points.shape[0]):
+        base = 0
+        block = 1
+        for d in range(ndim - 1, -1, -1):
+            t = knots[knot_start[d]:knot_start[d] + shape[d] + p1]
+            span = _find_span(t, shape[d], points[ip, d])
+            _basis_ders(t, span, points[ip, d], deriv[d], tmp, ndu, work, left, right)
+            base += (span - SPLINE_DEGREE) * strides[d]
+            if block == 1:
+                for j in range(p1):
+                    weight[j] = tmp[deriv[d], j]
+            else:
+                for j in range(p1 - 1, -1, -1):
+                    bj = tmp[deriv[d], j]
+                    for c in range(block):
+                        weight[j * block + c] = bj * weight[c]
+            block *= p1
+        for v in range(nvar):
+            acc[v] = 0.0
+        for c in range(ncomb):
+            w = weight[c]
+            row = base + offset[c]
+            for v in range(nvar):
+                acc[v] += w * coef[row, v]
+        for v in range(nvar):
+            out[ip, v] = acc[v]
+
+
+class TensorSpline:
+    """Tensor-product cubic B-spline of several variables on one grid, with derivatives.
+
+    Parameters
+    ----------
+    axes : sequence of dict
+        Per axis: ``name``, ``nodes``, ``knots``, ``units``, ``out_of_range`` ("error" or
+        "hold").
+    coefficients : ndarray, shape (n_var, n_1, ..., n_D)
+        B-spline coefficients.
+    variables : sequence of str
+        Names of the variables (first axis of ``coefficients``).
+    source : str
+        Where the spline came from (file name), used in error messages.
+    """
+
+    def __init__(self, axes, coefficients, variables, source="<memory>"):
+        self.axes = [dict(a) for a in axes]
+        self.variables = list(variables)
+        self.source = str(source)
+        coef = np.asarray(coefficients, dtype=float)
+        self.ndim = len(self.axes)
+        self._shape = np.array(coef.shape[1:], dtype=np.int64)
+        self._coef = np.ascontiguousarray(coef.reshape(coef.shape[0], -1).T)
+        self._knots = np.ascontiguousarray(np.concatenate([a["knots"] for a in self.axes]))
+        self._knot_start = np.cumsum([0] + [len(a["knots"]) for a in self.axes[:-1]]).astype(np.int64)
+        self._lower = np.array([a["nodes"][0] for a in self.axes])
+        self._upper = np.array([a["nodes"][-1] for a in self.axes])
+        self._hold = np.array([a.get("out_of_range", "error") == "hold" for a in self.axes])
+        self._zero = np.zeros(self.ndim, dtype=np.int64)
+        self._pt_buf = np.zeros((1, self.ndim))
+        self._out_buf = np.zeros((1, self._coef.shape[1]))
+
+    def _check(self, pts):
+        upper = np.where(self._hold, np.inf, self._upper)
+        if np.all((pts >= self._lower) & (pts <= upper)):  # fast path, one vector test
+            return
+        for d, axis in enumerate(self.axes):
+            col = pts[:, d]
+            upper = None if self._hold[d] else self._upper[d]
+            check_range(axis["name"], col, axis.get("units", "1"), self._lower[d], upper,
+                        condition=f"range of table {self.source}")
+
+    def evaluate(self, points, derivative=None, check=True):
+        """Values (or partial derivatives) of all variables at ``points``.
+
+        Parameters
+        ----------
+        points : array_like, shape (n_pts, D) or (D,)
+            Table coordinates, in the order of :attr:`axes`.
+        derivative : sequence of int, optional
+            Derivative order per axis (0, 1 or 2); default all zero.
+        check : bool
+            Validate the range (raise ``ValueError`` outside the grid, see the module
+            docstring). Only turn off when the caller has already checked.
+
+        Returns
+        -------
+        ndarray, shape (n_pts, n_var) or (n_var,)
+        """
+        pts = np.asarray(points, dtype=float)
+        single = pts.ndim == 1
+        pts = np.ascontiguousarray(pts.reshape(-1, self.ndim))
+        if check:
+            self._check(pts)
+        deriv = self._zero if derivative is None else np.asarray(derivative, dtype=np.int64)
+        if np.any(self._hold):
+            beyond = pts > self._upper
+            if np.any(beyond & self._hold):
+                pts = np.where(beyond & self._hold, self._upper, pts)
+                out = np.empty((pts.shape[0], self._coef.shape[1]))
+                _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, pts,
+                             deriv, out)
+                held = np.any(beyond[:, self._hold & (deriv > 0)], axis=1)
+                out[held] = 0.0
+                return out[0] if single else out
+        out = np.empty((pts.shape[0], self._coef.shape[1]))
+        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, pts, deriv, out)
+        return out[0] if single else out
+
+    def evaluate_point(self, point, derivative=None):
+        """One point, no range check (fast path; the caller guarantees the range).
+
+        Returns a new (n_var,) array. Uses preallocated buffers: not thread-safe (use one
+        object per thread).
+        """
+        buf = self._pt_buf
+        buf[0, :] = point
+        deriv = self._zero if derivative is None else np.asarray(derivative, dtype=np.int64)
+        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, buf, deriv,
+                     self._out_buf)
+        return self._out_buf[0].copy()
+
+
+# --------------------------------------------------------------------------------------------
+# Files
+# --------------------------------------------------------------------------------------------
+
+def tables_directory():
+    """The shipped ``tables/`` directory of an editable checkout (may not exist)."""
+    here = Path(__file__).resolve().parent
+    for candidate in (here / "tables", here.parent.parent / "tables"):
+        if candidate.is_dir():
+            return candidate
+    return here.parent.parent / "tables"
+
+
+def default_table_path(name, directory=None):
+    """Path of the table file ``<name>.nc``.
+
+    Searched in order: ``directory`` (if given), the directory named by the environment
+    variable ``RAILCONTACT_TABLES_DIR``, ``railcontact/tables/`` inside the installed package
+    (e.g. bundled in an FMU), and the ``tables/`` directory of the source checkout.
+
+    Parameters
+    ----------
+    name : str
+        Table name, e.g. ``"creep_modified_strip"`` (with or without ``.nc``).
+    directory : str or path-like, optional
+        Directory searched first.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    FileNotFoundError
+        Naming every place searched and the command that builds the table.
+    """
+    fname = name if str(name).endswith(".nc") else f"{name}.nc"
+    here = Path(__file__).resolve().parent
+    places = []
+    if directory is not None:
+        places.append(Path(directory))
+    if os.environ.get(TABLES_DIR_ENV):
+        places.append(Path(os.environ[TABLES_DIR_ENV]))
+    places += [here / "tables", here.parent.parent / "tables"]
+    for place in places:
+        if (place / fname).is_file():
+            return place / fname
+    stem = fname[:-3]
+    raise FileNotFoundError(
+        f"table file {fname!r} not found in {[str(p) for p in places]}; build it with "
+        f"`python -m tablegen build --only {stem}` or set {TABLES_DIR_ENV}")
+
+
+def _read_netcdf(path):
+    """Read the whole file into plain numpy arrays/dicts (netCDF4 at load time only)."""
+    import netCDF4  # noqa: PLC0415  (load-time dependency only)
+
+    path = Path(path)
+    if not path.is_file():
+        raise TableFileError(f"table file {str(path)!r} does not exist")
+    try:
+        with netCDF4.Dataset(str(path), "r") as nc:
+            nc.set_auto_mask(False)
+            attrs = {k: nc.getncattr(k) for k in nc.ncattrs()}
+            variables = {}
+            for vname, var in nc.variables.items():
+                variables[vname] = (tuple(var.dimensions), np.array(var[...]),
+                                    {k: var.getncattr(k) for k in var.ncattrs()})
+    except (OSError, RuntimeError, IndexError) as exc:
+        raise TableFileError(
+            f"table file {str(path)!r} cannot be read as netCDF (truncated or corrupt?): "
+            f"{exc}") from exc
+    return attrs, variables
+
+
+def _attr_list(value):
+    arr = np.atleast_1d(np.asarray(value))
+    if arr.dtype.kind in "US":
+        text = " ".join(str(v) for v in arr).replace(",", " ").split()
+        return [float(v) for v in text]
+    return [float(v) for v in arr]
+
+
+class Table:
+    """A loaded table: axes, variables at the nodes, accuracy attributes and the C2 spline.
+
+    Use :meth:`from_file`. ``table.spline`` evaluates every variable at once;
+    ``table(name, points, derivative)`` evaluates one.
+
+    Attributes
+    ----------
+    name : str
+        Table name (global attribute ``table_name``).
+    path : pathlib.Path
+    attrs : dict
+        Global attributes.
+    axes : list of dict
+        ``name``, ``nodes``, ``knots``, ``units``, ``long_name``, ``double_knots``,
+        ``out_of_range``.
+    variables : list of str
+    variable_attrs : dict of dict
+        Per-variable attributes, including the recorded accuracy (``max_abs_error``,
+        ``rms_error``, ``error_target``, ``error_target_met``).
+    values : dict of ndarray
+        Node values per variable.
+    """
+
+    def __init__(self, path, attrs, axes, variables, variable_attrs, values, coefficients):
+        self.path = Path(path)
+        self.attrs = attrs
+        self.name = str(attrs.get("table_name", self.path.stem))
+        self.axes = axes
+        self.variables = list(variables)
+        self.variable_attrs = variable_attrs
+        self.values = values
+        self.spline = TensorSpline(axes, coefficients, variables, source=str(self.path))
+
+    @classmethod
+    def from_file(cls, path, expected_name=None):
+        """Load and validate a table file.
+
+        Parameters
+        ----------
+        path : str or path-like
+        expected_name : str, optional
+            If given, the file's ``table_name`` attribute must equal it.
+
+        Raises
+        ------
+        TableFileError
+            File missing, unreadable/truncated, wrong format version, wrong table, missing
+            attributes or variables, or node values not reproduced by the stored spline.
+        """
+        path = Path(path)
+        where = f"table file {str(path)!r}"
+        attrs, ncvars = _read_netcdf(path)
+        version = attrs.get("railcontact_table_format")
+        if version is None:
+            raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
+                                 "not written by tablegen")
+        if int(version) != TABLE_FORMAT_VERSION:
+            raise TableFileError(
+                f"{where} has table format version {version}, this reader understands version "
+                f"{TABLE_FORMAT_VERSION}; rebuild it with `python -m tablegen build`")
+        if expected_name is not None and attrs.get("table_name") != expected_name:
+            raise TableFileError(f"{where} holds table {attrs.get('table_name')!r}, expected "
+                                 f"{expected_name!r}")
+        for key in ("table_axes", "table_variables", "spline_degree"):
+            if key not in attrs:
+                raise TableFileError(f"{where} lacks the global attribute {key!r}")
+        if int(attrs["spline_degree"]) != SPLINE_DEGREE:
+            raise TableFileError(f"{where}: spline_degree {attrs['spline_degree']} is not 3")
+        axis_names = str(attrs["table_axes"]).split()
+        var_names = str(attrs["table_variables"]).split()
+        axes = []
+        for name in axis_names:
+            for needed in (name, f"{name}_knots"):
+                if needed not in ncvars:
+                    raise TableFileError(f"{where} lacks the variable {needed!r}")
+            _, nodes, a = ncvars[name]
+            _, knots, _ = ncvars[f"{name}_knots"]
+            if len(knots) != len(nodes) + 4 or not np.all(np.diff(nodes) > 0):
+                raise TableFileError(f"{where}: axis {name!r} has inconsistent nodes/knots")
+            axes.append(dict(name=name, nodes=np.asarray(nodes, float),
+                             knots=np.asarray(knots, float), units=str(a.get("units", "1")),
+                             long_name=str(a.get("long_name", name)),
+                             double_knots=_attr_list(a.get("double_knots", [])),
+                             out_of_range=str(a.get("out_of_range", "error"))))
+        values, coefs, vattrs = {}, [], {}
+        shape = tuple(len(a["nodes"]) for a in axes)
+        for name in var_names:
+            cname = f"{name}_bspline_coefficients"
+            for needed in (name, cname):
+                if needed not in ncvars:
+                    raise TableFileError(f"{where} lacks the variable {needed!r}")
+            _, val, a = ncvars[name]
+            _, coef, _ = ncvars[cname]
+            if val.shape != shape or coef.shape != shape:
+                raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
+                                     f"expected {shape} (truncated?)")
+            values[name] = np.asarray(val, float)
+            coefs.append(np.asarray(coef, float))
+            vattrs[name] = a
+        table = cls(path, attrs, axes, var_names, vattrs, values, np.stack(coefs))
+        # integrity: the stored spline reproduces the stored node values
+        grids = np.meshgrid(*[a["nodes"] for a in axes], indexing="ij")
+        pts = np.stack([g.ravel() for g in grids], axis=1)
+        got = table.spline.evaluate(pts, check=False)
+        want = np.stack([values[v].ravel() for v in var_names], axis=1)
+        scale = np.maximum(1.0, np.abs(want).max(axis=0))
+        bad = np.abs(got - want).max(axis=0) / scale
+        if np.any(~np.isfinite(bad)) or np.any(bad > 1e-9):
+            raise TableFileError(f"{where}: the stored spline coefficients do not reproduce "
+                                 f"the node values (max relative misfit {bad.max():.3g}); the "
+                                 "file is corrupt")
+        return table
+
+    def __call__(self, variable, points, derivative=None):
+        """Evaluate one variable (see :meth:`TensorSpline.evaluate`)."""
+        i = self.variables.index(variable)
+        out = self.spline.evaluate(points, derivative)
+        return out[..., i]
+
+    def accuracy(self):
+        """Recorded accuracy per variable: dict of (max_abs_error, rms_error, target, met)."""
+        out = {}
+        for v in self.variables:
+            a = self.variable_attrs[v]
+            out[v] = dict(max_abs_error=float(a.get("max_abs_error", np.nan)),
+                          rms_error=float(a.get("rms_error", np.nan)),
+                          error_target=float(a.get("error_target", np.nan)),
+                          error_target_met=str(a.get("error_target_met", "unknown")))
+        return out
+
+
+# --------------------------------------------------------------------------------------------
+# Creep tables
+# --------------------------------------------------------------------------------------------
+
+@lru_cache(maxsize=512)
+def _kalker_cached(a0_over_b0, poisson_ratio):
+    from .kalker import kalker_coefficients  # noqa: PLC0415
+
+    c = kalker_coefficients(a0_over_b0, poisson_ratio)
+    return float(c.c11), float(c.c22), float(c.c23)
+
+
+def _kalker(g, nu):
+    """C11, C22, C23 (cached for scalars: an FMU calls with the same a0/b0 step after step)."""
+    if np.ndim(g) == 0 and np.ndim(nu) == 0:
+        return _kalker_cached(float(g), float(nu))
+    from .kalker import kalker_coefficients  # noqa: PLC0415
+
+    c = kalker_coefficients(g, nu)
+    return c.c11, c.c22, c.c23
+
+
+_CREEP_ARGS = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+               "youngs_modulus", "poisson_ratio", "friction_coefficient")
+
+
+def _check_creep_inputs(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+    return (check_range("creepage_longitudinal", xi_x, "-"),
+            check_range("creepage_lateral", xi_y, "-"),
+            check_range("spin", phi, "1/m"),
+            check_range("normal_load", n_load, "N", 0.0, None),
+            check_range("a0", a0, "m", 0.0, None),
+            check_range("b0", b0, "m", 0.0, None),
+            check_range("youngs_modulus", e_mod, "Pa", 0.0, None, lower_closed=False),
+            check_range("poisson_ratio", nu, "-", 0.0, 0.5, upper_closed=False),
+            check_range("friction_coefficient", mu, "-", 0.0, None))
+
+
+_SCALAR_TYPES = (float, int, np.floating, np.integer)
+
+
+def _fast_scalars_ok(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+    """True if all inputs are real scalars within range (then no message is needed)."""
+    for v in (xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+        if not isinstance(v, _SCALAR_TYPES) or isinstance(v, bool):
+            return False
+    return (math.isfinite(xi_x) and math.isfinite(xi_y) and math.isfinite(phi)
+            and 0.0 <= n_load < math.inf and 0.0 <= a0 < math.inf and 0.0 <= b0 < math.inf
+            and 0.0 < e_mod < math.inf and 0.0 <= nu < 0.5 and 0.0 <= mu < math.inf)
+
+
+def _creep_force_type():
+    global _CreepForce3D
+    if _CreepForce3D is None:
+        from .creep3d import CreepForce3D  # noqa: PLC0415
+
+        _CreepForce3D = CreepForce3D
+    return _CreepForce3D
+
+
+_CreepForce3D = None
+
+
+class CreepTable:
+    """Creep forces from a shipped table, with the conventions of :func:`railcontact.creep_force_3d`.
+
+    Load with :meth:`from_file` (``CreepTable.from_file()`` loads the shipped modified-strip
+    table). Forces act on the wheel and oppose the creepage; ``|T| <= mu N`` always.
+
+    Modified strip table (``creep_modified_strip``): the theory depends on the creepages only
+    through the Kalker-weighted vector ``w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)``,
+    ``T = -mu N F(z) w/|w|`` with ``z = |w| / w_sat``, ``w_sat = pi^2 (1 + nu) mu p0 / E`` and
+    ``p0 = 3 N / (2 pi a0 b0)`` (see :mod:`railcontact.creep3d`). The table holds ``F(z)`` and
+    the stick area fraction on 0 <= z <= 1.5, C1 with a double knot at the saturation z = 1,
+    C2 elsewhere. **Out of grid:** z > 1.5 is full sliding, where F = 1 exactly (held); every
+    other input range is that of :func:`railcontact.creep_force_3d` (ValueError outside).
+    C11, C22, C23 come from :func:`railcontact.kalker_coefficients` (cached per (a0/b0, nu)).
+    """
+
+    def __init__(self, table):
+        self.table = table
+        kind = str(table.attrs.get("creep_table_kind", "modified_strip" if
+                                   table.name == "creep_modified_strip" else ""))
+        if kind != "modified_strip":
+            raise TableFileError(f"table file {str(table.path)!r} is not a creep table "
+                                 f"(table_name {table.name!r})")
+        self.kind = kind
+        self._spline = table.spline
+        self._z_max = float(table.axes[0]["nodes"][-1])
+        self._i_f = table.variables.index("force_ratio")
+        self._i_s = table.variables.index("stick_area_fraction")
+        d1 = self._spline.evaluate_point([0.0], [1])
+        d2 = self._spline.evaluate_point([0.0], [2])
+        self._slope0 = float(d1[self._i_f])     # F'(0) of the table (3 pi / 4 exactly in theory)
+        self._curv0 = float(d2[self._i_f])
+
+    @classmethod
+    def from_file(cls, path=None, directory=None):
+        """Load a creep table; ``path=None`` finds ``creep_modified_strip.nc`` with
+        :func:`default_table_path` (``directory`` searched first)."""
+        if path is None:
+            path = default_table_path("creep_modified_strip", directory)
+        return cls(Table.from_file(path))
+
+    # -- the 1-D function and its derivatives ---------------------------------------------
+    def _f(self, z, derivative=0):
+        """F(z) (or derivative) and stick fraction for z >= 0 (arrays), held beyond z_max."""
+        zc = np.minimum(z, self._z_max)
+        out = self._spline.evaluate(zc.reshape(-1, 1), [derivative], check=False)
+        if derivative:
+            out = np.where((z > self._z_max)[..., None] if z.ndim else z > self._z_max,
+                           0.0, out.reshape(z.shape + (-1,)))
+        return out.reshape(z.shape + (-1,))
+
+    def _conversion(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+        has_area = (a0 > 0.0) & (b0 > 0.0)
+        g = np.where(has_area, a0 / np.where(has_area, b0, 1.0), 1.0)
+        c11, c22, c23 = _kalker(g, nu)
+        w_x = c11 * xi_x
+        w_y = c22 * xi_y + np.sqrt(a0 * b0) * c23 * phi
+        area = np.pi * a0 * b0
+        p0 = np.divide(1.5 * n_load, area, out=np.zeros(np.broadcast(n_load, area).shape),
+                       where=area > 0.0)
+        w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+        return c11, c22, c23, w_x, w_y, w_sat
+
+    def _solve(self, args, jacobian=False):
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_creep_inputs(*args)
+        shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
+        c11, c22, c23, w_x, w_y, w_sat = self._conversion(xi_x, xi_y, phi, n_load, a0, b0,
+                                                          e_mod, nu, mu)
+        w_x, w_y, w_sat = (np.broadcast_to(v, shape) for v in (w_x, w_y, w_sat))
+        mu_n = np.broadcast_to(mu * n_load, shape)
+        w_abs = np.hypot(w_x, w_y)
+        has_force = (mu_n > 0.0) & (w_sat > 0.0)
+        z = np.divide(w_abs, w_sat, out=np.where(w_abs > 0.0, np.inf, 0.0), where=has_force)
+        z = np.where(has_force, z, 0.0)
+        vals = self._f(z)
+        f = np.minimum(vals[..., self._i_f], 1.0)   # rounding guard: the spline is <= 1 + 1e-15
+        stick = np.clip(vals[..., self._i_s], 0.0, 1.0)
+        small = z < 1e-6
+        f_over_z = np.where(small, self._slope0 + 0.5 * self._curv0 * z,
+                            f / np.where(small, 1.0, z))
+        k = np.divide(mu_n, w_sat, out=np.zeros(shape), where=has_force)
+        tx = -k * f_over_z * w_x
+        ty = -k * f_over_z * w_y
+        # rounding guard (|T| = mu N f with f <= 1, but w/|w| is rounded): never above mu N
+        t_abs = np.hypot(tx, ty)
+        over = t_abs > mu_n
+        scale = np.divide(mu_n * (1.0 - 2.0**-51), t_abs, out=np.ones(shape), where=over)
+        tx, ty = tx * scale, ty * scale
+        if not jacobian:
+            return tx, ty, stick, z
+        fp = self._f(z, 1)[..., self._i_f]
+        n_x = np.divide(w_x, w_abs, out=np.ones(shape), where=w_abs > 0.0)
+        n_y = np.divide(w_y, w_abs, out=np.zeros(shape), where=w_abs > 0.0)
+        # dT/dw = -(mu N / w_sat) [F'(z) n n^T + (F/z)(I - n n^T)]
+        a_ = -k * fp
+        b_ = -k * f_over_z
+        dxx = a_ * n_x * n_x + b_ * (1.0 - n_x * n_x)
+        dxy = (a_ - b_) * n_x * n_y
+        dyy = a_ * n_y * n_y + b_ * (1.0 - n_y * n_y)
+        root = np.sqrt(a0 * b0)
+        jac = np.empty(shape + (2, 3))
+        jac[..., 0, 0] = dxx * c11
+        jac[..., 0, 1] = dxy * c22
+        jac[..., 0, 2] = dxy * root * c23
+        jac[..., 1, 0] = dxy * c11
+        jac[..., 1, 1] = dyy * c22
+        jac[..., 1, 2] = dyy * root * c23
+        return tx, ty, stick, z, jac
+
+    def creep_force_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                       youngs_modulus, poisson_ratio, friction_coefficient):
+        """Creep force on the wheel from the table; same inputs and conventions as
+        :func:`railcontact.creep_force_3d` (``method="modified_strip"``).
+
+        Returns
+        -------
+        CreepForce3D
+            ``tx``, ``ty`` [N]; ``|T| <= mu N``.
+        """
+        args = (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                youngs_modulus, poisson_ratio, friction_coefficient)
+        result = _CreepForce3D or _creep_force_type()
+        if _fast_scalars_ok(*args):
+            return result(*self._scalar(*args))
+        tx, ty = self._solve(args)[:2]
+        return result(tx[()], ty[()])
+
+    def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+        """Scalar fast path (inputs already range-checked)."""
+        if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
+            return 0.0, 0.0
+        c11, c22, c23 = _kalker_cached(a0 / b0, nu)
+        w_x = c11 * xi_x
+        w_y = c22 * xi_y + math.sqrt(a0 * b0) * c23 * phi
+        p0 = 1.5 * n_load / (math.pi * a0 * b0)
+        w_sat = math.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+        mu_n = mu * n_load
+        z = math.hypot(w_x, w_y) / w_sat
+        if z < 1e-6:
+            f_over_z = self._slope0 + 0.5 * self._curv0 * z
+        else:
+            f = min(self._spline.evaluate_point((min(z, self._z_max),))[self._i_f], 1.0)
+            f_over_z = f / z
+        k = mu_n / w_sat * f_over_z
+        tx, ty = -k * w_x, -k * w_y
+        t_abs = math.hypot(tx, ty)
+        if t_abs > mu_n:  # rounding guard, see _solve
+            r = mu_n * (1.0 - 2.0**-51) / t_abs
+            tx, ty = tx * r, ty * r
+        return tx, ty
+
+    def creep_solution_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load,
+                          a0, b0, youngs_modulus, poisson_ratio, friction_coefficient):
+        """Force, stick area fraction and normalised creepage z from the table.
+
+        Returns
+        -------
+        tuple of ndarray
+            ``(tx, ty, stick_area_fraction, normalised_creepage)`` [N, N, -, -].
+        """
+        out = self._solve((creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                           youngs_modulus, poisson_ratio, friction_coefficient))
+        return tuple(v[()] for v in out)
+
+    def creep_force_jacobian_3d(self, creepage_longitudinal, creepage_lateral, spin,
+                                normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                friction_coefficient):
+        """Derivatives of (tx, ty) with respect to (xi_x, xi_y, phi), for implicit integrators.
+
+        Returns
+        -------
+        ndarray, shape (..., 2, 3)
+            ``J[..., i, j] = d T_i / d q_j`` with T = (tx, ty) [N] and q = (xi_x [-], xi_y [-],
+            phi [1/m]); continuous everywhere (the table is C1 at saturation, C2 elsewhere).
+        """
+        return self._solve((creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                            youngs_modulus, poisson_ratio, friction_coefficient),
+                           jacobian=True)[4]

@@ -1,0 +1,193 @@
+"""Build a table: a (dask) map over grid points, spline fit, accuracy check, netCDF file.
+
+The grid points and the off-grid check points are cut into chunks; each chunk is one dask task
+(``TableSpec.function`` on an (n, D) array). Every finished chunk is saved at once under the
+work directory (``<workdir>/<table>-<resolution>-<hash>/``), so an interrupted build resumes
+where it stopped: rerunning the same command recomputes only the missing chunks. The hash
+covers the grid, the check points and the spec's method string, so a changed grid never reuses
+stale chunks.
+
+Schedulers: ``None`` starts a local ``dask.distributed`` cluster (``workers`` processes, one
+thread each); an address (``tcp://host:8786``) connects to an existing cluster (its workers
+must be able to ``import tablegen`` and ``railcontact``, e.g. from the same editable
+checkout); ``"synchronous"`` computes in this process (tests, debugging).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from railcontact.tables import bspline_knots, fit_tensor_bspline, TensorSpline
+
+from .netcdf import write_table
+from .spec import get_spec
+
+__all__ = ["build_table", "evaluate_chunk", "default_workdir"]
+
+_REPO = Path(__file__).resolve().parent.parent
+
+
+def default_workdir():
+    """``$TABLEGEN_WORKDIR``, else ``$XDG_CACHE_HOME/railcontact-tablegen`` (default
+    ``~/.cache/railcontact-tablegen``): chunks of unfinished builds."""
+    if os.environ.get("TABLEGEN_WORKDIR"):
+        return Path(os.environ["TABLEGEN_WORKDIR"])
+    cache = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    return Path(cache) / "railcontact-tablegen"
+
+
+def evaluate_chunk(spec_name, points):
+    """Run a spec's point function on one chunk (the dask task; importable by workers)."""
+    spec = get_spec(spec_name)
+    out = np.asarray(spec.function(np.asarray(points, dtype=float)), dtype=float)
+    if out.shape != (len(points), len(spec.variables)):
+        raise ValueError(f"table {spec_name}: point function returned shape {out.shape}, "
+                         f"expected {(len(points), len(spec.variables))}")
+    if not np.all(np.isfinite(out)):
+        raise ValueError(f"table {spec_name}: point function returned non-finite values")
+    return out
+
+
+def _chunks(n, size):
+    return [(i, min(i + size, n)) for i in range(0, n, size)]
+
+
+def _run(spec, tasks, workdir, scheduler, workers, progress):
+    """Compute the chunks ``tasks`` (list of (file, points)), skipping finished files."""
+    todo = [(f, p) for f, p in tasks if not f.exists()]
+    show = progress if progress is not None else sys.stderr.isatty()
+    from tqdm.auto import tqdm  # noqa: PLC0415
+
+    bar = tqdm(total=len(tasks), initial=len(tasks) - len(todo), desc=spec.name,
+               unit="chunk", disable=not show)
+
+    def save(fname, result):
+        tmp = fname.with_name(fname.stem + ".part.npy")
+        np.save(tmp, result)
+        os.replace(tmp, fname)
+        bar.update(1)
+
+    try:
+        if not todo:
+            return
+        if scheduler == "synchronous":
+            for fname, pts in todo:
+                save(fname, evaluate_chunk(spec.name, pts))
+            return
+        from dask.distributed import Client, LocalCluster, as_completed  # noqa: PLC0415
+
+        if scheduler is None:
+            cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
+                                   threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            client = Client(cluster)
+        else:
+            cluster = None
+            client = Client(scheduler)
+        try:
+            futures = {}
+            for fname, pts in todo:
+                fut = client.submit(evaluate_chunk, spec.name, pts, pure=False)
+                futures[fut] = fname
+            for fut in as_completed(futures):
+                save(futures[fut], fut.result())
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    finally:
+        bar.close()
+
+
+def build_table(name, resolution="default", output_dir=None, scheduler=None, workers=None,
+                workdir=None, progress=None, command=None, keep_chunks=False):
+    """Build table ``name`` and write ``<output_dir>/<name>.nc``.
+
+    Parameters
+    ----------
+    name : str
+        Registered table name (``python -m tablegen list``).
+    resolution : {"coarse", "default", "fine"}
+    output_dir : path-like, optional
+        Default: the checkout's ``tables/``.
+    scheduler : None, "synchronous" or str
+        See the module docstring.
+    workers : int, optional
+        Worker processes of the local cluster (default: all cores).
+    workdir : path-like, optional
+        Where finished chunks are kept until the file is written (default
+        :func:`default_workdir`).
+    progress : bool, optional
+        Progress bar (default: only on a terminal).
+    command : str, optional
+        Recorded in the file's ``history``.
+    keep_chunks : bool
+        Keep the chunk files after success.
+
+    Returns
+    -------
+    dict
+        ``path``, ``seconds`` (wall time of the point evaluations), ``n_points``,
+        ``n_check``, ``accuracy`` (per variable), ``size_bytes``.
+    """
+    spec = get_spec(name)
+    why = spec.available()
+    if why:
+        raise RuntimeError(f"table {name!r} cannot be built: {why}")
+    axes, points = spec.grid(resolution)
+    check = spec.make_check_points(axes, resolution)
+    h = hashlib.sha1()
+    for arr in (points, check):
+        h.update(np.ascontiguousarray(arr).tobytes())
+    h.update(spec.method.encode())
+    key = f"{name}-{resolution}-{h.hexdigest()[:12]}"
+    work = Path(workdir or default_workdir()) / key
+    work.mkdir(parents=True, exist_ok=True)
+    tasks = [(work / f"grid_{i:06d}.npy", points[a:b])
+             for i, (a, b) in enumerate(_chunks(len(points), spec.chunk_size))]
+    tasks += [(work / f"check_{i:06d}.npy", check[a:b])
+              for i, (a, b) in enumerate(_chunks(len(check), spec.chunk_size))]
+    t0 = time.perf_counter()
+    _run(spec, tasks, work, scheduler, workers, progress)
+    seconds = time.perf_counter() - t0
+    n_grid_chunks = len(_chunks(len(points), spec.chunk_size))
+    grid_vals = np.concatenate([np.load(f) for f, _ in tasks[:n_grid_chunks]])
+    check_vals = np.concatenate([np.load(f) for f, _ in tasks[n_grid_chunks:]])
+    shape = tuple(len(a.nodes) for a in axes)
+    values = np.moveaxis(grid_vals.reshape(shape + (len(spec.variables),)), -1, 0)
+    knots = [bspline_knots(a.nodes, a.double_knots) for a in axes]
+    coefs = fit_tensor_bspline(values, [a.nodes for a in axes], knots)
+    spline = TensorSpline([dict(name=a.name, nodes=a.nodes, knots=t, units=a.units,
+                                out_of_range=a.out_of_range) for a, t in zip(axes, knots)],
+                          coefs, [v.name for v in spec.variables], source=name)
+    got = spline.evaluate(check, check=False)
+    accuracy = {}
+    for k, v in enumerate(spec.variables):
+        err = np.abs(got[:, k] - check_vals[:, k]) / v.error_scale
+        worst = int(np.argmax(err))
+        accuracy[v.name] = dict(max_abs_error=float(err.max()),
+                                rms_error=float(np.sqrt(np.mean(err**2))),
+                                n_check_points=len(check), worst_point=check[worst].tolist())
+    out_dir = Path(output_dir) if output_dir is not None else _REPO / "tables"
+    path = out_dir / f"{name}.nc"
+    info = {"resolution": resolution, "grid_points": np.int32(len(points)),
+            "build_seconds": float(round(seconds, 3)),
+            "build_scheduler": "local cluster" if scheduler is None else str(scheduler)}
+    write_table(path, spec, axes, knots, values, coefs, accuracy,
+                command or f"python -m tablegen build --only {name} --resolution {resolution}",
+                info)
+    if not keep_chunks:
+        for f, _ in tasks:
+            f.unlink(missing_ok=True)
+        try:
+            work.rmdir()
+        except OSError:
+            pass
+    return dict(path=path, seconds=seconds, n_points=len(points), n_check=len(check),
+                accuracy=accuracy, size_bytes=path.stat().st_size)

@@ -1,0 +1,133 @@
+"""CF-1.8 netCDF writer for tables (read back by :class:`railcontact.tables.Table`).
+
+Layout (``railcontact_table_format = 1``), for axes ``A1..AD`` and variables ``V``:
+
+* coordinates ``A`` (dim ``A``): the nodes; attributes ``units``, ``long_name``,
+  ``double_knots``, ``out_of_range``, ``spline_knots``;
+* ``A_knots`` (dim ``A_knot``): the knot vector of the cubic B-spline along ``A``;
+* ``V`` (dims ``A1..AD``): values at the nodes; attributes ``units``, ``long_name``, the method,
+  and the recorded accuracy (``max_abs_error``, ``rms_error``, ``error_target``,
+  ``error_target_met``, ``n_check_points``);
+* ``V_bspline_coefficients`` (dims ``A1_bspline..AD_bspline``): tensor-product B-spline
+  coefficients, so that ``V(x) = sum c[i1..iD] B_i1(x1) ... B_iD(xD)`` with the cubic B-splines
+  of the knot vectors (de Boor 1978).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+
+from railcontact import __version__ as _rc_version
+from railcontact.tables import SPLINE_DEGREE, TABLE_FORMAT_VERSION
+
+__all__ = ["write_table", "git_revision"]
+
+_REPO = Path(__file__).resolve().parent.parent
+
+
+def git_revision():
+    """Short git revision of the checkout (``+dirty`` if tablegen or railcontact changed)."""
+    try:
+        rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=_REPO,
+                             capture_output=True, text=True, timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--", "tablegen",
+                                "fmu_src/railcontact"], cwd=_REPO, capture_output=True,
+                               text=True, timeout=10).stdout.strip()
+        return (rev or "unknown") + ("+dirty" if dirty else "")
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def write_table(path, spec, axes, knots, values, coefficients, accuracy, command, build_info):
+    """Write one table file atomically (``path.tmp`` then rename).
+
+    Parameters
+    ----------
+    path : path-like
+    spec : TableSpec
+    axes : list of Axis
+    knots : list of ndarray
+    values, coefficients : ndarray, shape (n_var, n_1, ..., n_D)
+    accuracy : dict
+        Per variable name: ``max_abs_error``, ``rms_error``, ``n_check_points``.
+    command : str
+        Command line recorded in ``history``.
+    build_info : dict
+        Extra global attributes (resolution, build time, workers).
+    """
+    import xarray as xr  # noqa: PLC0415
+
+    path = Path(path)
+    coords, data_vars = {}, {}
+    dims = [a.name for a in axes]
+    cdims = [f"{a.name}_bspline" for a in axes]
+    for a, t in zip(axes, knots):
+        coords[a.name] = (a.name, a.nodes, {
+            "units": a.units, "long_name": a.long_name,
+            "double_knots": np.asarray(a.double_knots, dtype=float),
+            "out_of_range": a.out_of_range,
+            "spline_knots": f"{a.name}_knots",
+            "comment": a.comment or "grid nodes (the spline interpolates the values here)"})
+        data_vars[f"{a.name}_knots"] = (f"{a.name}_knot", np.asarray(t, float), {
+            "units": a.units, "long_name": f"cubic B-spline knot vector along {a.name}",
+            "comment": "not-a-knot interpolation; double knots repeat a node"})
+    for k, v in enumerate(spec.variables):
+        acc = accuracy[v.name]
+        met = acc["max_abs_error"] <= v.error_target
+        data_vars[v.name] = (dims, values[k], {
+            "units": v.units, "long_name": v.long_name,
+            "bspline_coefficients": f"{v.name}_bspline_coefficients",
+            "method": spec.method,
+            "interpolation": "tensor-product cubic B-spline interpolating the node values "
+                             "(C2; C1 at double knots)",
+            "max_abs_error": float(acc["max_abs_error"]),
+            "rms_error": float(acc["rms_error"]),
+            "error_scale": float(v.error_scale),
+            "error_target": float(v.error_target),
+            "error_target_met": "yes" if met else "no",
+            "n_check_points": np.int32(acc["n_check_points"]),
+            "accuracy_comment": (
+                "max and RMS of |spline - direct computation| / error_scale on "
+                f"{int(acc['n_check_points'])} seeded random off-grid points"
+                + ("" if met else "; TARGET NOT MET")),
+            "comment": v.comment})
+        data_vars[f"{v.name}_bspline_coefficients"] = (cdims, coefficients[k], {
+            "units": v.units,
+            "long_name": f"tensor-product cubic B-spline coefficients of {v.name}",
+            "comment": "value = sum over i of c[i1,...,iD] * prod_d B(d, i_d)(x_d), with the "
+                       "degree-3 B-splines of the knot vectors <axis>_knots"})
+    now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    attrs = {
+        "Conventions": "CF-1.8",
+        "title": spec.title,
+        "institution": "railcontact project",
+        "source": f"railcontact {_rc_version} (git {git_revision()}), tablegen",
+        "history": f"{now}: created by `{command}`",
+        "references": spec.references,
+        "comment": ("Smooth lookup table. Evaluate the cubic B-spline given by the "
+                    "*_bspline_coefficients variables and the <axis>_knots vectors (any de Boor "
+                    "evaluator); the node values alone allow a cruder linear interpolation."),
+        "railcontact_table_format": np.int32(TABLE_FORMAT_VERSION),
+        "table_name": spec.name,
+        "table_axes": " ".join(dims),
+        "table_variables": " ".join(v.name for v in spec.variables),
+        "spline_degree": np.int32(SPLINE_DEGREE),
+        "method": spec.method,
+    }
+    attrs.update({k: v for k, v in spec.attributes.items()})
+    attrs.update(build_info)
+    ds = xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+    encoding = {name: {"_FillValue": None} for name in list(ds.data_vars) + list(ds.coords)}
+    for name in ds.data_vars:
+        if ds[name].ndim >= 2:
+            encoding[name].update(zlib=True, complevel=4, shuffle=True)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + ".tmp")
+    ds.to_netcdf(tmp, format="NETCDF4", encoding=encoding)
+    os.replace(tmp, path)
+    return path

@@ -1,0 +1,180 @@
+"""Table specifications: grid axes, tabulated variables, the point function, and the registry.
+
+A :class:`TableSpec` says *what* to tabulate; :mod:`tablegen.build` does the (parallel) work and
+:mod:`tablegen.netcdf` writes the file that :mod:`railcontact.tables` reads.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["Axis", "Variable", "TableSpec", "REGISTRY", "register", "get_spec",
+           "RESOLUTIONS"]
+
+#: Resolution names accepted by every spec (the spec maps them to node counts).
+RESOLUTIONS = ("coarse", "default", "fine")
+
+
+@dataclass
+class Axis:
+    """One grid axis.
+
+    Attributes
+    ----------
+    name : str
+        Variable name of the coordinate in the file (snake_case).
+    nodes : ndarray
+        Strictly ascending nodes.
+    units : str
+        UDUNITS string ("1" for dimensionless).
+    long_name : str
+        Human-readable description, saying what a dimensionless axis is normalised by.
+    double_knots : tuple of float
+        Interior nodes that get a double knot (the spline is C1 there, C2 elsewhere).
+    out_of_range : {"error", "hold"}
+        Behaviour beyond the last node (see :mod:`railcontact.tables`); below the first node
+        it is always an error.
+    comment : str
+        Why the nodes are where they are.
+    """
+
+    name: str
+    nodes: np.ndarray
+    units: str
+    long_name: str
+    double_knots: tuple = ()
+    out_of_range: str = "error"
+    comment: str = ""
+
+    def __post_init__(self):
+        self.nodes = np.asarray(self.nodes, dtype=float)
+        if self.nodes.ndim != 1 or self.nodes.size < 4 or not np.all(np.diff(self.nodes) > 0):
+            raise ValueError(f"axis {self.name!r}: nodes must be strictly ascending, >= 4")
+        if self.out_of_range not in ("error", "hold"):
+            raise ValueError(f"axis {self.name!r}: out_of_range must be 'error' or 'hold'")
+
+
+@dataclass
+class Variable:
+    """One tabulated variable.
+
+    Attributes
+    ----------
+    name, units, long_name : str
+    error_scale : float
+        Errors are reported in units of this value (1 for variables already normalised by
+        mu N), i.e. ``max |table - solver| / error_scale``.
+    error_target : float
+        Target for the maximum error on the off-grid check points, in units of error_scale.
+    comment : str
+    """
+
+    name: str
+    units: str
+    long_name: str
+    error_scale: float = 1.0
+    error_target: float = 1e-4
+    comment: str = ""
+
+
+@dataclass
+class TableSpec:
+    """What to tabulate.
+
+    Attributes
+    ----------
+    name : str
+        Table name; the file is ``<name>.nc``.
+    title : str
+    axes : callable
+        ``axes(resolution) -> list[Axis]``.
+    function : callable
+        ``function(points) -> ndarray (n, n_var)``, vectorised over ``points`` (n, D) in table
+        coordinates. Must be a module-level function (it is shipped to dask workers by
+        reference).
+    variables : list of Variable
+    references : str
+        Thesis section and method.
+    method : str
+        How the values are computed (the direct solver and its settings).
+    check_points : callable, optional
+        ``check_points(axes, n, rng) -> ndarray (n, D)``: off-grid points where the table is
+        compared with ``function``. Default: uniform random in the grid box.
+    n_check : dict
+        Number of check points per resolution.
+    chunk_size : int
+        Grid points per dask task.
+    requires : tuple of str
+        Modules that must import for the spec to be buildable.
+    attributes : dict
+        Extra global attributes (e.g. the fixed Poisson ratio).
+    hidden : bool
+        Not built by ``build`` without ``--only`` (self-tests).
+    """
+
+    name: str
+    title: str
+    axes: Callable
+    function: Callable
+    variables: list
+    references: str
+    method: str
+    check_points: Callable | None = None
+    n_check: dict = field(default_factory=lambda: {"coarse": 200, "default": 1000,
+                                                   "fine": 4000})
+    chunk_size: int = 64
+    requires: tuple = ()
+    attributes: dict = field(default_factory=dict)
+    hidden: bool = False
+
+    def available(self):
+        """``None`` if buildable, else the reason (a module that does not import)."""
+        import importlib  # noqa: PLC0415
+
+        for mod in self.requires:
+            try:
+                importlib.import_module(mod)
+            except Exception as exc:  # noqa: BLE001  (any import failure makes it unavailable)
+                return f"{mod} does not import ({exc.__class__.__name__}: {exc})"
+        return None
+
+    def grid(self, resolution):
+        """Axes and the (n, D) array of all grid points (C order, last axis fastest)."""
+        if resolution not in RESOLUTIONS:
+            raise ValueError(f"resolution must be one of {list(RESOLUTIONS)}; got "
+                             f"{resolution!r}")
+        axes = self.axes(resolution)
+        mesh = np.meshgrid(*[a.nodes for a in axes], indexing="ij")
+        return axes, np.stack([m.ravel() for m in mesh], axis=1)
+
+    def make_check_points(self, axes, resolution, seed=20261122):
+        rng = np.random.default_rng(seed)
+        n = self.n_check[resolution]
+        if self.check_points is not None:
+            return np.asarray(self.check_points(axes, n, rng), dtype=float)
+        lo = np.array([a.nodes[0] for a in axes])
+        hi = np.array([a.nodes[-1] for a in axes])
+        return lo + (hi - lo) * rng.random((n, len(axes)))
+
+
+REGISTRY: dict[str, TableSpec] = {}
+
+
+def register(spec):
+    """Add a spec to :data:`REGISTRY` (name must be new) and return it."""
+    if spec.name in REGISTRY:
+        raise ValueError(f"table spec {spec.name!r} is already registered")
+    REGISTRY[spec.name] = spec
+    return spec
+
+
+def get_spec(name):
+    """The registered spec ``name`` (ValueError listing the known names otherwise)."""
+    from . import specs  # noqa: F401,PLC0415  (registers the built-in specs)
+
+    if name not in REGISTRY:
+        raise ValueError(f"table name must be one of {sorted(REGISTRY)}; got {name!r}")
+    return REGISTRY[name]

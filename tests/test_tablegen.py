@@ -1,0 +1,125 @@
+"""Tests of the table builder (tablegen): spec registry, chunked/resumable build, dask, CLI."""
+
+import numpy as np
+import pytest
+
+import tablegen
+from tablegen.__main__ import main
+from tablegen.build import build_table
+from tablegen.spec import REGISTRY, Axis, get_spec
+from tablegen.specs import selftest_function
+from railcontact.tables import Table
+
+
+def test_registry_lists_builtin_specs():
+    assert "creep_modified_strip" in REGISTRY and "selftest" in REGISTRY
+    with pytest.raises(ValueError, match="table name must be one of"):
+        get_spec("no_such_table")
+    spec = get_spec("creep_modified_strip")
+    with pytest.raises(ValueError, match="resolution must be one of"):
+        spec.grid("huge")
+    axes, pts = spec.grid("coarse")
+    assert pts.shape == (len(axes[0].nodes), 1)
+    assert 1.0 in axes[0].nodes  # the saturation lies on a grid line
+
+
+def test_axis_validation():
+    with pytest.raises(ValueError, match="strictly ascending"):
+        Axis("x", [0.0, 1.0, 0.5, 2.0], "1", "x")
+    with pytest.raises(ValueError, match="out_of_range"):
+        Axis("x", [0.0, 1.0, 1.5, 2.0], "1", "x", out_of_range="clamp")
+
+
+def test_build_selftest_file_is_exact_and_records_accuracy(tmp_path):
+    res = build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                      workdir=tmp_path / "work", progress=False)
+    table = Table.from_file(res["path"])
+    spec = get_spec("selftest")
+    axes, pts = spec.grid("coarse")
+    want = selftest_function(pts)
+    got = table.spline.evaluate(pts)
+    assert np.max(np.abs(got - want)) < 1e-13              # exact at the nodes
+    # recorded accuracy equals an independent recomputation on the same check points
+    check = spec.make_check_points(axes, "coarse")
+    err = np.abs(table.spline.evaluate(check) - selftest_function(check))
+    for k, v in enumerate(table.variables):
+        assert table.variable_attrs[v]["max_abs_error"] == pytest.approx(err[:, k].max(),
+                                                                         rel=1e-12, abs=1e-300)
+    # f has a C1 kink at x = 1 with a double knot: no overshoot past 1 anywhere
+    x = np.linspace(0.0, 3.0, 30001)
+    dense = np.stack([x, np.full_like(x, 1.3)], axis=1)
+    assert table("f", dense).max() <= 1.0 + 1e-15
+    # "hold" beyond the last node of x; error below the first node and beyond s
+    assert table("f", [[5.0, 1.0]]) == pytest.approx(1.0)
+    with pytest.raises(ValueError, match="s must be in"):
+        table("f", [[0.5, 3.0]])
+    assert not (tmp_path / "work").exists() or not any((tmp_path / "work").rglob("*.npy"))
+
+
+def test_build_resumes_from_finished_chunks(tmp_path, monkeypatch):
+    work = tmp_path / "work"
+    build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                workdir=work, progress=False, keep_chunks=True)
+    chunks = sorted(work.rglob("grid_*.npy"))
+    assert len(chunks) > 2
+    chunks[1].unlink()
+    calls = []
+    spec = REGISTRY["selftest"]
+
+    def counting(points):
+        calls.append(len(points))
+        return selftest_function(points)
+
+    monkeypatch.setattr(spec, "function", counting)
+    res = build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                      workdir=work, progress=False)
+    assert calls == [spec.chunk_size]           # only the missing chunk was recomputed
+    Table.from_file(res["path"])
+
+
+def test_failing_chunk_keeps_finished_ones(tmp_path, monkeypatch):
+    spec = REGISTRY["selftest"]
+    count = {"n": 0}
+
+    def flaky(points):
+        count["n"] += 1
+        if count["n"] == 3:
+            raise RuntimeError("worker died")
+        return selftest_function(points)
+
+    monkeypatch.setattr(spec, "function", flaky)
+    with pytest.raises(RuntimeError, match="worker died"):
+        build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                    workdir=tmp_path / "work", progress=False)
+    assert len(list((tmp_path / "work").rglob("grid_*.npy"))) == 2
+    assert not (tmp_path / "selftest.nc").exists()
+
+
+def test_build_on_local_dask_cluster(tmp_path):
+    """One worker process of a dask.distributed LocalCluster (the default scheduler)."""
+    res = build_table("selftest", "coarse", output_dir=tmp_path, scheduler=None, workers=1,
+                      workdir=tmp_path / "work", progress=False)
+    ref = build_table("selftest", "coarse", output_dir=tmp_path / "sync",
+                      scheduler="synchronous", workdir=tmp_path / "work2", progress=False)
+    a, b = Table.from_file(res["path"]), Table.from_file(ref["path"])
+    for v in a.variables:
+        np.testing.assert_array_equal(a.values[v], b.values[v])
+    assert a.attrs["build_scheduler"] == "local cluster"
+
+
+def test_cli_list_and_build(tmp_path, capsys):
+    assert main(["list"]) == 0
+    out = capsys.readouterr().out
+    assert "creep_modified_strip" in out
+    assert main(["build", "--only", "selftest", "--resolution", "coarse", "--scheduler",
+                 "synchronous", "--output-dir", str(tmp_path), "--workdir",
+                 str(tmp_path / "w"), "--no-progress"]) == 0
+    table = Table.from_file(tmp_path / "selftest.nc")
+    assert "python -m tablegen build --only selftest" in table.attrs["history"]
+    assert table.attrs["railcontact_table_format"] == 1
+    with pytest.raises(SystemExit):
+        main(["build", "--only", "bogus", "--scheduler", "synchronous"])
+
+
+def test_package_exports():
+    assert tablegen.build_table is build_table
