@@ -1,0 +1,235 @@
+"""Tests of railcontact.wear (Nielsen Sec. 4.3): the linearised wear coefficients against
+(a) the exact nonlinear wear integral at small amplitude, (b) the exact (4.92) with passage times
+solved from (4.76)-(4.78), (c) a brute-force evaluation of (4.74) with the discretised half-space
+solver, and (d) limiting cases derived independently (local Carter solution for long waves)."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import j0, j1, jv
+
+from railcontact import corrugation as cg
+from railcontact import wear
+
+
+# --------------------------------------------------------------------------------------------
+# (4.96): Carter slip-zone integral
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("r", [0.0, 0.2, 0.5, 0.9])
+def test_wear_shape_function_by_quadrature(r):
+    """int_slip q s dx for Carter (stick at the leading edge [a-2a*, a]) = (pi/2) a^3 f(r) mu^2/R."""
+    a, ast = 1.0, r
+
+    def integrand(x):   # sqrt(a^2 - x^2) * sqrt(x*^2 - a*^2), x* = x - (a - a*)
+        xs = x - (a - ast)
+        return np.sqrt(a * a - x * x) * np.sqrt(xs * xs - ast * ast)
+
+    val, _ = quad(integrand, -a, a - 2 * ast, limit=200)
+    assert val == pytest.approx(0.5 * np.pi * wear.wear_shape_function(r), rel=1e-8)
+
+
+def test_mean_wear_value():
+    w0 = wear.mean_wear(1e-9, 0.3, 1e5, 0.5, 0.006, 0.5)
+    assert w0 == pytest.approx(1e-9 * 0.09 * 1e5 * 0.006 / 0.5 * 0.375)
+
+
+# --------------------------------------------------------------------------------------------
+# (a) linearisation vs the exact nonlinear wear integral
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("ratio, r", [(1e-3, 0.5), (0.05, 0.5), (0.15, 0.3), (0.3, 0.6),
+                                      (0.1, 0.8), (0.5, 0.45), (1.0, 0.5), (2.0, 0.4)])
+def test_linear_matches_exact_wear_integral(ratio, r):
+    lin_mp = wear.wear_coefficients(ratio, r, "material_point")
+    lin_pc = wear.wear_coefficients(ratio, r, "patch_coordinate")
+    eps = min(1e-3, 0.05 / (2 * np.pi * ratio))
+    ex = wear.wear_first_harmonic_exact(ratio, r, eps, phase=0.7, n_positions=48)
+    scale = max(abs(lin_mp), abs(lin_pc), 1e-9)
+    assert abs(ex["material_point"] - lin_mp) < 1e-4 * scale
+    assert abs(ex["patch_coordinate"] - lin_pc) < 1e-4 * scale
+    assert ex["mean"] == pytest.approx(wear.wear_shape_function(r), rel=1e-6)   # (4.96)
+
+
+def test_quadrature_and_degree_converged():
+    q = np.array([0.01, 0.3, 1.0, 2.0])
+    r = np.array([0.1, 0.5, 0.7, 0.95])
+    a = wear.wear_coefficients(q, r, n_nodes=48)
+    b = wear.wear_coefficients(q, r, n_nodes=128, degree=80)
+    assert np.max(np.abs(a - b) / np.abs(b)) < 1e-9
+
+
+def test_long_wave_limits_local_carter():
+    """a0/L -> 0: Carter with the local radius 1/R_eff = 1/R + k^2 Z gives, per rail position,
+    dW/W0 = -r/(1+r) k^2 R Z (derived by hand from (2.52), (2.53), (4.96)); the material point adds
+    the dwell factor 1 - Delta' = 1 + k^2 R Z: w1 / (k a0)^2 / f(r) -> -r/(1+r) and 1/(1+r)."""
+    ratio = 1e-3
+    for r in (0.1, 0.5, 0.9):
+        f = wear.wear_shape_function(r)
+        scale = (2 * np.pi * ratio) ** 2 * f
+        pc = wear.wear_coefficients(ratio, r, "patch_coordinate") / scale
+        mp = wear.wear_coefficients(ratio, r, "material_point") / scale
+        assert pc.real == pytest.approx(-r / (1 + r), abs=1e-3)
+        assert mp.real == pytest.approx(1 / (1 + r), abs=1e-3)
+
+
+def test_stick_ratio_limits():
+    q = np.array([1e-3, 0.2, 2.0])
+    for model in wear.WEAR_MODELS:
+        assert np.all(wear.wear_coefficients(q, 1.0, model) == 0)
+        w0 = wear.wear_coefficients(q, 0.0, model)
+        w_small = wear.wear_coefficients(q, 1e-6, model)
+        assert np.all(np.isfinite(w0))
+        assert np.allclose(w0, w_small, rtol=1e-3, atol=1e-8)
+        w_near1 = wear.wear_coefficients(q, 1 - 1e-6, model)
+        assert np.all(np.abs(w_near1) < 1e-3)
+
+
+def test_material_point_levels_everywhere_patch_does_not():
+    """The finding: W1 > 0 on the whole (r, L/a0) grid for (4.74) at a material point."""
+    la = np.geomspace(2, 30, 60)
+    r = np.linspace(0.1, 0.9, 17)
+    w = wear.wear_coefficients(1 / la[None, :], r[:, None], "material_point")
+    assert np.all(w.real > 0)
+    pc = wear.wear_coefficients(1 / la[None, :], r[:, None], "patch_coordinate")
+    assert np.any(pc.real < 0)
+
+
+# --------------------------------------------------------------------------------------------
+# passage times (4.76)-(4.87)
+# --------------------------------------------------------------------------------------------
+def _exact_state(x, k, za, zb, r, orientation):
+    """Exact a, Delta, a* at axis positions x (R = a0 = 1, N C = 1/2)."""
+    a, d, _, _ = cg.solve_normal_exact(x, 0.5, 1.0, [k], [za], [zb])
+    if orientation == "ours":
+        ast = cg.solve_stick_zone_exact(x, a, d, 1 - r, 1.0, [k], [za], [zb])
+    else:   # thesis orientation: mirror image (stick zone at -a): a*(X) of the mirrored surface
+        am, dm, _, _ = cg.solve_normal_exact(-x, 0.5, 1.0, [k], [za], [-zb])
+        ast = cg.solve_stick_zone_exact(-x, am, dm, 1 - r, 1.0, [k], [za], [-zb])
+    return a, d, ast
+
+
+def _solve_position(x0, k, za, zb, r, orientation, offset):
+    """Fixed point X_c = X0 - offset(a, Delta, a*)(X_c) (a contraction for small amplitude)."""
+    xc = np.array(x0, dtype=float)
+    for _ in range(40):
+        a, d, ast = _exact_state(xc, k, za, zb, r, orientation)
+        xc = x0 - offset(a, d, ast)
+    return xc
+
+
+def _passage_times(ratio, r, eps, phase, convention, n=32):
+    k = 2 * np.pi * ratio
+    amp = eps / k
+    za, zb = amp * np.cos(phase), amp * np.sin(phase)
+    lam = 1 / ratio
+    x0 = np.arange(n) * lam / n
+    if convention == "consistent":   # rolling +X: enter at +a, stick boundary, leave at -a
+        te = _solve_position(x0, k, za, zb, r, "ours", lambda a, d, s: d + a)
+        ts = _solve_position(x0, k, za, zb, r, "ours", lambda a, d, s: d + a - 2 * s)
+        tx = _solve_position(x0, k, za, zb, r, "ours", lambda a, d, s: d - a)
+        tau, taus = 0.5 * (tx - te), 0.5 * (ts - te)
+    else:   # the thesis' (4.76)-(4.78) with Delta -> -Delta (the reading that gives (4.83))
+        t0 = _solve_position(x0, k, za, zb, r, "thesis", lambda a, d, s: -d - a)
+        tst = _solve_position(x0, k, za, zb, r, "thesis", lambda a, d, s: -d + 2 * s - a)
+        t1 = _solve_position(x0, k, za, zb, r, "thesis", lambda a, d, s: -d + a)
+        tau, taus = -0.5 * (t1 - t0), -0.5 * (tst - t0)
+    return x0, k, za, zb, tau, taus
+
+
+@pytest.mark.parametrize("convention", ["consistent", "nielsen1998"])
+def test_passage_times_match_solved_kinematics(convention):
+    ratio, r, eps = 0.2, 0.4, 1e-4
+    x0, k, za, zb, tau, taus = _passage_times(ratio, r, eps, 0.3, convention)
+    c_tau, c_taus = wear.passage_time_response(ratio, r, convention=convention)
+    zc = za + 1j * zb
+    got_tau = 2 * np.mean(tau * np.exp(1j * k * x0)) / zc / k      # units k R / V, R = V = 1
+    got_taus = 2 * np.mean(taus * np.exp(1j * k * x0)) / zc / k
+    assert np.mean(tau) == pytest.approx(1.0, abs=1e-6)
+    assert np.mean(taus) == pytest.approx(r, abs=1e-6)
+    assert abs(got_tau - c_tau) < 2e-3 * abs(c_tau)
+    assert abs(got_taus - c_taus) < 2e-3 * abs(c_taus)
+
+
+def test_nielsen_passage_times_reproduce_printed_4_83_4_86():
+    """(4.83) and tau*_2 of (4.86) as printed follow from (4.76)-(4.78) only with Delta -> -Delta;
+    tau*_1 as printed differs by the sign of J0(k a0) sin(k a0) (erratum)."""
+    ratio = np.array([0.05, 0.2, 0.45, 0.8])
+    r = np.array([0.3, 0.6, 0.45, 0.8])
+    beta = 2 * np.pi * ratio
+    t_n, ts_n = wear.passage_time_response(ratio, r, convention="nielsen1998")
+    t_p, ts_p = wear.passage_time_response(ratio, r, convention="printed")
+    assert np.allclose(t_n, t_p, atol=1e-14)
+    assert np.allclose(ts_n.imag, ts_p.imag, atol=1e-14)
+    assert np.allclose(ts_p.real - ts_n.real, j0(beta) * np.sin(beta), atol=1e-14)
+    # the consistent kinematics differ from the thesis in the sign of the Delta term
+    t_c, _ = wear.passage_time_response(ratio, r, convention="consistent")
+    assert np.allclose(t_c.real, j0(beta) * np.sin(beta) - j1(beta) * np.cos(beta), atol=1e-14)
+    assert np.allclose(t_n.real, -(j0(beta) * np.sin(beta) + j1(beta) * np.cos(beta)),
+                       atol=1e-14)
+
+
+# --------------------------------------------------------------------------------------------
+# (b) (4.92) exact vs its linearisation (models nielsen1998 and time_domain_carter)
+# --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("model", ["nielsen1998", "time_domain_carter"])
+def test_linearised_4_92_matches_exact_4_92(model):
+    ratio, r, eps, phase = 0.15, 0.45, 1e-4, 0.9
+    conv = "consistent" if model == "time_domain_carter" else "nielsen1998"
+    x0, k, za, zb, tau, taus = _passage_times(ratio, r, eps, phase, conv)
+    # B0 = C a p(0) = (a/pi) sum c_n sin(n pi/2) at the material point's axis position X0
+    a, d, _, _ = cg.solve_normal_exact(x0, 0.5, 1.0, [k], [za], [zb])
+    n = np.arange(1, 40)
+    zeta = za - 1j * zb
+    ipow = (1j) ** ((n + 1) % 4)
+    cn = -2 * k * jv(n[None, :], k * a[:, None]) * np.real(
+        ipow[None, :] * zeta * np.exp(1j * k * (x0 + d))[:, None])
+    cn[:, 0] += a
+    b0 = a / np.pi * np.sum(cn * np.sin(n * np.pi / 2), -1)
+    rt = taus / tau
+    # (4.92) with K = V = mu = R = a0 = 1, N = 1/2: W = (1/2) (pi B0/a)^2 tau f(r_tau); the
+    # normalised coefficient divides by K mu^2 N / a0 = 1/2
+    w = (np.pi * b0 / a) ** 2 * tau * (1 - rt) ** 2 * (1 + rt)
+    got = 2 * np.mean(w * np.exp(1j * k * x0)) / (za + 1j * zb)
+    if model == "nielsen1998":
+        got = np.conj(got)                                           # thesis orientation -> ours
+    lin = wear.wear_coefficients(ratio, r, model)
+    assert np.mean(w) == pytest.approx(wear.wear_shape_function(r), rel=1e-4)
+    assert abs(got - lin) < 3e-3 * abs(lin)
+
+
+# --------------------------------------------------------------------------------------------
+# (c) brute force with the discretised half-space solver
+# --------------------------------------------------------------------------------------------
+def test_reference_solver_confirms_material_point_small():
+    ratio, r, eps = 0.15, 0.5, 0.05
+    ref = wear.wear_first_harmonic_reference(ratio, r, eps, phase=0.4, n_positions=16,
+                                             n_elements=200)
+    ex = wear.wear_first_harmonic_exact(ratio, r, eps, phase=0.4)
+    gap = abs(ex["material_point"] - ex["patch_coordinate"])
+    assert abs(ref["material_point"] - ex["material_point"]) < 0.15 * gap
+    assert abs(ref["patch_coordinate"] - ex["patch_coordinate"]) < 0.15 * gap
+    assert abs(ref["half_width"] - cg.normal_response(ratio)[1]) < 0.02
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio, r", [(0.15, 0.5), (0.08, 0.3), (0.3, 0.7)])
+def test_reference_solver_confirms_material_point_slow(ratio, r):
+    eps = 0.05
+    ref = wear.wear_first_harmonic_reference(ratio, r, eps, phase=0.4, n_positions=32,
+                                             n_elements=400)
+    ex = wear.wear_first_harmonic_exact(ratio, r, eps, phase=0.4)
+    mp = ex["material_point"]
+    assert abs(ref["material_point"] - mp) < 0.03 * abs(mp)
+    assert abs(ref["patch_coordinate"] - ex["patch_coordinate"]) < 0.03 * abs(mp)
+
+
+def test_bad_model_and_inputs():
+    with pytest.raises(ValueError, match="wear_model"):
+        wear.wear_coefficients(0.1, 0.5, "archard")
+    with pytest.raises(ValueError, match="stick_ratio"):
+        wear.wear_coefficients(0.1, -0.1)
+    with pytest.raises(ValueError, match="a0_over_wavelength"):
+        wear.wear_coefficients(0.0, 0.5)
+    with pytest.raises(ValueError, match="convention"):
+        wear.passage_time_response(0.1, 0.5, convention="x")
+    with pytest.raises(ValueError, match="curvature_amplitude"):
+        wear.wear_first_harmonic_exact(0.5, 0.5, 1.0)
