@@ -154,16 +154,19 @@ def _lagrange(nu):
             (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1)))
 
 
-def _table_log(k, s, nu):
-    """ln C_k and its first two s-derivatives from the table interpolant (s inside the table)."""
+def _table_log(k, s, nu, derivatives=True):
+    """ln C_k and (optionally) its first two s-derivatives from the table interpolant."""
     weights = _lagrange(nu)
     u = u1 = u2 = 0.0
     for j, spline in enumerate(_splines()[k]):
-        ln_c, d1, d2 = spline(s), spline(s, 1), spline(s, 2)
-        w = weights[j] * np.exp(-ln_c)               # L_j / C_j
+        w = weights[j] * np.exp(-spline(s))              # L_j / C_j
         u = u + w
-        u1 = u1 - d1 * w
-        u2 = u2 + (d1 * d1 - d2) * w
+        if derivatives:
+            d1, d2 = spline(s, 1), spline(s, 2)
+            u1 = u1 - d1 * w
+            u2 = u2 + (d1 * d1 - d2) * w
+    if not derivatives:
+        return -np.log(u)
     return -np.log(u), -u1 / u, -u2 / u + (u1 / u) ** 2
 
 
@@ -179,16 +182,14 @@ def _asym_log(k, s, nu):
 def _coefficient(k, g, nu):
     s = np.log(g)
     s_lo, s_hi = np.log(_G_LOW), np.log(_G_HIGH)
-    s_in = np.clip(s, s_lo, s_hi)
-    inside, _, _ = _table_log(k, s_in, nu)
-    result = inside
+    result = _table_log(k, np.clip(s, s_lo, s_hi), nu, derivatives=False)
     for edge, side in ((s_lo, -1.0), (s_hi, 1.0)):
         outside = (s - edge) * side > 0.0
         if not np.any(outside):
             continue
-        edge_arr = np.full_like(s, edge)
-        t0, t1, t2 = _table_log(k, edge_arr, nu)
-        a0_, a1, a2 = _asym_log(k, edge_arr, nu)
+        nu_o, s_o = nu[outside], s[outside]
+        t0, t1, t2 = _table_log(k, edge, nu_o)         # spline at the (scalar) edge
+        a0_, a1, a2 = _asym_log(k, edge, nu_o)
         l0, l1, l2 = t0 - a0_, t1 - a1, t2 - a2
         # t = exp(-side (s - edge)): dt/ds = -side t; at t = 1: P' = -side l1, P'' = l2 - P'
         p1 = -side * l1
@@ -197,11 +198,9 @@ def _coefficient(k, g, nu):
         c3 = (p2 - 2.0 * (p1 - l0)) / 2.0
         c2 = p1 - l0 - 2.0 * c3
         c1 = l0 - c2 - c3
-        t = np.exp(-side * (s - edge))
-        g_out = np.where(outside, g, np.exp(edge))   # keep the asymptote in its own branch
-        ln_asym = np.log(_asymptotes(g_out, nu)[k])
-        extended = ln_asym + t * (c1 + t * (c2 + t * c3))
-        result = np.where(outside, extended, result)
+        t = np.exp(-side * (s_o - edge))
+        ln_asym = np.log(_asymptotes(g[outside], nu_o)[k])
+        result[outside] = ln_asym + t * (c1 + t * (c2 + t * c3))
     return np.exp(result)
 
 
@@ -240,6 +239,7 @@ def kalker_coefficients(a0_over_b0, poisson_ratio):
     g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, None, lower_closed=False)
     nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5)
     g, nu = np.broadcast_arrays(g, nu)
-    g = np.array(g, dtype=float)
-    nu = np.array(nu, dtype=float)
-    return KalkerCoefficients(*(_coefficient(k, g, nu)[()] for k in range(3)))
+    shape = g.shape
+    g = np.array(g, dtype=float).ravel()
+    nu = np.array(nu, dtype=float).ravel()
+    return KalkerCoefficients(*(_coefficient(k, g, nu).reshape(shape)[()] for k in range(3)))
