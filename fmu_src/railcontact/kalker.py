@@ -140,56 +140,55 @@ def _asymptotes(g, nu):
 
 
 @lru_cache(maxsize=1)
-def _splines():
+def _spline():
+    """One vector-valued not-a-knot cubic spline of ln C[k, j] in s = ln(a0/b0)."""
     g, _, c = kalker_table()
-    s = np.log(g)
-    return [[CubicSpline(s, np.log(c[k, j]), bc_type="not-a-knot") for j in range(3)]
-            for k in range(3)]
+    return CubicSpline(np.log(g), np.log(np.moveaxis(c, -1, 0)), axis=0, bc_type="not-a-knot")
 
 
 def _lagrange(nu):
     n0, n1, n2 = _NU_NODES
-    return ((nu - n1) * (nu - n2) / ((n0 - n1) * (n0 - n2)),
-            (nu - n0) * (nu - n2) / ((n1 - n0) * (n1 - n2)),
-            (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1)))
+    return np.stack([(nu - n1) * (nu - n2) / ((n0 - n1) * (n0 - n2)),
+                     (nu - n0) * (nu - n2) / ((n1 - n0) * (n1 - n2)),
+                     (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1))], axis=-1)
 
 
-def _table_log(k, s, nu, derivatives=True):
-    """ln C_k and (optionally) its first two s-derivatives from the table interpolant."""
-    weights = _lagrange(nu)
-    u = u1 = u2 = 0.0
-    for j, spline in enumerate(_splines()[k]):
-        w = weights[j] * np.exp(-spline(s))              # L_j / C_j
-        u = u + w
-        if derivatives:
-            d1, d2 = spline(s, 1), spline(s, 2)
-            u1 = u1 - d1 * w
-            u2 = u2 + (d1 * d1 - d2) * w
+def _table_log(s, nu, derivatives=True):
+    """ln C_k, k = 0..2 (last axis), and optionally its first two s-derivatives, from the table
+    interpolant: 1/C = sum_j L_j(nu) exp(-S_kj(s))."""
+    spline = _spline()
+    w = _lagrange(nu)[..., None, :] * np.exp(-spline(s))     # (..., k, j): L_j / C_kj
+    u = w.sum(axis=-1)
     if not derivatives:
         return -np.log(u)
+    d1, d2 = spline(s, 1), spline(s, 2)
+    u1 = -(d1 * w).sum(axis=-1)
+    u2 = ((d1 * d1 - d2) * w).sum(axis=-1)
     return -np.log(u), -u1 / u, -u2 / u + (u1 / u) ** 2
 
 
-def _asym_log(k, s, nu):
-    """ln C_asym,k and its first two s-derivatives (5-point central differences)."""
+def _asym_log(s, nu):
+    """ln C_asym,k (last axis) and its first two s-derivatives (5-point central differences)."""
     h = _FD_STEP
-    f = [np.log(_asymptotes(np.exp(s + m * h), nu)[k]) for m in (-2, -1, 0, 1, 2)]
+    f = [np.log(np.stack(_asymptotes(np.exp(s + m * h) + 0.0 * nu, nu), axis=-1))
+         for m in (-2, -1, 0, 1, 2)]
     d1 = (f[0] - 8.0 * f[1] + 8.0 * f[3] - f[4]) / (12.0 * h)
     d2 = (-f[0] + 16.0 * f[1] - 30.0 * f[2] + 16.0 * f[3] - f[4]) / (12.0 * h * h)
     return f[2], d1, d2
 
 
-def _coefficient(k, g, nu):
+def _coefficients(g, nu):
+    """C11, C22, C23 (last axis) for 1-D arrays g, nu of equal length."""
     s = np.log(g)
     s_lo, s_hi = np.log(_G_LOW), np.log(_G_HIGH)
-    result = _table_log(k, np.clip(s, s_lo, s_hi), nu, derivatives=False)
+    result = _table_log(np.clip(s, s_lo, s_hi), nu, derivatives=False)
     for edge, side in ((s_lo, -1.0), (s_hi, 1.0)):
         outside = (s - edge) * side > 0.0
         if not np.any(outside):
             continue
         nu_o, s_o = nu[outside], s[outside]
-        t0, t1, t2 = _table_log(k, edge, nu_o)         # spline at the (scalar) edge
-        a0_, a1, a2 = _asym_log(k, edge, nu_o)
+        t0, t1, t2 = _table_log(edge, nu_o)             # spline at the (scalar) edge
+        a0_, a1, a2 = _asym_log(edge, nu_o)
         l0, l1, l2 = t0 - a0_, t1 - a1, t2 - a2
         # t = exp(-side (s - edge)): dt/ds = -side t; at t = 1: P' = -side l1, P'' = l2 - P'
         p1 = -side * l1
@@ -198,8 +197,8 @@ def _coefficient(k, g, nu):
         c3 = (p2 - 2.0 * (p1 - l0)) / 2.0
         c2 = p1 - l0 - 2.0 * c3
         c1 = l0 - c2 - c3
-        t = np.exp(-side * (s_o - edge))
-        ln_asym = np.log(_asymptotes(g[outside], nu_o)[k])
+        t = np.exp(-side * (s_o - edge))[:, None]
+        ln_asym = np.log(np.stack(_asymptotes(g[outside], nu_o), axis=-1))
         result[outside] = ln_asym + t * (c1 + t * (c2 + t * c3))
     return np.exp(result)
 
@@ -242,4 +241,5 @@ def kalker_coefficients(a0_over_b0, poisson_ratio):
     shape = g.shape
     g = np.array(g, dtype=float).ravel()
     nu = np.array(nu, dtype=float).ravel()
-    return KalkerCoefficients(*(_coefficient(k, g, nu).reshape(shape)[()] for k in range(3)))
+    c = _coefficients(g, nu)
+    return KalkerCoefficients(*(c[:, k].reshape(shape)[()] for k in range(3)))
