@@ -21,6 +21,7 @@ parameter or input is logged first (visible with debug logging on, e.g. ``fmpy s
 import importlib
 import json
 import math
+import sys
 from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
 
@@ -57,6 +58,9 @@ BOOLEAN_OUTPUTS = {
                               "for the linear theory, |T| > mu N", "creep_within_validity"),
 }
 
+#: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
+_LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity"}
+
 #: SI units used by the variables: name -> exponents of kg, m, s.
 UNITS = {
     "1": {}, "N": {"kg": 1, "m": 1, "s": -2}, "m": {"m": 1}, "Pa": {"kg": 1, "m": -1, "s": -2},
@@ -83,6 +87,7 @@ class WheelRailContact(Fmi2Slave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
+        self._bundle_dir = _repoint_bundle(self.resources)
         self.version = getattr(_rc, "__version__", "unknown")
         self.default_experiment = DefaultExperiment(start_time=0.0, stop_time=1.0,
                                                     step_size=1e-3)
@@ -118,16 +123,17 @@ class WheelRailContact(Fmi2Slave):
                 setter=(lambda v, n=name: setattr(c, n, v))))
             self._units[name] = unit
         for name, (unit, desc, field) in OUTPUTS.items():
+            getter = ((lambda f=field: self._auxiliary(f)) if field in _LAZY
+                      else (lambda f=field: getattr(c, f)))
             self.register_variable(Real(
                 name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
-                initial=Fmi2Initial.calculated, description=desc,
-                getter=(lambda f=field: getattr(c, f))))
+                initial=Fmi2Initial.calculated, description=desc, getter=getter))
             self._units[name] = unit
         for name, (desc, field) in BOOLEAN_OUTPUTS.items():
             self.register_variable(Boolean(
                 name, causality=Fmi2Causality.output, variability=Fmi2Variability.discrete,
                 initial=Fmi2Initial.calculated, description=desc,
-                getter=(lambda f=field: getattr(c, f))))
+                getter=(lambda f=field: self._auxiliary(f))))
 
     # ---------------------------------------------------------------------------------------
     # model description: units, InitialUnknowns (PythonFMU writes neither)
@@ -191,7 +197,10 @@ class WheelRailContact(Fmi2Slave):
 
     def _build(self, values):
         scene = self._resolve_scene(values)
-        self._pipeline = _effects.build_pipeline(scene, tables_dir=None,
+        tables_dir = None
+        if self._bundle_dir is not None and (self._bundle_dir / "tables").is_dir():
+            tables_dir = self._bundle_dir / "tables"
+        self._pipeline = _effects.build_pipeline(scene, tables_dir=tables_dir,
                                                  warn=self._warn_once)
         self._steps = tuple(e.step for e in self._pipeline.effects.values())
         self._contact.friction_coefficient = scene.friction_coefficient
@@ -199,9 +208,9 @@ class WheelRailContact(Fmi2Slave):
         self.log(f"scene {scene.name!r}: effects on: {', '.join(self._pipeline.effects)}",
                  Fmi2Status.ok)
 
-    def _warn_once(self, message):
-        if message not in self._warned:
-            self._warned.add(message)
+    def _warn_once(self, key, message):
+        if key not in self._warned:
+            self._warned.add(key)
             self.log(message, Fmi2Status.warning)
 
     def exit_initialization_mode(self):
@@ -229,6 +238,12 @@ class WheelRailContact(Fmi2Slave):
                             ("creepage_lateral", None), ("spin", None),
                             ("rolling_speed", 0.0), ("rail_position", None)):
             _rc.check_range(name, getattr(c, name), _scene.INPUTS[name][0], lower, None)
+
+    def _auxiliary(self, field):
+        """Value of an output some effects compute only when it is read (after a step)."""
+        if self._pipeline is not None:
+            self._pipeline.auxiliary(self._contact)
+        return getattr(self._contact, field)
 
     def _evaluate(self):
         c = self._contact
@@ -278,6 +293,32 @@ class WheelRailContact(Fmi2Slave):
     @staticmethod
     def _fmu_state_from_bytes(state):
         return json.loads(state.decode("utf-8"))
+
+
+def _repoint_bundle(resources):
+    """Make the (cached) bundled package import from this instance's resources directory.
+
+    Python caches modules by name: a second instance of this FMU in the same process (same
+    bundle name, same content) reuses the package imported by the first, whose extraction
+    directory an importer may already have deleted (fmpy does after each simulation). Lazy
+    submodule imports and data files must then come from this instance's copy.
+
+    Returns
+    -------
+    pathlib.Path or None
+        The bundled package directory of this instance (None when running from the sources).
+    """
+    if not resources:
+        return None
+    root = Path(resources) / _PACKAGE
+    if not root.is_dir():
+        return None
+    for name, module in list(sys.modules.items()):
+        if name == _PACKAGE or name.startswith(_PACKAGE + "."):
+            path = getattr(module, "__path__", None)
+            if isinstance(path, list):
+                path[:] = [str(root.joinpath(*name.split(".")[1:]))]
+    return root
 
 
 def _name_parameter(message):

@@ -27,6 +27,7 @@ from fmpy.validation import validate_fmu  # noqa: E402
 from railcontact.creep3d import creep_solution_3d  # noqa: E402
 from railcontact.hertz import hertz_3d  # noqa: E402
 from railcontact.scene import INPUTS, load_scene  # noqa: E402
+from railcontact.tables import CreepTable  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))
@@ -58,15 +59,19 @@ def simulate(fmu_path, scene_path, **kwargs):
     sim = scene.simulation
     start_values = {"scene_file": str(scene_path)}
     start_values.update(kwargs.pop("start_values", {}))
-    result = fmpy.simulate_fmu(str(fmu_path), start_time=sim["start_time"],
-                               stop_time=sim["stop_time"], output_interval=sim["step_size"],
-                               input=kwargs.pop("input", scene.input_signals()),
-                               start_values=start_values, debug_logging=True, logger=logger,
-                               **kwargs)
+    try:
+        result = fmpy.simulate_fmu(str(fmu_path), start_time=sim["start_time"],
+                                   stop_time=sim["stop_time"], output_interval=sim["step_size"],
+                                   input=kwargs.pop("input", scene.input_signals()),
+                                   start_values=start_values, debug_logging=True,
+                                   logger=logger, **kwargs)
+    except FMICallException as exc:
+        exc.add_note(f"FMU log: {messages}")
+        raise
     return scene, result, messages
 
 
-def reference_result(scene, inputs=None):
+def reference_result(scene, inputs=None, source=None):
     """Outputs computed by calling railcontact directly, on the FMU's output grid.
 
     Co-simulation sample and hold: the row at t_k (k >= 1) is the solution for the inputs at
@@ -85,15 +90,21 @@ def reference_result(scene, inputs=None):
         p0 = 1.5 * n_load / (np.pi * a0 * b0)
     opts = scene.effects["creep"]
     spin = held["spin"] if opts["spin"] else np.zeros(n_load.shape)
-    sol = creep_solution_3d(held["creepage_longitudinal"], held["creepage_lateral"], spin,
-                            n_load, a0, b0, scene.youngs_modulus, scene.poisson_ratio,
-                            scene.friction_coefficient, opts["method"])
+    args = (held["creepage_longitudinal"], held["creepage_lateral"], spin, n_load, a0, b0,
+            scene.youngs_modulus, scene.poisson_ratio, scene.friction_coefficient)
     contact = n_load > 0
-    r_a0 = (np.ones(n_load.shape) if opts["method"] == "linear"
-            else 1.0 - np.minimum(sol.normalised_creepage, 1.0))
-    cols = {"Fx": sol.tx, "Fy": sol.ty, "a0": a0, "b0": b0, "p0": p0,
-            "stick_area_fraction": np.where(contact, sol.stick_area_fraction, 1.0),
-            "stick_width_ratio": np.where(contact, sol.stick_width_ratio, 1.0),
+    if source == "table" or (source is None and opts["source"] == "table"):
+        table = CreepTable.from_file(ROOT / "tables" / f"{opts['table']}.nc")
+        tx, ty, stick, z = table.creep_solution_3d(*args)
+        width = np.sqrt(1.0 - np.minimum(z, 1.0) ** 2)
+    else:
+        sol = creep_solution_3d(*args, opts["method"])
+        tx, ty, stick, width, z = (sol.tx, sol.ty, sol.stick_area_fraction,
+                                   sol.stick_width_ratio, sol.normalised_creepage)
+    r_a0 = np.ones(n_load.shape) if opts["method"] == "linear" else 1.0 - np.minimum(z, 1.0)
+    cols = {"Fx": tx, "Fy": ty, "a0": a0, "b0": b0, "p0": p0,
+            "stick_area_fraction": np.where(contact, stick, 1.0),
+            "stick_width_ratio": np.where(contact, width, 1.0),
             "r_a0": np.where(contact, r_a0, 1.0)}
     out = np.zeros(len(inputs), dtype=[("time", float)] + [(k, float) for k in OUTPUTS])
     out["time"] = inputs["time"]
@@ -133,8 +144,7 @@ def test_bundled_names_cannot_collide(fmu_path):
     assert "resources/requirements.txt" in names
 
 
-@pytest.mark.parametrize("scene_path", [s for s in SCENES if "table" not in Path(s).name],
-                         ids=lambda s: Path(s).stem)
+@pytest.mark.parametrize("scene_path", SCENES, ids=lambda s: Path(s).stem)
 def test_scene_matches_direct_railcontact(fmu_path, scene_path):
     scene, result, messages = simulate(fmu_path, scene_path)
     reference = reference_result(scene)
@@ -145,6 +155,20 @@ def test_scene_matches_direct_railcontact(fmu_path, scene_path):
     for name in result.dtype.names:
         assert np.all(np.isfinite(result[name].astype(float))), name
     assert any("effects on: normal, creep" in m for _, m in messages)
+
+
+def test_table_scene_agrees_with_analytic_solver_and_warns_once(fmu_path):
+    scene_path = str(ROOT / "examples" / "scenes" / "creep_only_table.toml")
+    scene, result, messages = simulate(fmu_path, scene_path)
+    analytic = reference_result(scene, source="analytic")
+    mu_n = scene.friction_coefficient * scene.input_signals()["normal_force"].max()
+    for name in ("Fx", "Fy"):
+        err = np.abs(result[name] - analytic[name]).max()
+        assert err <= 1e-3 * mu_n, (name, err / mu_n)
+    for name in ("stick_area_fraction", "r_a0", "stick_width_ratio"):
+        assert np.abs(result[name] - analytic[name]).max() <= 2e-3, name
+    warnings = [m for s, m in messages if s == 1]
+    assert len(warnings) == 1 and "beyond the grid" in warnings[0], messages
 
 
 def test_switched_off_creep_is_not_built(fmu_path, tmp_path):

@@ -31,7 +31,8 @@ def test_defaults_fill_missing_sections():
     scene = parse_scene("")
     assert scene.youngs_modulus == DEFAULT_SCENE["material"]["youngs_modulus"]
     assert scene.effects == {"creep": {"enabled": True, "method": "modified_strip",
-                                       "source": "analytic", "spin": True, "table": "creep3d"}}
+                                       "source": "analytic", "spin": True,
+                                       "table": "creep_modified_strip"}}
     assert scene.geometry["kind"] == "curvatures"
     assert scene.inputs == {}
 

@@ -130,9 +130,16 @@ class Creep3D(_Effect):
     centre line y = 0 of the strip theories, ``a*(0)/a0 = 1 - min(z, 1)`` (Eq. (2.83) with
     a(0) = a0, z the normalised creepage of :func:`~railcontact.creep3d.creep_solution_3d`);
     1 for the linear theory (full stick by assumption). With N = 0 (no contact) the forces are
-    0 and the stick measures 1. Table:
-    :meth:`railcontact.tables.CreepTable.creep_force_3d` on the shipped table ``table`` (the
-    table reader's documented out-of-range behaviour applies; the FMU logs a warning once).
+    0 and the stick measures 1.
+
+    Table (``method = "modified_strip"`` only, the theory the shipped table holds):
+    :meth:`railcontact.tables.CreepTable.creep_force_3d` gives the forces in the step (its
+    scalar fast path); the stick measures and the validity flag are computed when first read
+    after a step (:meth:`auxiliary`) with :meth:`~railcontact.tables.CreepTable.
+    creep_solution_3d` on the inputs of that step, so an importer that reads only Fx and Fy
+    does not pay for them. Out of the table's grid (normalised creepage z beyond its last
+    node) the reader holds F = 1, which is exact (full sliding); the FMU logs a warning the
+    first time this is seen (when the stick outputs are evaluated).
     With ``spin = false`` the spin input is ignored (treated as 0).
     """
 
@@ -145,22 +152,26 @@ class Creep3D(_Effect):
         self.source = opts["source"]
         self.use_spin = opts["spin"]
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
-        self._warn = warn if warn is not None else (lambda msg: None)
-        if self.source == "analytic":
-            creep3d = _import("creep3d", "creep (analytic)")
-            self._solve = creep3d.creep_solution_3d
-            self._table = None
-        else:
+        self._warn = warn if warn is not None else (lambda key, msg: None)
+        self._aux_args = None
+        creep3d = _import("creep3d", f"creep ({self.source})")
+        self._solve = creep3d.creep_solution_3d
+        self._spin_coefficient = creep3d.spin_coefficient
+        self._table = None
+        if self.source == "table":
             tables = _import("tables", "creep (table)")
-            if self.method != "modified_strip" and False:  # pragma: no cover - placeholder
-                pass
-            path = table_path or tables.default_table_path(opts.get("table", "creep3d"))
+            if self.method != "modified_strip":
+                raise SceneError(f"effects.creep.method must be 'modified_strip' with source = "
+                                 f"'table' (the shipped creep table holds the modified strip "
+                                 f"theory); got {self.method!r}")
             try:
+                path = table_path or tables.default_table_path(opts["table"])
                 self._table = tables.CreepTable.from_file(path)
-            except OSError as exc:
+            except (OSError, ValueError) as exc:
                 raise EffectUnavailable(f"effect creep (table) not available in this build: "
-                                        f"cannot read table {str(path)!r}: {exc}") from None
-            self._solve = None
+                                        f"{exc}") from None
+            self._force = self._table.creep_force_3d
+            self._z_max = float(self._table.table.axes[0]["nodes"][-1])
 
     def step(self, c):
         self.calls += 1
@@ -168,6 +179,7 @@ class Creep3D(_Effect):
             c.Fx = c.Fy = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
             c.creep_within_validity = True
+            self._aux_args = None
             return
         spin = c.spin if self.use_spin else 0.0
         if self._table is None:
@@ -182,10 +194,39 @@ class Creep3D(_Effect):
                 res.normalised_creepage), 1.0)
             c.creep_within_validity = bool(res.within_validity)
         else:
-            fx, fy = self._table.creep_force_3d(c.creepage_longitudinal, c.creepage_lateral,
-                                                spin, c.normal_force, c.a0, c.b0, self._e,
-                                                self._nu, c.friction_coefficient)
+            args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
+                    c.b0, self._e, self._nu, c.friction_coefficient)
+            fx, fy = self._force(*args)
             c.Fx, c.Fy = float(fx), float(fy)
+            self._aux_args = args
+
+    def auxiliary(self, c):
+        """Fill the stick measures and the validity flag of the last table step (lazily)."""
+        args, self._aux_args = self._aux_args, None
+        if args is None:
+            return
+        _, _, stick, z = self._table.creep_solution_3d(*args)
+        z = float(z)
+        zc = min(z, 1.0)
+        c.stick_area_fraction = float(stick)
+        c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
+        c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
+        c.creep_within_validity = bool(float(self._spin_coefficient(
+            args[0], args[1], args[2], args[4], args[5])) <= 1.0)
+        if z > self._z_max:
+            self._warn("creep-table-range",
+                       f"creep table {self._table.table.path.name}: normalised creepage "
+                       f"z = {z:.4g} beyond the grid (last node {self._z_max:g}); the reader "
+                       f"holds F = 1 there, which is exact (full sliding)")
+
+    def get_state(self):
+        return {"calls": self.calls,
+                "aux_args": None if self._aux_args is None else list(self._aux_args)}
+
+    def set_state(self, state):
+        self.calls = int(state["calls"])
+        args = state.get("aux_args")
+        self._aux_args = None if args is None else tuple(args)
 
 
 class Pipeline:
@@ -201,11 +242,17 @@ class Pipeline:
         self.scene = scene
         self.effects = effects
         self._steps = tuple(e.step for e in effects.values())
+        self._auxiliary = tuple(e for e in effects.values() if hasattr(e, "auxiliary"))
 
     def step(self, contact):
         """Evaluate every built effect once on ``contact`` (in place)."""
         for step in self._steps:
             step(contact)
+
+    def auxiliary(self, contact):
+        """Evaluate the outputs effects compute only on demand (after a step)."""
+        for e in self._auxiliary:
+            e.auxiliary(contact)
 
     def calls(self):
         """Effect name -> number of evaluations so far."""
@@ -232,7 +279,7 @@ def build_pipeline(scene, tables_dir=None, warn=None):
         Directory holding the shipped ``<name>.nc`` tables (the FMU's resources); default:
         :func:`railcontact.tables.default_table_path`.
     warn : callable, optional
-        ``warn(message)`` for warnings the effects log (once each).
+        ``warn(key, message)`` for warnings the effects log (the caller logs each key once).
 
     Raises
     ------
@@ -248,8 +295,6 @@ def build_pipeline(scene, tables_dir=None, warn=None):
     if "creep" in scene.effects:
         table_path = None
         if scene.effects["creep"]["source"] == "table" and tables_dir is not None:
-            candidate = Path(tables_dir) / f"{scene.effects['creep'].get('table', 'creep3d')}.nc"
-            if candidate.exists():
-                table_path = candidate
+            table_path = Path(tables_dir) / f"{scene.effects['creep']['table']}.nc"
         effects["creep"] = Creep3D(scene, table_path=table_path, warn=warn)
     return Pipeline(scene, effects)

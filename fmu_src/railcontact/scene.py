@@ -111,7 +111,7 @@ DEFAULT_SCENE = {
                  "semi_axis_lateral": 5e-3},
     "friction": {"friction_coefficient": 0.3},
     "effects": {"creep": {"enabled": True, "method": "modified_strip", "source": "analytic",
-                          "spin": True, "table": "creep3d"}},
+                          "spin": True, "table": "creep_modified_strip"}},
     "simulation": {"start_time": 0.0, "stop_time": 1.0, "step_size": 1e-3},
     "inputs": {},
 }
@@ -346,7 +346,7 @@ def scene_from_dict(data):
             opts["method"] = _choice("effects.creep.method", opts.get("method"),
                                      CREEP_METHODS)
             opts["spin"] = _boolean("effects.creep.spin", opts.get("spin", True))
-            if not isinstance(opts.get("table", "creep3d"), str):
+            if not isinstance(opts.get("table"), str):
                 raise SceneError(f"effects.creep.table must be a string; got "
                                  f"{opts['table']!r}")
         effects[name] = opts
