@@ -26,7 +26,9 @@ from railcontact.reference.halfspace2d import (
     solve_rolling_2d,
     solve_transient_rolling_2d,
     tangential_reference_length,
+    falling_friction_steepness,
 )
+from railcontact.reference.halfspace2d import _slip_matrix
 
 DATA = Path(__file__).parent / "data" / "contact_carter2d.csv"
 
@@ -204,6 +206,31 @@ def test_corrugated_parabola_several_waves_against_nnls():
     # complementarity of the discrete solution
     assert np.all(r.deformed_gap[~r.contact_mask] > 0)
     assert np.all(r.deformed_gap[r.contact_mask] == 0)
+
+
+def test_flat_punch_square_root_singularity():
+    """Rigid flat punch of half-width w (gap 0 inside, large outside): p = N/(pi sqrt(w^2-x^2))
+    (Johnson, Contact Mechanics, Eq. (2.64)); first-order convergence away from the edges."""
+    w = A0
+    errs = []
+    for n in (100, 400):
+        r = solve_normal_2d(lambda x: np.where(np.abs(x) < w, 0.0, 1e-3), N, E, NU, -1.5 * w,
+                            1.5 * w, n)
+        inner = np.abs(r.x) < 0.8 * w
+        p_ex = N / (np.pi * np.sqrt(w**2 - r.x[inner] ** 2))
+        errs.append(np.max(np.abs(r.pressure[inner] / p_ex - 1)))
+        assert abs(r.contact_end - w) <= r.element_width
+    assert errs[1] < 0.3 * errs[0] and errs[1] < 0.015
+
+
+def test_primal_fallback_gives_the_same_solution():
+    """max_iter=1 forces the primal active-set fallback (Nocedal & Wright Alg. 16.3)."""
+    gap = lambda x: parabola(x) + 3e-6 * np.cos(2 * np.pi * x / (A0 / 3))  # noqa: E731
+    fast = solve_normal_2d(gap, N, E, NU, -1.6 * A0, 1.6 * A0, 120)
+    slow = solve_normal_2d(gap, N, E, NU, -1.6 * A0, 1.6 * A0, 120, max_iter=1)
+    assert slow.iterations > 1
+    np.testing.assert_allclose(slow.pressure, fast.pressure, rtol=1e-8, atol=1e-8 * P0)
+    assert np.isclose(slow.approach, fast.approach, rtol=1e-10)
 
 
 def test_domain_too_small_raises():
@@ -417,6 +444,45 @@ def test_falling_friction_law_conditions():
     steep = lambda s: 0.1 + 0.4 / (1 + np.abs(1e5 * s))  # noqa: E731  (5.16), kappa = 1e5
     with pytest.raises(ValueError, match="friction.*creepage"):
         solve_rolling_2d(r.x, r.pressure, E, NU, creepage=-0.2 * 0.5 * A0 / R, friction=steep)
+
+
+def test_slip_matrix_diagonal_and_positive_definiteness():
+    """M_ii = (3/2) ln 3 K on every grid (element integrals of ln|t| by hand:
+    (1 + ln 2) - (3/2 ln 3/2 - 1 + 1/2 ln 2 ... ) = 1.5 ln 3), and the symmetric part of the
+    steady slip matrix is positive definite (uniqueness of the Coulomb problem)."""
+    for n, width in ((20, 1e-3), (101, 3e-3), (400, 2e-3)):
+        x = np.linspace(-width, width, n)
+        m = _slip_matrix(x, x[1] - x[0], K)
+        np.testing.assert_allclose(np.diag(m), 1.5 * np.log(3) * K, rtol=1e-9)
+        assert np.linalg.eigvalsh(0.5 * (m + m.T)).min() > 0
+
+
+def test_falling_law_steepness_predicts_failure():
+    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 120)
+    pmax = r.pressure.max()
+    ok = lambda s: 0.25 + 0.15 / (1 + np.abs(1e3 * s))    # noqa: E731
+    bad = lambda s: 0.1 + 0.4 / (1 + np.abs(1e4 * s))     # noqa: E731
+    assert falling_friction_steepness(ok, pmax, E, NU) < 1 < falling_friction_steepness(
+        bad, pmax, E, NU)
+    assert falling_friction_steepness(lambda s: 0.3 + 0 * s, pmax, E, NU) == 0.0
+    xi = -0.2 * 0.4 * A0 / R
+    solve_rolling_2d(r.x, r.pressure, E, NU, creepage=xi, friction=ok)
+    with pytest.raises(ValueError, match="steepness"):
+        solve_rolling_2d(r.x, r.pressure, E, NU, creepage=xi, friction=bad)
+
+
+def test_rising_step_law_creep_curve_is_carter_with_mu_k():
+    """Nielsen Sec. 5.2: for the step law (5.3) with mu_k > mu_0 the creep curve equals Carter's
+    with mu = mu_k (not Ohyama's). Law (5.16) with kappa = 1e6 approximates the step."""
+    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 200)
+    mu0, muk = 0.3, 0.42
+    law = lambda s: (mu0 - muk) / (1 + np.abs(1e6 * s)) + muk  # noqa: E731
+    for frac in (0.2, 0.6, 0.95):
+        xi = -frac * mu0 * A0 / R
+        rr = solve_rolling_2d(r.x, r.pressure, E, NU, creepage=xi, friction=law)
+        f = frac * mu0 / muk  # |xi| / |xi_c(mu_k)|
+        carter_k = muk * N * (1 - (1 - f) ** 2)
+        assert np.isclose(rr.tangential_force, carter_k, rtol=5e-3)
 
 
 def test_rising_and_moderate_friction_laws_5_16():

@@ -70,6 +70,7 @@ __all__ = [
     "TransientRolling2D",
     "solve_transient_rolling_2d",
     "tangential_reference_length",
+    "falling_friction_steepness",
 ]
 
 
@@ -660,16 +661,81 @@ def _law_partition(mmat, pc, law_t, mu0, xi_in, force, dx, q, xi, stick, tol, ma
     return None
 
 
+def _graph_newton(mmat, pc, law_t, mu0, xi_in, force, dx, z, xi, tol, max_iter):
+    """Semismooth Newton on the friction graph of every element (velocity-dependent friction).
+
+    Each element is parametrised by ``z`` along its (continuous) friction graph: ``|z| <= 1`` is
+    stick (``s = 0``, ``q = -z mu(0) p``), ``|z| > 1`` slip (``s = s_ref sign(z)(|z| - 1)``,
+    ``q = -sign(z) mu(|s|) p``). The discrete problem ``s(z) = xi + M q(z)`` (plus
+    ``dx sum q = T`` with unknown ``xi`` under force control) is then a continuous,
+    piecewise-smooth system solved by Newton's method with a backtracking line search; the stick/
+    slip partition changes continuously. Returns ``(z, xi, ok)``.
+    """
+    m = z.size
+    fc = force is not None
+    s_ref = mu0 * pc.max() * float(np.mean(np.diag(mmat)))
+    length = dx * m
+
+    def parts(z_):
+        slip_ = np.abs(z_) > 1.0
+        s_ = s_ref * np.sign(z_) * np.maximum(np.abs(z_) - 1.0, 0.0)
+        mu_, slope_ = _mu_and_slope(law_t, np.abs(s_))
+        q_ = np.where(slip_, -np.sign(z_) * mu_ * pc, -z_ * mu0 * pc)
+        return slip_, s_, q_, slope_
+
+    def resid(z_, xi_):
+        slip_, s_, q_, slope_ = parts(z_)
+        f = (s_ - xi_ - mmat @ q_) / s_ref
+        if fc:
+            f = np.append(f, (dx * q_.sum() - force) / (length * mu0 * pc.max()))
+        return f
+
+    f = resid(z, xi)
+    for _ in range(max_iter):
+        if np.linalg.norm(f, np.inf) <= tol:
+            return z, xi, True
+        slip, s, q, slope = parts(z)
+        ds = np.where(slip, s_ref, 0.0)
+        dq = np.where(slip, -slope * s_ref * pc, -mu0 * pc)
+        jac = np.zeros((m + fc, m + fc))
+        jac[:m, :m] = -mmat * dq[None, :] / s_ref
+        jac[np.arange(m), np.arange(m)] += ds / s_ref
+        if fc:
+            jac[:m, m] = -1.0 / s_ref
+            jac[m, :m] = dx * dq / (length * mu0 * pc.max())
+        try:
+            d = np.linalg.solve(jac, -f)
+        except np.linalg.LinAlgError:
+            d = np.linalg.lstsq(jac, -f, rcond=None)[0]
+        n2 = np.linalg.norm(f)
+        alpha = 1.0
+        while alpha > 1e-6:
+            z_new = z + alpha * d[:m]
+            xi_new = xi + alpha * d[m] * s_ref if fc else xi
+            f_new = resid(z_new, xi_new)
+            if np.linalg.norm(f_new) < (1 - 1e-4 * alpha) * n2:
+                break
+            alpha *= 0.5
+        else:
+            return z, xi, False
+        z, xi, f = z_new, xi_new, f_new
+    return z, xi, bool(np.linalg.norm(f, np.inf) <= tol)
+
+
 def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, tol, max_steps,
                           max_outer):
     """Velocity-dependent friction by continuation from the Coulomb solution with ``mu(0)``.
 
-    ``mu_t(s) = mu(0) + t (mu(s) - mu(0))``, ``t`` from 0 to 1; each step is solved by Newton on
-    the stick/slip partition starting from the previous step; the step in ``t`` is halved on
+    ``mu_t(s) = mu(0) + t (mu(s) - mu(0))``, ``t`` from 0 to 1; each step is solved by
+    :func:`_graph_newton` starting from the previous step; the step in ``t`` is halved on
     failure. The branch returned is the one connected to the static-friction Carter solution.
     """
+    s_ref = mu0 * pc.max() * float(np.mean(np.diag(mmat)))
+    s0 = xi + mmat @ q
+    z = np.where(stick, -q / np.where(pc > 0, mu0 * pc, 1.0),
+                 np.sign(s0) * (1.0 + np.abs(s0) / s_ref))
+    xi_state = xi
     t, dt, steps = 0.0, 1.0, 0
-    state = (q, xi, stick)
     while t < 1.0:
         steps += 1
         if steps > max_steps:
@@ -677,18 +743,58 @@ def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, to
         t_new = min(1.0, t + dt)
         law_t = (lambda tt: (lambda s_: mu0 + tt * (np.asarray(law(s_), dtype=float) - mu0)))(
             t_new)
-        out = _law_partition(mmat, pc, law_t, mu0, xi_in, force, dx, state[0], state[1],
-                             state[2].copy(), tol, max_outer)
-        if out is None:
+        z_new, xi_new, ok = _graph_newton(mmat, pc, law_t, mu0, xi_in, force, dx, z.copy(),
+                                          xi_state, tol, 60)
+        if not ok:
             dt *= 0.5
-            if dt < 1.0 / 4096:
+            if dt < 1.0 / 256:
                 raise RuntimeError(f"t = {t:.4g}")
             continue
-        q, s, xi, stick = out
-        state = (q, xi, stick)
-        t = t_new
+        z, xi_state, t = z_new, xi_new, t_new
         dt = min(1.0, 2.0 * dt)
-    return q, xi + mmat @ q, xi, stick, steps
+    stick = np.abs(z) <= 1.0
+    s = np.where(stick, 0.0, s_ref * np.sign(z) * (np.abs(z) - 1.0))
+    mu_el = np.asarray(law(np.abs(s)), dtype=float)
+    q = np.where(stick, -z * mu0 * pc, -np.sign(z) * mu_el * pc)
+    return q, s, xi_state, stick, steps
+
+
+def falling_friction_steepness(friction, max_pressure, youngs_modulus, poisson_ratio,
+                               slip_max=1.0e-2, n_samples=2001):
+    r"""Steepness number ``(3/2) ln(3) K p_max max(-mu'(|s|))`` of a falling friction law.
+
+    In the steady 2-D discretisation the diagonal of the slip matrix is ``M_ii = (3/2) ln(3) K``
+    for every element width (``K = 4 (1 - nu^2)/(pi E)``), so an element with pressure ``p``
+    whose friction falls with slope ``mu'`` has a locally monotone friction graph
+    (``s - M_ii q`` increasing along it) only if ``(3/2) ln 3 K p |mu'| < 1``. Above 1 the
+    element problem has several solutions (the discrete counterpart of the instability of a
+    falling creep curve, Nielsen Ch. 5) and :func:`solve_rolling_2d` may fail to follow the
+    law; the number does not depend on the grid.
+
+    Parameters
+    ----------
+    friction : callable
+        ``mu(|s|)``, vectorised.
+    max_pressure : float
+        Largest pressure in the contact. [Pa]
+    youngs_modulus, poisson_ratio : float
+        [Pa], [-]
+    slip_max : float, optional
+        Slips sampled in ``[0, slip_max]``. [-]
+    n_samples : int, optional
+        Number of samples (geometric spacing from 1e-9). [-]
+
+    Returns
+    -------
+    float
+        The steepness number (0 for a law that never falls). [-]
+    """
+    kern = combined_compliance(youngs_modulus, poisson_ratio)
+    p = float(check_range("max_pressure", max_pressure, "Pa", 0.0, None))
+    s = np.concatenate([[0.0], np.geomspace(1e-9, float(slip_max), int(n_samples))])
+    mu = np.asarray(friction(s), dtype=float)
+    slope = np.diff(mu) / np.diff(s)
+    return float(1.5 * np.log(3.0) * kern * p * max(0.0, -slope.min()))
 
 
 def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
@@ -724,8 +830,10 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
         Coulomb solution with ``mu(0)``, each step by Newton's method on the stick/slip
         partition (step halved on failure). With a falling law the problem may have several
         solutions; the one returned is the branch connected to the static-friction Carter
-        solution. In the step-law limit this gives Nielsen's Fig. 5.3: Carter with ``mu_k`` plus
-        a one-element peak at the stick/slip limit.
+        solution. Rising laws work up to the step-law limit (where the creep curve is Carter's
+        with ``mu_k``, as Nielsen states in Sec. 5.2). A falling law can be followed only while
+        :func:`falling_friction_steepness` is below ~1; above, a ValueError names the
+        parameters and that number.
     max_iter : int, optional
         Active-set iterations per inner solve. [-]
     friction_tol : float, optional
@@ -808,12 +916,14 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
         except RuntimeError as exc:
             ctl = (f"creepage = {xi_in:g}" if xi_in is not None
                    else f"tangential_force = {force_in:g} N/m")
+            steep = falling_friction_steepness(law, pc.max(), youngs_modulus, poisson_ratio)
             raise ValueError(
                 "friction: the velocity-dependent friction law could not be followed from "
                 f"mu(0) = {mu0:g} to the full law (continuation stopped at {exc}; {ctl}, "
                 f"friction_max_iter = {friction_max_iter}, friction_tol = {friction_tol:g}, "
-                f"{idx.size} contact elements). A very steep falling law makes the discrete "
-                "problem non-unique element by element; use a smoother law or fewer elements"
+                f"{idx.size} contact elements). Falling-law steepness "
+                f"(3/2) ln(3) K max(p) max|mu'| = {steep:.3g}; above 1 the discrete problem is "
+                "non-unique element by element (see falling_friction_steepness)"
             ) from None
         mu_el = np.where(st, mu0, np.asarray(law(np.abs(s)), dtype=float))
     traction = zero.copy()
