@@ -1,0 +1,242 @@
+#!/usr/bin/env python
+r"""Speed and memory of the WheelRailContact FMU, measured through fmpy's FMI 2.0 API.
+
+    python benchmarks/bench_fmu.py [--long N] [--fmu PATH]
+
+For every bundled scene (``examples/scenes/*.toml``), plus a normal-contact-only scene and a
+trivial PythonFMU slave with the same interface (6 Real inputs, 9 Real outputs, ``do_step``
+copies numbers), all in the same run:
+
+* ``doStep``: microseconds per ``fmi2DoStep`` with the inputs changing every step (the inputs
+  are set before the timed call, outside the timing);
+* ``step+I/O``: microseconds per ``fmi2SetReal`` (6 inputs) + ``fmi2DoStep`` + ``fmi2GetReal``
+  (all Real outputs), what a co-simulation master pays per step.
+
+The ratio to the trivial slave is printed; the target is <= 2 for the creep-only scene from
+the tables. ``--long N`` runs the table scene for N steps (default 1e6) with inputs sweeping
+the hard regions (N through 0, creepage past saturation, large spin) and reports the resident
+set size at 1e5 steps and at the end, and the peak.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import math
+import resource
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "fmu_src")]
+
+TRIVIAL = '''
+from pythonfmu import Fmi2Slave, Fmi2Causality, Real
+
+INPUTS = ["normal_force", "creepage_longitudinal", "creepage_lateral", "spin",
+          "rolling_speed", "rail_position"]
+OUTPUTS = ["Fx", "Fy", "a0", "b0", "p0", "stick_area_fraction", "stick_width_ratio", "r_a0",
+           "extra"]
+
+
+class TrivialContact(Fmi2Slave):
+    """Same interface size as WheelRailContact; do_step only copies numbers."""
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        for name in INPUTS:
+            setattr(self, name, 0.0)
+            self.register_variable(Real(name, causality=Fmi2Causality.input))
+        for name in OUTPUTS:
+            setattr(self, name, 0.0)
+            self.register_variable(Real(name, causality=Fmi2Causality.output))
+
+    def do_step(self, current_time, step_size):
+        self.Fx = -self.creepage_longitudinal
+        self.Fy = -self.creepage_lateral
+        return True
+'''
+
+INPUT_NAMES = ["normal_force", "creepage_longitudinal", "creepage_lateral", "spin",
+               "rolling_speed", "rail_position"]
+
+
+def _rss_mb():
+    with open("/proc/self/statm") as f:
+        pages = int(f.read().split()[1])
+    return pages * resource.getpagesize() / 2**20
+
+
+def _peak_mb():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+class Instance:
+    def __init__(self, fmu, workdir, scene_file=None, scene_toml=None):
+        from fmpy import extract, read_model_description
+        from fmpy.fmi2 import FMU2Slave
+
+        md = read_model_description(str(fmu))
+        self.unzip = extract(str(fmu), str(workdir))
+        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=self.unzip,
+                             modelIdentifier=md.coSimulation.modelIdentifier,
+                             instanceName="bench")
+        vr = {v.name: v.valueReference for v in md.modelVariables}
+        self.inputs = [vr[n] for n in INPUT_NAMES]
+        self.outputs = [v.valueReference for v in md.modelVariables
+                        if v.causality == "output" and v.type == "Real"]
+        f = self.fmu
+        f.instantiate()
+        f.setupExperiment(startTime=0.0)
+        if scene_file is not None:
+            f.setString([vr["scene_file"]], [str(scene_file)])
+        if scene_toml is not None:
+            f.setString([vr["scene_toml"]], [scene_toml])
+        f.enterInitializationMode()
+        f.exitInitializationMode()
+
+    def close(self):
+        self.fmu.terminate()
+        self.fmu.freeInstance()
+
+
+def _signals(n):
+    k = np.arange(n)
+    return np.column_stack([
+        8e4 + 2e4 * np.sin(0.01 * k),                 # normal force [N]
+        0.008 * np.sin(0.003 * k),                    # through saturation both ways
+        0.002 * np.cos(0.007 * k),
+        0.05 + 0.0 * k,
+        30.0 + 0.0 * k,
+        30.0 * 1e-3 * k]).tolist()
+
+
+def time_steps(inst, n, h=1e-3):
+    """(us per doStep, us per setReal+doStep+getReal) with inputs changing every step."""
+    f, ins, outs = inst.fmu, inst.inputs, inst.outputs
+    rows = _signals(n)
+    do_step, set_real, get_real = f.doStep, f.setReal, f.getReal
+    clock = time.perf_counter
+    total = 0.0
+    t = 0.0
+    for row in rows:
+        set_real(ins, row)
+        t0 = clock()
+        do_step(t, h)
+        total += clock() - t0
+        t += h
+    t0 = clock()
+    for row in rows:
+        set_real(ins, row)
+        do_step(t, h)
+        get_real(outs)
+        t += h
+    io = clock() - t0
+    return 1e6 * total / n, 1e6 * io / n
+
+
+def long_run(fmu, workdir, scene, n_steps):
+    inst = Instance(fmu, workdir, scene_file=scene)
+    f, ins, outs = inst.fmu, inst.inputs, inst.outputs
+    h, t = 1e-4, 0.0
+    cycle = 10007
+    k = np.arange(cycle)
+    sweep = np.column_stack([
+        np.maximum(0.0, 1e5 * np.sin(2 * math.pi * k / cycle)),      # includes N = 0
+        0.05 * np.sin(2 * math.pi * 3 * k / cycle),                  # far beyond saturation
+        0.01 * np.cos(2 * math.pi * 5 * k / cycle),
+        5.0 * np.sin(2 * math.pi * 7 * k / cycle),                   # spin pole inside
+        30.0 + 0.0 * k, 0.0 * k]).tolist()
+    report = {}
+    gc.collect()
+    rss0 = _rss_mb()
+    t_start = time.perf_counter()
+    bad = 0
+    for i in range(n_steps):
+        f.setReal(ins, sweep[i % cycle])
+        f.doStep(t, h)
+        t += h
+        if i % 1000 == 0:
+            values = f.getReal(outs)
+            bad += sum(not math.isfinite(v) for v in values)
+        if i + 1 in (10**5, n_steps):
+            report[i + 1] = _rss_mb()
+    elapsed = time.perf_counter() - t_start
+    inst.close()
+    return rss0, report, _peak_mb(), elapsed, bad
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--fmu", default=None, help="WheelRailContact.fmu (default: build)")
+    parser.add_argument("--steps", type=int, default=20000,
+                        help="steps per table/trivial measurement (analytic: steps/10)")
+    parser.add_argument("--long", type=float, default=0, metavar="N",
+                        help="also run N steps of the table scene and report memory")
+    args = parser.parse_args(argv)
+
+    from pythonfmu.builder import FmuBuilder
+
+    work = Path(tempfile.mkdtemp(prefix="bench_fmu_"))
+    try:
+        if args.fmu:
+            fmu = Path(args.fmu)
+        else:
+            sys.path.insert(0, str(ROOT))
+            import build_fmu
+            fmu = build_fmu.build(work)
+        script = work / "trivialcontact_bench.py"
+        script.write_text(TRIVIAL)
+        trivial = FmuBuilder.build_FMU(script, dest=work / "TrivialContact.fmu")
+
+        cases = [("trivial PythonFMU slave", trivial, {})]
+        cases.append(("normal contact only", fmu,
+                      {"scene_toml": "[effects.creep]\nenabled = false\n"}))
+        for scene in sorted((ROOT / "examples" / "scenes").glob("*.toml")):
+            cases.append((scene.stem, fmu, {"scene_file": scene}))
+
+        results = []
+        for i, (label, path, kw) in enumerate(cases):
+            inst = Instance(path, work / f"x{i}", **kw)
+            slow = "table" not in label and label not in ("trivial PythonFMU slave",
+                                                          "normal contact only")
+            n = max(200, args.steps // 10) if slow else args.steps
+            time_steps(inst, min(n, 500))       # warm-up (numba dispatch, caches)
+            results.append((label, n) + time_steps(inst, n))
+            inst.close()
+
+        base_step, base_io = results[0][2], results[0][3]
+        print(f"{'case':34s} {'steps':>7s} {'doStep [us]':>12s} {'x trivial':>10s} "
+              f"{'step+I/O [us]':>14s} {'x trivial':>10s}")
+        for label, n, step, io in results:
+            print(f"{label:34s} {n:7d} {step:12.2f} {step / base_step:10.2f} {io:14.2f} "
+                  f"{io / base_io:10.2f}")
+        table = [r for r in results if r[0] == "creep_only_table"]
+        if table:
+            ratio = table[0][2] / base_step
+            print(f"\ncreep-only scene from the tables: {ratio:.2f} x the trivial doStep "
+                  f"(target <= 2): {'met' if ratio <= 2 else 'NOT met'}")
+
+        if args.long:
+            n_long = int(args.long)
+            rss0, rss, peak, elapsed, bad = long_run(
+                fmu, work / "long", ROOT / "examples" / "scenes" / "creep_only_table.toml",
+                n_long)
+            print(f"\nlong run, creep_only_table, {n_long} steps in {elapsed:.1f} s "
+                  f"({1e6 * elapsed / n_long:.1f} us/step incl. setReal), non-finite outputs "
+                  f"sampled: {bad}")
+            print(f"RSS before {rss0:.1f} MB; " + "; ".join(
+                f"after {k} steps {v:.1f} MB" for k, v in sorted(rss.items()))
+                + f"; peak {peak:.1f} MB")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
