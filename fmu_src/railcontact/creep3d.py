@@ -123,6 +123,10 @@ def strip_force_function(z):
 
 def _f_over_z(z):
     """F(z)/z for 0 <= z <= 1, without cancellation; = 3 pi/4 at z = 0 and 1 at z = 1."""
+    # erratum: (2.82) as printed reads du/dx = 4(1-nu^2)/(pi E) (mu p0 / a) (a(y) - a*(y)); the
+    # per-strip Carter solution gives 4(1-nu^2)/E (mu p0 / a0) (a(y) - a*(y)) (no pi, a0 not a),
+    # which is what (2.83)-(2.85) use. F here (from (2.83)-(2.87)) is verified by quadrature of
+    # the strip tractions in tests/test_creep3d.py::test_strip_formula_2_87_against_quadrature.
     r = np.sqrt(np.maximum(1.0 - z * z, 0.0))
     return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * np.arccos(z)
 

@@ -84,6 +84,10 @@ def kalker_table():
     text = resources.files("railcontact").joinpath("data/kalker_coefficients.csv").read_text()
     rows = [line.split(",") for line in text.splitlines()
             if line and not line.startswith("#") and not line.startswith("a0_over_b0")]
+    # erratum: Nielsen (1998) Appendix B rows a0/b0 = 0.1 and 0.2 are garbled by the OCR
+    # ("0.01 | 9 59", "3.31 9.97 | 2.32"); the file holds Kalker's values (3.31, 2.52, 0.473 and
+    # 3.37, 2.63, 0.603 at nu = 0.25), checked against Kalker (1990) Table E.3 as coded in
+    # CONTACT's linrol and against the smooth run of the neighbouring rows.
     data = np.array(rows, dtype=float)
     g_raw = data[:, 0]
     # snap 1.11111 -> 1/0.9 etc. (the table lists b0/a0 = 0.9 ... 0.1 with one decimal)
