@@ -41,8 +41,9 @@ References
    friction, PhD thesis, TH Delft, 1967.
 .. [2] J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990,
    Appendix E, Table E.3 (creepage coefficients and their asymptotes).
-.. [3] E.A.H. Vollebregt, CONTACT (Apache-2.0), module m_hertz, subroutine linrol: the same
-   table and asymptotes, with linear interpolation in g and reciprocal-quadratic in nu.
+.. [3] E.A.H. Vollebregt, CONTACT (Apache-2.0, github.com/eve70a/CONTACT), src/m_hertz.f90,
+   subroutine linrol: the same table and asymptotes, with linear interpolation in g and
+   reciprocal-quadratic interpolation in nu.
 .. [4] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Eqs. (2.61)-(2.62) and Appendix B.
 """
 
