@@ -232,7 +232,7 @@ def _linear_patch_integrals(beta, r, n_nodes, degree):
 
 
 def wear_coefficients(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *,
-                      n_nodes=48, degree=None):
+                      n_nodes=24, degree=None):
     r"""Linearised wear coefficients ``w = (W1 + i W2) a0 / (K mu^2 N)`` of one harmonic.
 
     ``W_A + i W_B = (W1 + i W2)(Z_A + i Z_B)`` (4.95) with ``W1 + i W2 = K mu^2 N / a0 * w``.
@@ -251,7 +251,8 @@ def wear_coefficients(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_M
         One of :data:`WEAR_MODELS` (module docstring); default ``"material_point"``.
     n_nodes : int
         Gauss-Chebyshev nodes across the slip zone (the integrand times the weight is smooth,
-        so the quadrature converges spectrally; 48 gives ~1e-12 up to a0/L = 2). [-]
+        so the quadrature converges spectrally; 24 gives a relative error below 1e-9 for a0/L
+        up to 2 and r_a0 in [0.01, 0.99], checked against 256 nodes). [-]
     degree : int, optional
         Series degree (Chebyshev-Bessel terms); default ``ceil(e k a0) + 12``. [-]
 
