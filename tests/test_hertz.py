@@ -163,3 +163,18 @@ def test_ratio_errors():
         curvature_ratio_from_axis_ratio(0.0)
     with pytest.raises(ValueError, match="curvature_ratio"):
         axis_ratio_from_curvature_ratio(np.inf)
+
+
+def test_3d_against_contact_tractcurv_header():
+    """CONTACT (Vollebregt, Apache-2.0) tractcurv.ref_out, 3-D Hertzian geometry: A1 = 0.8e-3
+    /mm and AA/BB = 0.5 prescribed, Fn = 106.7 kN, G = 82000 N/mm^2, nu = 0.28 -> B1 = 0.2814e-3
+    /mm, AA = 6.304 mm, BB = 12.61 mm (printed to 4 digits). CONTACT's A1, B1 are the gap
+    coefficients h = A1 x^2 + B1 y^2, i.e. the same A', B' as here."""
+    g_mod, nu = 82e9, 0.28
+    e_mod = 2 * g_mod * (1 + nu)
+    ratio = curvature_ratio_from_axis_ratio(0.5)
+    assert 0.8 * ratio == pytest.approx(0.2814, rel=2e-4)
+    a0, b0, p0 = hertz_3d(106.7e3, 0.8, 0.8 * ratio, e_mod, nu)
+    assert a0 == pytest.approx(6.304e-3, rel=1e-4)
+    assert b0 == pytest.approx(12.61e-3, rel=5e-4)
+    assert p0 == pytest.approx(640.7e6, rel=1e-3)      # CONTACT's PMAX on its 48x44 grid
