@@ -338,7 +338,7 @@ def test_carter_convergence_table():
     xi = -0.37 * mu * A0 / R
     a_star, force = _carter(xi)
     rows = []
-    for n in (50, 100, 200, 400, 800):
+    for n in (50, 100, 200, 400):  # 800: 2.5e-4, 3.6e-5, 3.7e-4 (benchmark)
         r = solve_normal_2d(parabola, N, E, NU, -1.23 * A0, 1.31 * A0, n)
         rr = solve_rolling_2d(r.x, r.pressure, E, NU, creepage=xi, friction=mu)
         err_f = abs(rr.tangential_force / force - 1)
@@ -364,7 +364,7 @@ def test_carter_convergence_table():
 
 
 def test_carter_creep_curve_and_saturation():
-    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 240)
+    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 160)
     mu = 0.25
     xi_c = mu * A0 / R   # critical creepage magnitude (2.54)
     for frac in (0.1, 0.5, 0.9):
@@ -423,7 +423,7 @@ def test_constant_callable_law_equals_coulomb():
 
 
 def test_falling_friction_law_conditions():
-    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 160)
+    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 100)
     mu0, muk, kappa = 0.4, 0.25, 2000.0
     law = lambda s: muk + (mu0 - muk) * np.exp(-kappa * np.abs(s))  # noqa: E731
     xi = -0.6 * mu0 * A0 / R
@@ -458,7 +458,7 @@ def test_slip_matrix_diagonal_and_positive_definiteness():
 
 
 def test_falling_law_steepness_predicts_failure():
-    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 120)
+    r = solve_normal_2d(parabola, N, E, NU, -1.2 * A0, 1.2 * A0, 60)
     pmax = r.pressure.max()
     ok = lambda s: 0.25 + 0.15 / (1 + np.abs(1e3 * s))    # noqa: E731
     bad = lambda s: 0.1 + 0.4 / (1 + np.abs(1e4 * s))     # noqa: E731
