@@ -4,7 +4,11 @@ For n = 100 ... 1600 elements on a domain not aligned with the contact edges, pr
 time of the normal solve (Hertz) and of the steady-rolling solve (Carter, xi = -0.37 xi_c), and
 their errors against the closed forms (Hertz (2.40)-(2.42), Carter (2.48)-(2.53)).
 
-Run:  python benchmarks/bench_reference2d.py [--repeat 3]
+Then times a velocity-dependent law (5.16) (mu_k = 0.6 mu_0, kappa = 1e3) and the transient
+solver (constant force, 6 transits of the contact).
+
+Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_reference2d.py [--repeat 3]
+(on a loaded machine a multi-threaded OpenBLAS makes the many small dense solves 10-50x slower).
 """
 
 import argparse
@@ -12,7 +16,11 @@ import time
 
 import numpy as np
 
-from railcontact.reference.halfspace2d import solve_normal_2d, solve_rolling_2d
+from railcontact.reference.halfspace2d import (
+    solve_normal_2d,
+    solve_rolling_2d,
+    solve_transient_rolling_2d,
+)
 
 E, NU, R, N, MU = 2.1e11, 0.28, 0.5, 1.0e6, 0.3
 K = 4 * (1 - NU**2) / (np.pi * E)
@@ -57,6 +65,21 @@ def main(argv=None):
         err_q = np.sqrt(np.mean((rr.traction - q_ex)[rr.contact_mask] ** 2)) / (MU * P0)
         print(f"{n:5d} {tn:11.4f} {tr:12.4f} {err_a:9.2e} {err_p:11.2e} {err_d:9.2e} "
               f"{err_t:9.2e} {err_s:12.2e} {err_q:12.2e}")
+    law = lambda s: (MU - 0.6 * MU) / (1 + abs(1e3 * s)) + 0.6 * MU  # noqa: E731  (5.16)
+    print(f"\n{'n':>5} {'t_law(5.16)[s]':>14} {'T/N':>7} {'steps':>6} {'t_transient[s]':>14} "
+          f"{'|q-q_steady|/p0':>15}")
+    for n in [m for m in args.sizes if m <= 400]:
+        r = solve_normal_2d(lambda x: x**2 / (2 * R), N, E, NU, -1.23 * A0, 1.31 * A0, n)
+        tl, rl = _best_time(lambda: solve_rolling_2d(r.x, r.pressure, E, NU, creepage=XI,
+                                                     friction=law), args.repeat)
+        steps = int(6 * np.count_nonzero(r.pressure))
+        force = 0.4 * MU * N
+        tt, tr = _best_time(lambda: solve_transient_rolling_2d(
+            r.x, r.pressure, E, NU, tangential_force=np.full(steps, force), friction=MU,
+            reference_length=0.1), 1)
+        st = solve_rolling_2d(r.x, r.pressure, E, NU, tangential_force=force, friction=MU)
+        dq = np.max(np.abs(tr.traction[-1] - st.traction)) / P0
+        print(f"{n:5d} {tl:14.4f} {rl.tangential_force / N:7.4f} {steps:6d} {tt:14.4f} {dq:15.2e}")
 
 
 if __name__ == "__main__":
