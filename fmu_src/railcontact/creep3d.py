@@ -326,7 +326,9 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
         # full sliding: |T| = mu N up to rounding of the unit vector; never above mu N
         t_abs = np.hypot(tx, ty)
         over = t_abs > mu_n
-        scale = np.divide(mu_n, t_abs, out=np.ones(shape), where=over)
+        # (1 - 4 eps): the rescaled hypot must not round above mu N again
+        scale = np.divide(mu_n * (1.0 - 4.0 * np.finfo(float).eps), t_abs, out=np.ones(shape),
+                          where=over)
         tx, ty = tx * scale, ty * scale
     return tx + 0.0, ty + 0.0, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0
 
