@@ -47,8 +47,25 @@ OUTPUTS = {
                                  "slip), strip-theory estimate", "stick_area_fraction"),
     "stick_width_ratio": ("1", "Lateral extent of the stick zone b*/b0 = sqrt(1 - z^2) (Nielsen "
                                "Eq. (2.84))", "stick_width_ratio"),
-    "r_a0": ("1", "Stick zone length over contact length on the centre line, a*/a0 = "
-                  "1 - min(z, 1) (Nielsen Eq. (2.83); 1 = full stick)", "r_a0"),
+    "r_a0": ("1", "Stick zone length over contact length, a*/a0: centre line of the 3-D strip "
+                  "theories 1 - min(z, 1) (Nielsen Eq. (2.83)), Carter's ratio (2.51) for a "
+                  "line contact; 1 = full stick", "r_a0"),
+    "contact_half_width": ("m", "Actual contact half-length along the rail: a0, or the "
+                                "corrugated contact's a (Nielsen Ch. 4.2)",
+                           "contact_half_width"),
+    "patch_shift": ("m", "Shift Delta of the patch centre from the wheel axis on a corrugated "
+                         "rail (0 on a smooth rail)", "patch_shift"),
+    "wear_depth_per_passage": ("m", "Wear depth per wheel passage at the rail point under the "
+                                    "contact (Nielsen Eqs. (4.74), (4.94), (4.96)); 0 unless the "
+                                    "wear effect is on", "wear_depth_per_passage"),
+    "corrugation_amplitude": ("m", "Amplitude |Z| of the first corrugation harmonic of the rail "
+                                   "surface (evolves with wear when wear_evolve); 0 without "
+                                   "corrugation", "corrugation_amplitude"),
+    "corrugation_growth_rate": ("1", "Relative change of the first harmonic's amplitude per "
+                                     "passage under the current contact, |1 - W1 - i W2| - 1 "
+                                     "(Eqs. (4.103)-(4.104)); < 0 levels, > 0 amplifies; 0 "
+                                     "unless corrugation and wear are on",
+                                "corrugation_growth_rate"),
 }
 
 #: Boolean outputs: name -> (description, ContactPoint field).
@@ -59,13 +76,14 @@ BOOLEAN_OUTPUTS = {
 }
 
 #: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
-_LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity"}
+_LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
+         "corrugation_growth_rate"}
 
 #: SI units used by the variables: name -> exponents of kg, m, s.
 UNITS = {
     "1": {}, "N": {"kg": 1, "m": 1, "s": -2}, "m": {"m": 1}, "Pa": {"kg": 1, "m": -1, "s": -2},
     "1/m": {"m": -1}, "m/s": {"m": 1, "s": -1}, "N.m": {"kg": 1, "m": 2, "s": -2},
-    "s": {"s": 1},
+    "s": {"s": 1}, "m2/N": {"kg": -1, "m": 1, "s": 2},
 }
 
 _SCENE_PARAMETERS = (

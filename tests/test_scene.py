@@ -58,7 +58,19 @@ def test_effect_switched_off_is_absent():
     ("[effects.creep]\nsource = 'lookup'\n", "effects.creep.source must be one of"),
     ("[effects.creep]\nspin = 1\n", "effects.creep.spin must be true or false"),
     ("[effects.magic]\n", "effects: unknown key 'magic'"),
-    ("[effects.creep]\nenabled = false\n[effects.wear]\n", "effects.creep.enabled must be true"),
+    ("[effects.creep]\nenabled = false\n[effects.corrugation]\nwavelengths = [0.05]\n"
+     "[geometry]\nkind = 'line'\n", "effects.creep.enabled must be true"),
+    ("[effects.wear]\nwear_coefficient = 1e-9\n", "effects.wear needs geometry.kind = 'line'"),
+    ("[geometry]\nkind = 'line'\n", "effects.creep.method must be 'carter' exactly when"),
+    ("[effects.creep]\nmethod = 'carter'\n", "effects.creep.method must be 'carter' exactly"),
+    ("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n[effects.corrugation]\n"
+     "wavelengths = [0.05, 0.1]\namplitudes_cos = [1e-6]\n", "equal length"),
+    ("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n[effects.corrugation]\n"
+     "wavelengths = [-0.05]\n", r"effects.corrugation.wavelengths\[0\] must be in"),
+    ("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n[effects.wear]\n"
+     "wear_coefficient = 1e-9\nevolve = true\nsection_length = 1.0\n", "needs effects.corrugation"),
+    ("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n[effects.wear]\n"
+     "wear_coefficient = 1e-9\nwear_model = 'archard'\n", "effects.wear.wear_model must be"),
     ("[simulation]\nstop_time = 0\n", "simulation.stop_time"),
     ("[simulation]\nstep_size = 0.3\n", "simulation.step_size must divide"),
     ("[inputs]\nforce = 1\n", "inputs: unknown key 'force'"),

@@ -26,8 +26,8 @@ import math
 
 from .scene import SceneError
 
-__all__ = ["ContactPoint", "NormalContact", "Creep3D", "Pipeline", "build_pipeline",
-           "EffectUnavailable"]
+__all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "Corrugation", "Wear",
+           "Pipeline", "build_pipeline", "EffectUnavailable"]
 
 _PACKAGE = __name__.rpartition(".")[0]     # "railcontact", or the FMU's bundled copy's name
 
@@ -53,7 +53,8 @@ class ContactPoint:
     __slots__ = ("normal_force", "creepage_longitudinal", "creepage_lateral", "spin",
                  "rolling_speed", "rail_position", "friction_coefficient", "a0", "b0", "p0",
                  "Fx", "Fy", "stick_area_fraction", "stick_width_ratio", "r_a0",
-                 "creep_within_validity")
+                 "creep_within_validity", "contact_half_width", "patch_shift",
+                 "wear_depth_per_passage", "corrugation_amplitude", "corrugation_growth_rate")
 
     def __init__(self):
         for name in self.__slots__:
@@ -89,7 +90,11 @@ class NormalContact(_Effect):
     ``geometry.kind = "curvatures"``: :func:`railcontact.hertz.hertz_3d` once at build time for
     N = 1 N, then the exact Hertz scaling a0, b0, p0 proportional to N^(1/3) (Johnson (1985)
     Eqs. (4.17)-(4.19): the eccentricity depends on A'/B' only). ``"semi_axes"``: the ellipse
-    is fixed and ``p0 = 3 N / (2 pi a0 b0)`` (Eq. (2.60)).
+    is fixed and ``p0 = 3 N / (2 pi a0 b0)`` (Eq. (2.60)). ``"line"``: 2-D Hertz
+    (:func:`railcontact.hertz.hertz_2d`, Eqs. (2.40)-(2.42)) for the load per unit length
+    ``N / contact_width``, once for 1 N/m and then the exact scaling a0, p0 proportional to
+    sqrt(N); ``b0`` is half the contact width. ``contact_half_width`` is a0 (the corrugation
+    effect replaces it by the actual half-width).
     """
 
     name = "normal"
@@ -97,7 +102,15 @@ class NormalContact(_Effect):
     def __init__(self, scene, mu_source=None):
         super().__init__()
         geo = scene.geometry
-        if geo["kind"] == "curvatures":
+        self._line = geo["kind"] == "line"
+        if self._line:
+            hertz = _import("hertz", "normal contact (Hertz 2-D)")
+            a1, p1 = hertz.hertz_2d(1.0, geo["radius"], scene.youngs_modulus,
+                                    scene.poisson_ratio)
+            self._a1, self._p1 = float(a1), float(p1)
+            self._width = geo["contact_width"]
+            self._fixed = False
+        elif geo["kind"] == "curvatures":
             hertz = _import("hertz", "normal contact (Hertz)")
             a1, b1, p1 = hertz.hertz_3d(1.0, geo["curvature_longitudinal"],
                                         geo["curvature_lateral"], scene.youngs_modulus,
@@ -113,11 +126,17 @@ class NormalContact(_Effect):
     def step(self, c):
         self.calls += 1
         n = c.normal_force
+        if self._line:
+            scale = math.sqrt(n / self._width)
+            c.a0, c.b0, c.p0 = self._a1 * scale, 0.5 * self._width, self._p1 * scale
+            c.contact_half_width = c.a0
+            return
         if self._fixed:
             c.a0, c.b0, c.p0 = self._a1, self._b1, self._p1 * n
         else:
             scale = n ** (1.0 / 3.0)
             c.a0, c.b0, c.p0 = self._a1 * scale, self._b1 * scale, self._p1 * scale
+        c.contact_half_width = c.a0
 
 
 class Creep3D(_Effect):
@@ -229,6 +248,216 @@ class Creep3D(_Effect):
         self._aux_args = None if args is None else tuple(args)
 
 
+class Creep2D(_Effect):
+    r"""Carter's 2-D creep force on a line contact (``effects.creep.method = "carter"``).
+
+    :func:`railcontact.carter.carter_creep_force` for the load per unit length
+    ``N / contact_width`` and the equivalent radius R, times the contact width;
+    ``r_a0 = a*/a0`` from :func:`railcontact.carter.carter_stick_ratio` (Eq. (2.51)), which is
+    also the stick fraction of the contact length. The 2-D theory has no lateral force: Fy = 0
+    and ``creep_within_validity`` is False while the lateral creepage or the spin is not zero.
+    """
+
+    name = "creep"
+
+    def __init__(self, scene, **_):
+        super().__init__()
+        carter = _import("carter", "creep (Carter 2-D)")
+        if scene.effects["creep"]["source"] != "analytic":
+            raise EffectUnavailable("effect creep (table) not available in this build for "
+                                    "method 'carter' (no Carter table is shipped; the closed "
+                                    "form is exact)")
+        self._force = carter.carter_creep_force
+        self._stick = carter.carter_stick_ratio
+        geo = scene.geometry
+        self._radius, self._width = geo["radius"], geo["contact_width"]
+        self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
+
+    def step(self, c):
+        self.calls += 1
+        c.Fy = 0.0
+        c.creep_within_validity = c.creepage_lateral == 0.0 and c.spin == 0.0
+        if c.normal_force <= 0.0:
+            c.Fx = 0.0
+            c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
+            return
+        n_line = c.normal_force / self._width
+        args = (c.creepage_longitudinal, n_line, self._radius, self._e, self._nu,
+                c.friction_coefficient)
+        c.Fx = float(self._force(*args)) * self._width
+        c.r_a0 = float(self._stick(*args))
+        c.stick_area_fraction = c.r_a0
+        c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
+
+
+class Corrugation(_Effect):
+    r"""Corrugated rail surface (Nielsen Ch. 4.2): rail position in; a, Delta, a*, T out.
+
+    :func:`railcontact.corrugation.corrugated_contact` at the contact's rail position with the
+    current surface harmonics (Eq. (4.1)), the load per unit length ``N / contact_width``, the
+    radius R, mu and the longitudinal creepage; ``method`` "exact" (nonlinear) or "linear"
+    (closed forms). It replaces ``contact_half_width`` (a), sets ``patch_shift`` (Delta) and the
+    longitudinal force ``Fx = -sign(xi) |T| contact_width`` (T opposes the creepage). With the
+    wear effect on it also gives the wear per passage at the material point under the contact
+    (linearised, Eq. (4.94)). ``corrugation_amplitude`` is |Z| of the first listed harmonic.
+    Condition (4.2) (no loss of contact) is checked at build time for the initial surface.
+    The surface harmonics are internal state (the wear effect may evolve them).
+    """
+
+    name = "corrugation"
+
+    def __init__(self, scene, wear=None, **_):
+        super().__init__()
+        if scene.effects["corrugation"]["source"] != "analytic":
+            raise EffectUnavailable("effect corrugation (table) not available in this build "
+                                    "(no corrugation table is shipped)")
+        module = _import("corrugation", "corrugation")
+        opts = scene.effects["corrugation"]
+        geo = scene.geometry
+        self._solve = module.corrugated_contact
+        self.method = opts["method"]
+        self.wavelengths = list(opts["wavelengths"])
+        self.amplitudes_cos = list(opts["amplitudes_cos"])
+        self.amplitudes_sin = list(opts["amplitudes_sin"])
+        self._radius, self._width = geo["radius"], geo["contact_width"]
+        self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
+        self._wear = wear
+        k = [2.0 * math.pi / lam for lam in self.wavelengths]
+        try:
+            module.check_no_contact_loss([km * km * self._radius * math.hypot(za, zb) for
+                                          km, za, zb in zip(k, self.amplitudes_cos,
+                                                            self.amplitudes_sin)])
+        except ValueError as exc:
+            raise SceneError(f"effects.corrugation.amplitudes_cos/amplitudes_sin: {exc}") from None
+
+    def step(self, c):
+        self.calls += 1
+        c.corrugation_amplitude = math.hypot(self.amplitudes_cos[0], self.amplitudes_sin[0])
+        c.patch_shift = 0.0
+        if c.normal_force <= 0.0 or c.friction_coefficient <= 0.0:
+            c.wear_depth_per_passage = 0.0
+            return
+        kw = {} if self._wear is None else {"wear_coefficient": self._wear.wear_coefficient,
+                                             "wear_model": self._wear.wear_model}
+        res = self._solve(c.rail_position, c.normal_force / self._width, self._radius, self._e,
+                          self._nu, c.friction_coefficient, c.creepage_longitudinal,
+                          self.amplitudes_cos, self.amplitudes_sin, self.wavelengths,
+                          method=self.method, **kw)
+        c.contact_half_width = float(res.half_width)
+        c.patch_shift = float(res.patch_shift)
+        xi = c.creepage_longitudinal
+        c.Fx = -math.copysign(float(res.tangential_force), xi) * self._width if xi else 0.0
+        if res.wear_depth is not None:
+            c.wear_depth_per_passage = float(res.wear_depth)
+
+    def get_state(self):
+        return {"calls": self.calls, "amplitudes_cos": list(self.amplitudes_cos),
+                "amplitudes_sin": list(self.amplitudes_sin)}
+
+    def set_state(self, state):
+        self.calls = int(state["calls"])
+        self.amplitudes_cos = [float(v) for v in state["amplitudes_cos"]]
+        self.amplitudes_sin = [float(v) for v in state["amplitudes_sin"]]
+
+
+class Wear(_Effect):
+    r"""Frictional wear per passage (Nielsen Sec. 4.3) and, optionally, surface evolution (4.4).
+
+    Smooth rail: ``wear_depth_per_passage`` = :func:`railcontact.wear.mean_wear`
+    (``W0 = K mu^2 N a0/R (1 - r)^2 (1 + r)``, Eq. (4.96), N per unit length). Corrugated rail:
+    the linearised wear at the material point under the contact, from the corrugation effect.
+    ``corrugation_growth_rate`` (corrugation on): ``|1 - W1 - i W2| - 1``, the relative change
+    of the first harmonic's amplitude per passage under the current contact (Eq. (4.103)-
+    (4.104); ``W1 + i W2`` = :func:`railcontact.evolution.wear_number` x
+    :func:`railcontact.wear.wear_coefficients`), evaluated when read. With ``evolve = true``,
+    every time ``rail_position`` completes a further ``section_length`` the surface harmonics
+    are advanced by that many passages with :func:`railcontact.evolution.evolve_harmonics`
+    under the contact conditions of that step (the thesis' mixed-traffic superposition (4.110)
+    over the passages of a run).
+    """
+
+    name = "wear"
+
+    def __init__(self, scene, **_):
+        super().__init__()
+        if scene.effects["wear"]["source"] != "analytic":
+            raise EffectUnavailable("effect wear (table) not available in this build (no wear "
+                                    "table is shipped)")
+        self._wear = _import("wear", "wear")
+        self._evolution = _import("evolution", "wear (surface evolution)")
+        opts = scene.effects["wear"]
+        self.wear_coefficient = opts["wear_coefficient"]
+        self.wear_model = opts["wear_model"]
+        self.evolve = opts["evolve"]
+        self.section_length = opts.get("section_length")
+        self._radius, self._width = scene.geometry["radius"], scene.geometry["contact_width"]
+        self.corrugation = None          # set by build_pipeline when corrugation is on
+        self.passages = 0
+        self._section = None
+        self._pending = None
+
+    def _w(self, c, wavelengths):
+        """W1 + i W2 per harmonic for the contact state c (complex list)."""
+        n_line = c.normal_force / self._width
+        number = float(self._evolution.wear_number(self.wear_coefficient,
+                                                   c.friction_coefficient, n_line, c.a0))
+        w = self._wear.wear_coefficients([c.a0 / lam for lam in wavelengths],
+                                         min(max(c.r_a0, 0.0), 1.0), self.wear_model)
+        return [number * complex(v) for v in w]
+
+    def step(self, c):
+        self.calls += 1
+        if c.normal_force <= 0.0:
+            c.wear_depth_per_passage = 0.0
+            c.corrugation_growth_rate = 0.0
+            self._pending = None
+        elif self.corrugation is None:
+            c.wear_depth_per_passage = float(self._wear.mean_wear(
+                self.wear_coefficient, c.friction_coefficient, c.normal_force / self._width,
+                self._radius, c.a0, min(max(c.r_a0, 0.0), 1.0)))
+        else:
+            self._pending = (c.normal_force, c.friction_coefficient, c.a0, c.r_a0)
+        if self.evolve:
+            section = math.floor(c.rail_position / self.section_length)
+            if self._section is None:
+                self._section = section
+            elif section > self._section and c.normal_force > 0.0:
+                n = section - self._section
+                corr = self.corrugation
+                w = self._w(c, corr.wavelengths)
+                za, zb = self._evolution.evolve_harmonics(
+                    corr.amplitudes_cos, corr.amplitudes_sin, [v.real for v in w],
+                    [v.imag for v in w], [n])
+                corr.amplitudes_cos = [float(v) for v in za[0]]
+                corr.amplitudes_sin = [float(v) for v in zb[0]]
+                self.passages += n
+                self._section = section
+                c.corrugation_amplitude = math.hypot(corr.amplitudes_cos[0],
+                                                     corr.amplitudes_sin[0])
+            else:
+                self._section = max(self._section, section)
+
+    def auxiliary(self, c):
+        """Growth rate of the first harmonic under the last step's contact (on demand)."""
+        pending, self._pending = self._pending, None
+        if pending is None or self.corrugation is None:
+            return
+        probe = ContactPoint()
+        probe.normal_force, probe.friction_coefficient, probe.a0, probe.r_a0 = pending
+        w = self._w(probe, self.corrugation.wavelengths[:1])[0]
+        c.corrugation_growth_rate = abs(1.0 - w) - 1.0
+
+    def get_state(self):
+        return {"calls": self.calls, "passages": self.passages, "section": self._section,
+                "pending": None if self._pending is None else list(self._pending)}
+
+    def set_state(self, state):
+        self.calls = int(state["calls"])
+        self.passages = int(state["passages"])
+        self._section = state["section"]
+        self._pending = None if state["pending"] is None else tuple(state["pending"])
+
+
 class Pipeline:
     """The effects a scene switched on, in evaluation order.
 
@@ -290,11 +519,21 @@ def build_pipeline(scene, tables_dir=None, warn=None):
 
     effects = {"normal": NormalContact(scene)}
     for name in scene.effects:
-        if name != "creep":
+        if name not in ("creep", "corrugation", "wear"):
             raise EffectUnavailable(f"effect {name} not available in this build")
     if "creep" in scene.effects:
-        table_path = None
-        if scene.effects["creep"]["source"] == "table" and tables_dir is not None:
-            table_path = Path(tables_dir) / f"{scene.effects['creep']['table']}.nc"
-        effects["creep"] = Creep3D(scene, table_path=table_path, warn=warn)
+        if scene.effects["creep"]["method"] == "carter":
+            effects["creep"] = Creep2D(scene)
+        else:
+            table_path = None
+            if scene.effects["creep"]["source"] == "table" and tables_dir is not None:
+                table_path = Path(tables_dir) / f"{scene.effects['creep']['table']}.nc"
+            effects["creep"] = Creep3D(scene, table_path=table_path, warn=warn)
+    wear = Wear(scene) if "wear" in scene.effects else None
+    if "corrugation" in scene.effects:
+        effects["corrugation"] = Corrugation(scene, wear=wear)
+        if wear is not None:
+            wear.corrugation = effects["corrugation"]
+    if wear is not None:
+        effects["wear"] = wear
     return Pipeline(scene, effects)

@@ -81,9 +81,13 @@ class SceneError(ValueError):
 
 
 #: Effects a scene can switch on, in the order the FMU evaluates them.
-EFFECTS = ("velocity_friction", "roughness", "corrugation", "creep", "nonsteady", "wear")
-#: 3-D creep theories of :func:`railcontact.creep3d.creep_force_3d`.
-CREEP_METHODS = ("linear", "she", "strip", "modified_strip")
+EFFECTS = ("velocity_friction", "roughness", "creep", "corrugation", "nonsteady", "wear")
+#: Creep theories: the 3-D ones of :func:`railcontact.creep3d.creep_force_3d` (elliptic
+#: contact) and Carter's 2-D theory (:func:`railcontact.carter.carter_creep_force`, line
+#: contact, ``geometry.kind = "line"``).
+CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "carter")
+#: Wear models of :func:`railcontact.wear.wear_coefficients`.
+WEAR_MODELS = ("material_point", "patch_coordinate", "nielsen1998", "time_domain_carter")
 #: Where an effect takes its answer from.
 SOURCES = ("analytic", "table")
 #: FMU inputs: name -> (unit, description).
@@ -108,7 +112,7 @@ DEFAULT_SCENE = {
     "material": {"youngs_modulus": 210e9, "poisson_ratio": 0.28},
     "geometry": {"kind": "curvatures", "curvature_longitudinal": 1.25,
                  "curvature_lateral": 3.3, "semi_axis_longitudinal": 6e-3,
-                 "semi_axis_lateral": 5e-3},
+                 "semi_axis_lateral": 5e-3, "radius": 0.3, "contact_width": 0.02},
     "friction": {"friction_coefficient": 0.3},
     "effects": {"creep": {"enabled": True, "method": "modified_strip", "source": "analytic",
                           "spin": True, "table": "creep_modified_strip"}},
@@ -121,14 +125,15 @@ _SECTION_KEYS = {
     "scene": {"name", "description"},
     "material": {"youngs_modulus", "poisson_ratio"},
     "geometry": {"kind", "curvature_longitudinal", "curvature_lateral",
-                 "semi_axis_longitudinal", "semi_axis_lateral"},
+                 "semi_axis_longitudinal", "semi_axis_lateral", "radius", "contact_width"},
     "friction": {"friction_coefficient"},
     "simulation": {"start_time", "stop_time", "step_size"},
 }
 _EFFECT_KEYS = {
     "creep": {"enabled", "method", "source", "spin", "table"},
-    "corrugation": {"enabled", "source", "wavelengths", "amplitudes", "evolve"},
-    "wear": {"enabled", "source", "wear_coefficient"},
+    "corrugation": {"enabled", "source", "method", "wavelengths", "amplitudes_cos",
+                    "amplitudes_sin"},
+    "wear": {"enabled", "source", "wear_coefficient", "wear_model", "evolve", "section_length"},
     "velocity_friction": {"enabled", "source", "law", "static_friction_coefficient",
                           "kinetic_friction_coefficient", "decay"},
     "roughness": {"enabled", "source"},
@@ -261,6 +266,17 @@ def _number(path, value, unit, lower=None, upper=None, **kwargs):
         raise SceneError(str(exc)) from None
 
 
+def _number_list(path, value, unit, lower=None, **kwargs):
+    if isinstance(value, str):
+        try:
+            value = [float(v) for v in value.replace(",", " ").split()]
+        except ValueError:
+            raise SceneError(f"{path} must be a list of numbers [{unit}]; got {value!r}") from None
+    if not isinstance(value, list):
+        raise SceneError(f"{path} must be a list of numbers [{unit}]; got {value!r}")
+    return [_number(f"{path}[{i}]", v, unit, lower, None, **kwargs) for i, v in enumerate(value)]
+
+
 def _choice(path, value, choices):
     if value not in choices:
         raise SceneError(f"{path} must be one of {list(choices)}; got {value!r}")
@@ -313,8 +329,14 @@ def scene_from_dict(data):
                  upper_closed=False)
 
     geo = merged["geometry"]
-    kind = _choice("geometry.kind", geo["kind"], ("curvatures", "semi_axes"))
-    if kind == "curvatures":
+    kind = _choice("geometry.kind", geo["kind"], ("curvatures", "semi_axes", "line"))
+    if kind == "line":
+        geometry = {"kind": kind,
+                    "radius": _number("geometry.radius", geo["radius"], "m", 0.0, None,
+                                      lower_closed=False),
+                    "contact_width": _number("geometry.contact_width", geo["contact_width"],
+                                             "m", 0.0, None, lower_closed=False)}
+    elif kind == "curvatures":
         geometry = {"kind": kind,
                     "curvature_longitudinal": _number(
                         "geometry.curvature_longitudinal", geo["curvature_longitudinal"],
@@ -349,10 +371,47 @@ def scene_from_dict(data):
             if not isinstance(opts.get("table"), str):
                 raise SceneError(f"effects.creep.table must be a string; got "
                                  f"{opts['table']!r}")
+        elif name == "corrugation":
+            opts["method"] = _choice("effects.corrugation.method", opts.get("method", "exact"),
+                                     ("exact", "linear"))
+            waves = _number_list("effects.corrugation.wavelengths", opts.get("wavelengths"),
+                                 "m", 0.0, lower_closed=False)
+            za = _number_list("effects.corrugation.amplitudes_cos",
+                              opts.get("amplitudes_cos", [0.0] * len(waves)), "m")
+            zb = _number_list("effects.corrugation.amplitudes_sin",
+                              opts.get("amplitudes_sin", [0.0] * len(waves)), "m")
+            if not (len(waves) == len(za) == len(zb)) or not waves:
+                raise SceneError("effects.corrugation.wavelengths, amplitudes_cos and "
+                                 "amplitudes_sin must be non-empty lists of equal length [m]; "
+                                 f"got {len(waves)}, {len(za)}, {len(zb)}")
+            opts.update(wavelengths=waves, amplitudes_cos=za, amplitudes_sin=zb)
+        elif name == "wear":
+            opts["wear_coefficient"] = _number("effects.wear.wear_coefficient",
+                                               opts.get("wear_coefficient"), "m^2/N", 0.0)
+            opts["wear_model"] = _choice("effects.wear.wear_model",
+                                         opts.get("wear_model", "material_point"), WEAR_MODELS)
+            opts["evolve"] = _boolean("effects.wear.evolve", opts.get("evolve", False))
+            if opts["evolve"]:
+                opts["section_length"] = _number("effects.wear.section_length",
+                                                 opts.get("section_length"), "m", 0.0,
+                                                 lower_closed=False)
         effects[name] = opts
-    if "creep" not in effects and any(e in effects for e in ("nonsteady", "wear")):
-        raise SceneError("effects.creep.enabled must be true when nonsteady or wear is on "
-                         "(they act on the creep solution)")
+    line = geometry["kind"] == "line"
+    if "creep" in effects and (effects["creep"]["method"] == "carter") != line:
+        raise SceneError("effects.creep.method must be 'carter' exactly when geometry.kind = "
+                         "'line' (Carter's theory is the 2-D one); got method "
+                         f"{effects['creep']['method']!r} with geometry.kind {geometry['kind']!r}")
+    for name in ("corrugation", "wear"):
+        if name in effects and not line:
+            raise SceneError(f"effects.{name} needs geometry.kind = 'line' (Nielsen's Ch. 4 "
+                             f"theory is 2-D); got {geometry['kind']!r}")
+    if "wear" in effects and effects["wear"]["evolve"] and "corrugation" not in effects:
+        raise SceneError("effects.wear.evolve = true needs effects.corrugation (the surface "
+                         "that evolves)")
+    if "creep" not in effects and any(e in effects for e in ("nonsteady", "wear",
+                                                             "corrugation")):
+        raise SceneError("effects.creep.enabled must be true when corrugation, nonsteady or "
+                         "wear is on (they act on the creep solution)")
 
     sim = merged["simulation"]
     start = _number("simulation.start_time", sim["start_time"], "s")
@@ -468,7 +527,8 @@ FMU_PARAMETERS = (
                   "Poisson's ratio nu of wheel and rail, in [0, 0.5)"),
     ParameterSpec("geometry_kind", ("geometry", "kind"), "string", "",
                   "Contact geometry: 'curvatures' (Hertz ellipse from A', B' and the normal "
-                  "force) or 'semi_axes' (fixed ellipse a0, b0)"),
+                  "force), 'semi_axes' (fixed ellipse a0, b0) or 'line' (2-D line contact of "
+                  "radius R and width contact_width)"),
     ParameterSpec("curvature_longitudinal", ("geometry", "curvature_longitudinal"), "real",
                   "1/m", "A' = 1/(2 R'_x), relative curvature (gap coefficient) in the "
                   "rolling direction"),
@@ -479,15 +539,67 @@ FMU_PARAMETERS = (
                   "'semi_axes')"),
     ParameterSpec("semi_axis_lateral", ("geometry", "semi_axis_lateral"), "real", "m",
                   "Fixed lateral semi-axis b0 (geometry_kind = 'semi_axes')"),
+    ParameterSpec("radius", ("geometry", "radius"), "real", "m",
+                  "Equivalent radius R of a line contact, 1/R = 1/R_wheel + 1/R_rail "
+                  "(geometry_kind = 'line', Carter and Ch. 4 models)"),
+    ParameterSpec("contact_width", ("geometry", "contact_width"), "real", "m",
+                  "Length of a line contact across the rail; the load per unit length is "
+                  "normal_force / contact_width (geometry_kind = 'line')"),
     ParameterSpec("friction_coefficient", ("friction", "friction_coefficient"), "real", "1",
                   "Coulomb friction coefficient mu, >= 0"),
     ParameterSpec("creep_method", ("effects", "creep", "method"), "string", "",
-                  "3-D creep theory: linear | she | strip | modified_strip"),
+                  "Creep theory: linear | she | strip | modified_strip (3-D), carter (2-D, "
+                  "geometry_kind = 'line')"),
     ParameterSpec("creep_source", ("effects", "creep", "source"), "string", "",
                   "Creep forces from the 'analytic' solver or the shipped 'table'"),
     ParameterSpec("creep_spin", ("effects", "creep", "spin"), "boolean", "",
                   "Include the spin input in the creep forces"),
+    ParameterSpec("corrugation_enabled", ("effects", "corrugation", "enabled"), "boolean", "",
+                  "Corrugated rail surface (Nielsen Ch. 4.2; needs geometry_kind = 'line')"),
+    ParameterSpec("corrugation_method", ("effects", "corrugation", "method"), "string", "",
+                  "Corrugated contact: 'exact' (nonlinear Eqs. (4.31), (4.33), (4.57), (4.67)) "
+                  "or 'linear' (closed forms (4.36)-(4.71))"),
+    ParameterSpec("corrugation_wavelengths", ("effects", "corrugation", "wavelengths"), "string",
+                  "", "Wave lengths L_m of the rail surface harmonics, space-separated [m]"),
+    ParameterSpec("corrugation_amplitudes_cos", ("effects", "corrugation", "amplitudes_cos"),
+                  "string", "", "Initial cosine amplitudes Z_A,m of Eq. (4.1), space-separated "
+                                "[m]"),
+    ParameterSpec("corrugation_amplitudes_sin", ("effects", "corrugation", "amplitudes_sin"),
+                  "string", "", "Initial sine amplitudes Z_B,m of Eq. (4.1), space-separated "
+                                "[m]"),
+    ParameterSpec("wear_enabled", ("effects", "wear", "enabled"), "boolean", "",
+                  "Frictional wear per passage (Nielsen Sec. 4.3; needs geometry_kind = 'line')"),
+    ParameterSpec("wear_coefficient", ("effects", "wear", "wear_coefficient"), "real", "m2/N",
+                  "Wear coefficient K of Eq. (4.74) (wear depth = K x frictional work per "
+                  "area)"),
+    ParameterSpec("wear_model", ("effects", "wear", "wear_model"), "string", "",
+                  "Wear model: material_point | patch_coordinate | nielsen1998 | "
+                  "time_domain_carter (see railcontact.wear)"),
+    ParameterSpec("wear_evolve", ("effects", "wear", "evolve"), "boolean", "",
+                  "Evolve the corrugated surface by the wear of every completed passage "
+                  "(Eq. (4.103))"),
+    ParameterSpec("wear_section_length", ("effects", "wear", "section_length"), "real", "m",
+                  "Rail section length: one passage is completed each time rail_position "
+                  "advances by it (wear_evolve)"),
 )
+
+
+#: Start values of the FMU parameters whose scene key :data:`DEFAULT_SCENE` does not hold.
+_EFFECT_PARAMETER_DEFAULTS = {
+    "corrugation_enabled": False, "corrugation_method": "exact", "corrugation_wavelengths": "",
+    "corrugation_amplitudes_cos": "", "corrugation_amplitudes_sin": "", "wear_enabled": False,
+    "wear_coefficient": 0.0, "wear_model": "material_point", "wear_evolve": False,
+    "wear_section_length": 1.0,
+}
+
+
+def _default(spec, scene=DEFAULT_SCENE):
+    if spec.name in _EFFECT_PARAMETER_DEFAULTS:
+        try:
+            return _get_path(scene, spec.path)
+        except KeyError:
+            return _EFFECT_PARAMETER_DEFAULTS[spec.name]
+    return _get_path(scene, spec.path)
 
 
 def _get_path(d, path):
@@ -520,7 +632,7 @@ def parameters_to_scene_dict(values, base=None, only_changed=True):
         if spec.name not in values:
             continue
         value = values[spec.name]
-        if base is not None and only_changed and value == _get_path(DEFAULT_SCENE, spec.path):
+        if base is not None and only_changed and value == _default(spec):
             continue
         _set_path(out, spec.path, value)
     return out
@@ -529,4 +641,4 @@ def parameters_to_scene_dict(values, base=None, only_changed=True):
 def scene_to_parameters(scene_dict=None):
     """FMU parameter start values from a scene dict (default :data:`DEFAULT_SCENE`)."""
     merged = _merge(DEFAULT_SCENE, scene_dict or {})
-    return {spec.name: _get_path(merged, spec.path) for spec in FMU_PARAMETERS}
+    return {spec.name: _default(spec, merged) for spec in FMU_PARAMETERS}
