@@ -750,6 +750,118 @@ def _graph_newton(mmat, pc, law_t, mu0, xi_in, force, dx, z, xi, tol, max_iter):
     return z, xi, bool(np.linalg.norm(f, np.inf) <= tol)
 
 
+def _law_system(mmat, pc, law, mu0, force, dx, s_ref):
+    """Residual ``G(y)`` and Jacobian of the friction-graph system with homotopy parameter.
+
+    ``y = (z, [xi/s_ref], t)``, ``mu_t(s) = mu(0) + t (mu(s) - mu(0))``; see
+    :func:`_graph_newton` for ``z``. Returns ``fun(y) -> (G, J)`` with ``J`` of shape
+    ``(m + fc, m + fc + 1)``.
+    """
+    m = pc.size
+    fc = force is not None
+    length = dx * m
+    fscale = length * mu0 * pc.max()
+
+    def fun(y, xi_fixed):
+        z = y[:m]
+        xi = y[m] * s_ref if fc else xi_fixed
+        t = y[-1]
+        slip = np.abs(z) > 1.0
+        s = s_ref * np.sign(z) * np.maximum(np.abs(z) - 1.0, 0.0)
+        mu, slope = _mu_and_slope(law, np.abs(s))
+        mu_t = mu0 + t * (mu - mu0)
+        q = np.where(slip, -np.sign(z) * mu_t * pc, -z * mu0 * pc)
+        g = (s - xi - mmat @ q) / s_ref
+        dq_dz = np.where(slip, -t * slope * s_ref * pc, -mu0 * pc)
+        dq_dt = np.where(slip, -np.sign(z) * (mu - mu0) * pc, 0.0)
+        jac = np.zeros((m + fc, m + fc + 1))
+        jac[:m, :m] = -mmat * dq_dz[None, :] / s_ref
+        jac[np.arange(m), np.arange(m)] += np.where(slip, 1.0, 0.0)
+        jac[:m, -1] = -(mmat @ dq_dt) / s_ref
+        if fc:
+            jac[:m, m] = -1.0
+            g = np.append(g, (dx * q.sum() - force) / fscale)
+            jac[m, :m] = dx * dq_dz / fscale
+            jac[m, -1] = dx * dq_dt.sum() / fscale
+        return g, jac
+
+    return fun
+
+
+def _tangent(jac, previous=None):
+    """Unit null vector of the (k, k+1) Jacobian, oriented along ``previous`` (or t increasing)."""
+    k = jac.shape[0]
+    aug = np.vstack([jac, previous if previous is not None else np.eye(k + 1)[-1]])
+    rhs = np.zeros(k + 1)
+    rhs[-1] = 1.0
+    try:
+        tau = np.linalg.solve(aug, rhs)
+    except np.linalg.LinAlgError:
+        tau = np.linalg.lstsq(aug, rhs, rcond=None)[0]
+    tau /= np.linalg.norm(tau)
+    ref = previous if previous is not None else np.eye(k + 1)[-1]
+    return tau if tau @ ref >= 0 else -tau
+
+
+def _rolling_law_arclength(mmat, pc, law, mu0, xi_in, force, dx, z0, xi0, tol, max_steps):
+    """Pseudo-arclength continuation in ``t`` of the friction-graph system (passes folds).
+
+    Used when the plain continuation of :func:`_rolling_law_homotopy` stalls at a fold (turning
+    point in ``t``) of a falling law: the branch from the Coulomb solution with ``mu(0)`` at
+    ``t = 0`` is followed through its turning points to its first crossing of ``t = 1``.
+    Returns ``(z, xi, steps)``; raises ``RuntimeError`` if the branch is lost.
+    """
+    m = pc.size
+    fc = force is not None
+    s_ref = mu0 * pc.max() * float(np.mean(np.diag(mmat)))
+    fun = _law_system(mmat, pc, law, mu0, force, dx, s_ref)
+    y = np.concatenate([z0, [xi0 / s_ref] if fc else [], [0.0]])
+    g, jac = fun(y, xi_in)
+    tau = _tangent(jac)
+    h = 0.05
+    for step in range(1, max_steps + 1):
+        y_pred = y + h * tau
+        yc = y_pred.copy()
+        ok = False
+        for _ in range(12):
+            g, jac = fun(yc, xi_in)
+            big = np.vstack([jac, tau])
+            rhs = -np.append(g, tau @ (yc - y_pred))
+            try:
+                d = np.linalg.solve(big, rhs)
+            except np.linalg.LinAlgError:
+                break
+            yc = yc + d
+            if np.linalg.norm(d) <= 1e-10 * (1 + np.linalg.norm(yc)):
+                g, jac = fun(yc, xi_in)
+                ok = np.linalg.norm(g, np.inf) <= max(tol, 1e-9)
+                break
+        if not ok or np.linalg.norm(yc - y) > 3 * h:
+            h *= 0.5
+            if h < 1e-6:
+                raise RuntimeError(f"t = {y[-1]:.4g} (arclength step too small)")
+            continue
+        if yc[-1] >= 1.0:
+            # land exactly on t = 1 by Newton at fixed t from the interpolated point
+            w = (1.0 - y[-1]) / (yc[-1] - y[-1])
+            yt = y + w * (yc - y)
+            zt = yt[:m]
+            xt = yt[m] * s_ref if fc else xi_in
+            law_1 = law
+            z1, x1, ok1 = _graph_newton(mmat, pc, law_1, mu0, xi_in, force, dx, zt.copy(), xt,
+                                        tol, 60)
+            if ok1:
+                return z1, x1, step
+            h *= 0.5
+            continue
+        if yc[-1] < -0.5:
+            raise RuntimeError("t < 0 (the branch turned back)")
+        tau = _tangent(jac, tau)
+        y = yc
+        h = min(2.0 * h, 0.5)
+    raise RuntimeError(f"t = {y[-1]:.4g} (friction_max_iter continuation steps)")
+
+
 def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, tol, max_steps,
                           max_outer):
     """Velocity-dependent friction by continuation from the Coulomb solution with ``mu(0)``.
@@ -763,6 +875,7 @@ def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, to
     z = np.where(stick, -q / np.where(pc > 0, mu0 * pc, 1.0),
                  np.sign(s0) * (1.0 + np.abs(s0) / s_ref))
     xi_state = xi
+    z_start, xi_start = z.copy(), xi
     t, dt, steps = 0.0, 1.0, 0
     while t < 1.0:
         steps += 1
@@ -775,8 +888,11 @@ def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, to
                                           xi_state, tol, 60)
         if not ok:
             dt *= 0.5
-            if dt < 1.0 / 256:
-                raise RuntimeError(f"t = {t:.4g}")
+            if dt < 1.0 / 64:   # a fold in t: follow the branch by arclength from t = 0
+                z, xi_state, more = _rolling_law_arclength(
+                    mmat, pc, law, mu0, xi_in, force, dx, z_start, xi_start, tol, max_steps)
+                steps += more
+                break
             continue
         z, xi_state, t = z_new, xi_new, t_new
         dt = min(1.0, 2.0 * dt)
