@@ -1,0 +1,384 @@
+"""Tests of railcontact.reference.rolling3d, the 3-D exact steady rolling solver.
+
+Independent references:
+* numerical quadrature of the point-load kernels (influence coefficients);
+* the Hertz solution (normal problem) and CONTACT's printed normal solution (tractcurv.ref_out);
+* CONTACT's published values (tests/data/contact_hertz3d_grid_convergence.csv,
+  tests/data/contact_tractcurv_series1_coulomb.csv), same grids;
+* Kalker's creep coefficients (fmu_src/railcontact/data/kalker_coefficients.csv);
+* exact symmetries of the discrete problem, and limiting cases (full sliding, linear regime).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy import integrate, optimize
+
+from railcontact.reference.rolling3d import (
+    RollingConvergenceError,
+    hertz_curvatures,
+    influence_coefficients_3d,
+    solve_rolling_3d,
+)
+
+DATA = Path(__file__).parent / "data"
+PACKAGE_DATA = Path(__file__).parent.parent / "fmu_src" / "railcontact" / "data"
+
+G = 82e9
+NU = 0.28
+E = 2 * G * (1 + NU)
+
+
+def _read_csv(path):
+    with open(path) as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+HERTZ3D = _read_csv(DATA / "contact_hertz3d_grid_convergence.csv")
+
+
+def _case_args(row):
+    g = float(row["G_Pa"])
+    nu = float(row["nu"])
+    return dict(creepage_longitudinal=float(row["cksi"]), creepage_lateral=float(row["ceta"]),
+                spin=float(row["cphi_per_m"]), normal_load=float(row["Fn_N"]),
+                a0=float(row["a_m"]), b0=float(row["b_m"]), youngs_modulus=2 * g * (1 + nu),
+                poisson_ratio=nu, friction_coefficient=float(row["mu"]))
+
+
+def _hertz_case(a_over_b, nu=NU, larger=7e-3):
+    a0 = larger * min(1.0, a_over_b)
+    b0 = a0 / a_over_b
+    normal_load = 2.0 / 3.0 * math.pi * a0 * b0 * 1e9  # p0 = 1 GPa
+    return dict(normal_load=normal_load, a0=a0, b0=b0, youngs_modulus=2 * G * (1 + nu),
+                poisson_ratio=nu, friction_coefficient=0.3)
+
+
+# ------------------------------------------------------------------------------------------
+# Influence coefficients against quadrature of the point-load kernels (Nielsen (2.26)-(2.30),
+# Johnson (3.19), (3.86), two identical half-spaces)
+# ------------------------------------------------------------------------------------------
+def _kernels_point(dx_, dy_, nu):
+    r = math.hypot(dx_, dy_)
+    k = 1.0 / (math.pi * G)
+    return (k * ((1 - nu) / r + nu * dx_**2 / r**3), k * nu * dx_ * dy_ / r**3,
+            k * ((1 - nu) / r + nu * dy_**2 / r**3), k * (1 - nu) / r)
+
+
+def _quad_rect(x0, y0, dx, dy, nu, comp):
+    """Integral over the element [-dx/2, dx/2] x [-dy/2, dy/2] of the kernel at (x0, y0)."""
+    inside = abs(x0) < dx / 2 and abs(y0) < dy / 2
+    if not inside:
+        val, _ = integrate.dblquad(lambda yy, xx: _kernels_point(x0 - xx, y0 - yy, nu)[comp],
+                                   -dx / 2, dx / 2, -dy / 2, dy / 2, epsabs=0, epsrel=1e-11)
+        return val
+
+    # polar coordinates about the observation point: kernel * r dr = k(theta) dr
+    def reach(theta):
+        c, s = math.cos(theta), math.sin(theta)
+        tx = ((dx / 2 - x0) / c if c > 0 else (-dx / 2 - x0) / c) if c != 0 else math.inf
+        ty = ((dy / 2 - y0) / s if s > 0 else (-dy / 2 - y0) / s) if s != 0 else math.inf
+        return min(tx, ty)
+
+    def integrand(theta):
+        # the kernel times r along the ray is a function of theta only; the source lies at
+        # distance rho in direction theta, the observation-minus-source vector is -rho (c, s)
+        c, s = math.cos(theta), math.sin(theta)
+        return reach(theta) * _kernels_point(-c, -s, nu)[comp]
+
+    corners = [math.atan2(sy * dy / 2 - y0, sx * dx / 2 - x0) % (2 * math.pi)
+               for sx in (-1, 1) for sy in (-1, 1)]
+    pts = sorted(set([0.0, *corners, 2 * math.pi]))
+    return sum(integrate.quad(integrand, lo, hi, epsabs=0, epsrel=1e-12)[0]
+               for lo, hi in zip(pts[:-1], pts[1:]))
+
+
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+@pytest.mark.parametrize("x0,y0", [(0.0, 0.0), (0.2, -0.1), (1.0, 0.0), (0.0, 2.0),
+                                   (1.3, 2.1), (-3.0, 1.0), (5.0, -4.0)])
+def test_influence_coefficients_match_quadrature(x0, y0):
+    dx, dy = 1.0, 1.7
+    coef = influence_coefficients_3d(x0, y0, dx, dy, G, NU)
+    for comp in range(4):
+        ref = _quad_rect(x0, y0, dx, dy, NU, comp)
+        assert coef[comp] == pytest.approx(ref, rel=1e-8, abs=1e-10 * abs(coef[0]))
+
+
+# ------------------------------------------------------------------------------------------
+# Normal problem
+# ------------------------------------------------------------------------------------------
+def test_hertz_curvatures_circle_limit():
+    # circle: A = B = pi p0 / (4 a E*), delta = pi p0 a / (2 E*) (Hertz; Johnson Eq. 3.42)
+    a = 5e-3
+    n = 1e5
+    a_curv, b_curv, delta = hertz_curvatures(a, a, n, E, NU)
+    estar = E / (2 * (1 - NU**2))
+    p0 = 3 * n / (2 * math.pi * a * a)
+    assert a_curv == pytest.approx(math.pi * p0 / (4 * a * estar), rel=1e-12)
+    assert b_curv == pytest.approx(a_curv, rel=1e-12)
+    assert delta == pytest.approx(math.pi * p0 * a / (2 * estar), rel=1e-12)
+
+
+def _tractcurv_semi_axes():
+    """CONTACT's input: curvature A1 = 0.0008 1/mm, a/b = 0.5, Fn = 106.7 kN -> (a0, b0)."""
+    a0 = optimize.brentq(lambda a: hertz_curvatures(a, 2 * a, 106.7e3, E, NU)[0] - 0.8,
+                         5e-3, 8e-3, xtol=1e-15, rtol=1e-14)
+    return a0, 2 * a0
+
+
+def test_normal_solution_reproduces_contact_tractcurv_case():
+    # CONTACT tractcurv.ref_out, case 1: A1 = 0.8000e-3, B1 = 0.2814e-3 [1/mm], semi-axes
+    # 6.304, 12.61 mm; 48x44 grid, scale 1.1: NCON = 1384 of 2112 elements, approach
+    # 7.651e-2 mm, PMAX = 640.7 N/mm^2.
+    a0, b0 = _tractcurv_semi_axes()
+    n = 106.7e3
+    assert a0 == pytest.approx(6.304e-3, abs=6e-7)
+    assert b0 == pytest.approx(12.61e-3, abs=6e-6)
+    a_curv, b_curv, delta = hertz_curvatures(a0, b0, n, E, NU)
+    assert b_curv == pytest.approx(0.2814, abs=6e-5)  # 1/m
+    res = solve_rolling_3d(1e-5, 0, 0, n, a0, b0, E, NU, 0.33, mx=48, my=44, scale=1.1)
+    assert np.count_nonzero(res.pn > 0) == 1384
+    assert res.approach == pytest.approx(7.651e-5, rel=2e-4)
+    assert res.pn.max() == pytest.approx(640.7e6, rel=2e-4)
+    assert res.normal_load == pytest.approx(n, rel=1e-12)
+    # the discrete approach is close to Hertz's
+    assert res.approach == pytest.approx(delta, rel=2e-3)
+
+
+# ------------------------------------------------------------------------------------------
+# CONTACT grid-convergence data set: same grids, same values
+# ------------------------------------------------------------------------------------------
+def _rows(grid):
+    return [r for r in HERTZ3D if f"{r['mx']}x{r['my']}" == grid]
+
+
+def _ids(rows):
+    return [f"{r['a_over_b']}-{r['case'].replace(' ', '_')}-{r['mx']}x{r['my']}" for r in rows]
+
+
+def _check_contact_row(row, tol):
+    args = _case_args(row)
+    res = solve_rolling_3d(**args, mx=int(row["mx"]), my=int(row["my"]), scale=1.08,
+                           tolerance=1e-7)
+    mu_n = args["friction_coefficient"] * args["normal_load"]
+    assert res.tx / mu_n == pytest.approx(float(row["fx_over_mu_fn"]), abs=tol)
+    assert res.ty / mu_n == pytest.approx(float(row["fy_over_mu_fn"]), abs=tol)
+    # Mz printed with 5-6 significant digits [N m]
+    assert res.mz == pytest.approx(float(row["mz_Nm"]), abs=2e-4 * abs(float(row["mz_Nm"]))
+                                   + 1e-3)
+
+
+@pytest.mark.parametrize("row", _rows("30x30"), ids=_ids(_rows("30x30")))
+def test_contact_hertz3d_30x30(row):
+    # measured agreement: <= 5e-6 of mu N on all 21 cases (CONTACT ran with EPS = 1e-5)
+    _check_contact_row(row, 2e-5)
+
+
+_SLOW_ROWS = _rows("60x60") + _rows("120x30") + _rows("120x60")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("row", _SLOW_ROWS, ids=_ids(_SLOW_ROWS))
+def test_contact_hertz3d_finer_grids(row):
+    _check_contact_row(row, 3e-5)
+
+
+def test_first_order_convergence_and_richardson():
+    # a/b = 1, combined creepage: error against CONTACT's finest grid (240x60) halves when the
+    # grid is doubled (first order in mx); Richardson 30x30 -> 60x60 removes most of it.
+    row = next(r for r in _rows("240x60") if r["a_over_b"] == "1" and r["case"] == "comb k1")
+    args = _case_args(row)
+    mu_n = args["friction_coefficient"] * args["normal_load"]
+    ref = float(row["fx_over_mu_fn"])
+    coarse = solve_rolling_3d(**args, mx=30, my=30).tx / mu_n
+    fine = solve_rolling_3d(**args, mx=60, my=60).tx / mu_n
+    rich = solve_rolling_3d(**args, mx=30, my=30, richardson=True).tx / mu_n
+    e1, e2 = coarse - ref, fine - ref
+    assert 1.7 < e1 / e2 < 2.6
+    assert rich == pytest.approx(2 * fine - coarse, abs=1e-12)
+    # the 240x60 value has its own first-order error (~1e-3 estimated from 120x60 vs 240x60)
+    assert abs(rich - ref) < 0.35 * abs(e2)
+
+
+# ------------------------------------------------------------------------------------------
+# CONTACT creep curve (tractcurv series 1, Coulomb)
+# ------------------------------------------------------------------------------------------
+TRACTCURV = _read_csv(DATA / "contact_tractcurv_series1_coulomb.csv")
+_TC = dict(normal_load=106.7e3, a0=_tractcurv_semi_axes()[0], b0=_tractcurv_semi_axes()[1],
+           youngs_modulus=E, poisson_ratio=NU, friction_coefficient=0.33)
+
+
+@pytest.mark.parametrize("cksi", [1e-5, 8e-4, 1.6e-3, 2.8e-3, 4.8e-3, 0.1])
+def test_tractcurv_on_contact_grid(cksi):
+    # CONTACT's own grid (48x44, scale 1.1). The csv holds 4 significant digits (rounding
+    # 5e-5); measured max difference over all 30 points 4.6e-5.
+    ref = float(next(r for r in TRACTCURV if float(r["cksi"]) == cksi)["fx_over_mu_fn"])
+    res = solve_rolling_3d(cksi, 0, 0, **_TC, mx=48, my=44, scale=1.1)
+    assert res.tx / (0.33 * 106.7e3) == pytest.approx(ref, abs=6e-5)
+
+
+def test_tractcurv_at_default_grid():
+    # default grid 40x20 over [-1.08 a, 1.08 a] x [-1.08 b, 1.08 b]: first-order
+    # discretisation error against CONTACT's 48x44 curve, measured max 1.2e-3 of mu N
+    worst = 0.0
+    for row in TRACTCURV[::3]:
+        res = solve_rolling_3d(float(row["cksi"]), 0, 0, **_TC)
+        worst = max(worst, abs(res.tx / (0.33 * 106.7e3) - float(row["fx_over_mu_fn"])))
+    assert worst < 2e-3
+
+
+# ------------------------------------------------------------------------------------------
+# Kalker's linear theory
+# ------------------------------------------------------------------------------------------
+def _kalker_table():
+    path = PACKAGE_DATA / "kalker_coefficients.csv"
+    return {(float(r["a0_over_b0"]), float(r["nu"])): (float(r["C11"]), float(r["C22"]),
+                                                        float(r["C23"]))
+            for r in _read_csv(path)}
+
+
+@pytest.mark.parametrize("a_over_b", [0.2, 1.0, 5.0])
+def test_kalker_coefficients_tiny_creepage(a_over_b):
+    # Kalker's table (his own discretised computations, accurate to ~1 %); default grid
+    # 40x20, measured deviations 0.6-2.8 %.
+    c11, c22, c23 = _kalker_table()[(a_over_b, 0.25)]
+    case = _hertz_case(a_over_b, nu=0.25)
+    g = case["youngs_modulus"] / 2.5
+    c = math.sqrt(case["a0"] * case["b0"])
+    xi = 1e-8
+    r1 = solve_rolling_3d(xi, 0, 0, **case)
+    r2 = solve_rolling_3d(0, xi, 0, **case)
+    r3 = solve_rolling_3d(0, 0, xi / c, **case)
+    assert -r1.tx / (g * c * c * xi) == pytest.approx(c11, rel=0.035)
+    assert -r2.ty / (g * c * c * xi) == pytest.approx(c22, rel=0.035)
+    assert -r3.ty / (g * c * c * xi) == pytest.approx(c23, rel=0.035)
+    # C32 = C23 (reciprocity of the linear theory): Mz from lateral creepage
+    assert r2.mz / (g * c**3 * xi) == pytest.approx(c23, rel=0.035)
+
+
+def test_linear_regime_relative_accuracy():
+    # tiny creepage: force proportional to creepage to 1e-6 relative (no slip artefacts)
+    case = _hertz_case(1.0)
+    f1 = solve_rolling_3d(1e-9, 2e-9, 0, **case, tolerance=1e-9)
+    f2 = solve_rolling_3d(1e-7, 2e-7, 0, **case, tolerance=1e-9)
+    assert f2.tx == pytest.approx(100 * f1.tx, rel=1e-6)
+    assert f2.ty == pytest.approx(100 * f1.ty, rel=1e-6)
+
+
+# ------------------------------------------------------------------------------------------
+# Symmetries
+# ------------------------------------------------------------------------------------------
+def test_odd_in_creepage_and_mirrored_in_spin():
+    case = _hertz_case(0.5)
+    c = math.sqrt(case["a0"] * case["b0"])
+    xi, eta, phi = 8e-4, -5e-4, 0.6 / c * 1e-3 * 3
+    base = solve_rolling_3d(xi, eta, phi, **case, tolerance=1e-9)
+    neg = solve_rolling_3d(-xi, -eta, -phi, **case, tolerance=1e-9)
+    mir = solve_rolling_3d(xi, -eta, -phi, **case, tolerance=1e-9)
+    scale = 0.3 * case["normal_load"]
+    assert neg.tx == pytest.approx(-base.tx, abs=1e-7 * scale)
+    assert neg.ty == pytest.approx(-base.ty, abs=1e-7 * scale)
+    assert neg.mz == pytest.approx(-base.mz, abs=1e-7 * scale * c)
+    assert mir.tx == pytest.approx(base.tx, abs=1e-7 * scale)
+    assert mir.ty == pytest.approx(-base.ty, abs=1e-7 * scale)
+    assert mir.mz == pytest.approx(-base.mz, abs=1e-7 * scale * c)
+    np.testing.assert_allclose(mir.px, base.px[:, ::-1], atol=1e-6 * base.pn.max())
+
+
+def test_spin_gives_lateral_force_of_its_sign():
+    case = _hertz_case(1.0)
+    pos = solve_rolling_3d(0, 0, 5.0, **case)
+    neg = solve_rolling_3d(0, 0, -5.0, **case)
+    assert pos.ty < 0 < neg.ty  # T_y = -G c^3 C23 phi in the linear regime
+    assert pos.mz < 0 < neg.mz  # spin moment opposes the spin
+    assert abs(pos.tx) < 1e-9 * case["normal_load"]
+
+
+# ------------------------------------------------------------------------------------------
+# Hard cases
+# ------------------------------------------------------------------------------------------
+def test_full_sliding():
+    case = _hertz_case(1.0)
+    res = solve_rolling_3d(0.03, 0.04, 0, **case)
+    mu_n = 0.3 * case["normal_load"]
+    # every element slips, |p| = mu pn; the slip directions deviate from the rigid slip by the
+    # elastic part only, so |T| is mu N to 1e-5 and T opposes the rigid slip
+    assert np.hypot(res.tx, res.ty) == pytest.approx(mu_n, rel=1e-5)
+    assert res.tx < 0 and res.ty / res.tx == pytest.approx(4 / 3, rel=1e-3)
+    assert res.adhesion.sum() == 0
+    assert res.slip.sum() == np.count_nonzero(res.pn > 0)
+
+
+def test_pure_spin_and_spin_pole_inside_patch():
+    case = _hertz_case(1.0)
+    a0 = case["a0"]
+    phi = 0.5 / a0 * 0.02  # rigid slip 1 % at the edge: large slip area
+    pure = solve_rolling_3d(0, 0, phi, **case)
+    assert pure.residual < 1e-6
+    assert abs(pure.tx) < 1e-9 * case["normal_load"]
+    # pole of the rigid slip at x = 0.4 a0 (inside): eta = -phi * 0.4 a0
+    pole = solve_rolling_3d(0, -phi * 0.4 * a0, phi, **case)
+    assert pole.residual < 1e-6
+    # the rigid slip changes sign across the pole: the lateral traction changes sign along x
+    row = pole.py[:, pole.py.shape[1] // 2]
+    assert row.max() > 0 > row.min()
+    # same problem refined: the forces change by the first-order discretisation error only
+    fine = solve_rolling_3d(0, -phi * 0.4 * a0, phi, **case, mx=80, my=40)
+    assert abs(fine.ty - pole.ty) < 0.02 * 0.3 * case["normal_load"]
+
+
+@pytest.mark.parametrize("a_over_b", [0.1, 10.0])
+def test_extreme_ellipticity(a_over_b):
+    case = _hertz_case(a_over_b)
+    res = solve_rolling_3d(1e-3, 1e-3, 0.0, **case)
+    mu_n = 0.3 * case["normal_load"]
+    assert 0 < np.hypot(res.tx, res.ty) < mu_n
+    assert res.residual < 1e-6
+
+
+def test_slip_dependent_friction():
+    case = _hertz_case(1.0)
+    coulomb = solve_rolling_3d(2e-3, 0, 0, **case)
+    const = solve_rolling_3d(2e-3, 0, 0, **{**case, "friction_coefficient":
+                                            lambda s: 0.3 + 0 * s})
+    assert const.tx == pytest.approx(coulomb.tx, rel=1e-9)
+
+    def falling(s):  # 0.3 at rest, 0.2 at large slip
+        return 0.2 + 0.1 * np.exp(-np.asarray(s) / 2e-3)
+
+    slide = solve_rolling_3d(0.2, 0, 0, **{**case, "friction_coefficient": falling})
+    assert slide.tx / case["normal_load"] == pytest.approx(-falling(0.2), rel=1e-3)
+
+
+# ------------------------------------------------------------------------------------------
+# Errors
+# ------------------------------------------------------------------------------------------
+def test_grid_too_small_is_an_error_or_a_warning():
+    case = _hertz_case(1.0)
+    with pytest.raises(ValueError, match="scale"):
+        solve_rolling_3d(1e-3, 0, 0, **case, scale=0.9)
+    with pytest.warns(RuntimeWarning, match="edge of the potential contact area"):
+        solve_rolling_3d(1e-3, 0, 0, **case, mx=10, my=10, scale=1.0)
+    with pytest.raises(ValueError, match="mx"):
+        solve_rolling_3d(1e-3, 0, 0, **case, mx=3)
+
+
+def test_bad_input_names_parameter():
+    case = _hertz_case(1.0)
+    with pytest.raises(ValueError, match="poisson_ratio"):
+        solve_rolling_3d(1e-3, 0, 0, **{**case, "poisson_ratio": 0.6})
+    with pytest.raises(ValueError, match="normal_load"):
+        solve_rolling_3d(1e-3, 0, 0, **{**case, "normal_load": -1.0})
+    with pytest.raises(ValueError, match="friction_coefficient"):
+        solve_rolling_3d(1e-3, 0, 0, **{**case, "friction_coefficient": 0.0})
+
+
+def test_non_convergence_names_parameters():
+    case = _hertz_case(1.0)
+    with pytest.raises(RollingConvergenceError, match="max_iterations=2.*creepage_longitudinal"):
+        solve_rolling_3d(1e-3, 0, 0, **case, max_iterations=2, tolerance=1e-12)
