@@ -868,7 +868,8 @@ def _rolling_law_homotopy(mmat, pc, law, mu0, xi_in, force, dx, q, xi, stick, to
 
     ``mu_t(s) = mu(0) + t (mu(s) - mu(0))``, ``t`` from 0 to 1; each step is solved by
     :func:`_graph_newton` starting from the previous step; the step in ``t`` is halved on
-    failure. The branch returned is the one connected to the static-friction Carter solution.
+    failure, and below 1/64 the branch is followed by :func:`_rolling_law_arclength` instead.
+    The branch returned is the one connected to the static-friction Carter solution.
     """
     s_ref = mu0 * pc.max() * float(np.mean(np.diag(mmat)))
     s0 = xi + mmat @ q
@@ -975,9 +976,11 @@ def solve_rolling_2d(x, pressure, youngs_modulus, poisson_ratio, creepage=None,
         partition (step halved on failure). With a falling law the problem may have several
         solutions; the one returned is the branch connected to the static-friction Carter
         solution. Rising laws work up to the step-law limit (where the creep curve is Carter's
-        with ``mu_k``, as Nielsen states in Sec. 5.2). A falling law can be followed only while
-        :func:`falling_friction_steepness` is below ~1; above, a ValueError names the
-        parameters and that number.
+        with ``mu_k``, as Nielsen states in Sec. 5.2). A falling law is followed through
+        turning points by pseudo-arclength continuation; this always works while
+        :func:`falling_friction_steepness` is below 1 and sometimes up to ~2 (the fold then sits
+        on the stick/slip corner of an element's friction graph); otherwise a ValueError names
+        the parameters and that number.
     max_iter : int, optional
         Active-set iterations per inner solve. [-]
     friction_tol : float, optional
