@@ -61,8 +61,9 @@ References
 ----------
 .. [1] J.B. Nielsen, New Developments in the Theory of Wheel/Rail Contact Mechanics,
    IMM-PHD-1998-51, DTU, 1998, Ch. 5.
-.. [2] T. Ohyama, Tribological studies on adhesion phenomena between wheel and rail at high
-   speeds, Wear 144 (1991) 263-275 (the step-law model of [1], Sec. 5.2, ref. [53]).
+.. [2] T. Ohyama, Some basic studies on the influence of surface contamination on adhesion
+   force between wheel and rail at higher speeds, Quarterly Report RTRI 30(3) (1989) 127-135
+   (ref. [53] of [1]; the step-law model of [1], Sec. 5.2).
 .. [3] F.W. Carter, On the action of a locomotive driving wheel, Proc. R. Soc. A 112 (1926).
 """
 
