@@ -18,7 +18,7 @@ import railcontact.hertz as hertz
 from railcontact import effects
 from railcontact.carter import carter_stick_ratio
 from railcontact.effects import ContactPoint, EffectUnavailable, build_pipeline
-from railcontact.scene import parse_scene
+from railcontact.scene import SceneError, parse_scene
 
 E, NU = 210e9, 0.28
 
@@ -185,3 +185,99 @@ def test_slave_state_round_trip_in_python():
     _run_slave(slave, 3)
     slave._set_fmu_state(slave._fmu_state_from_bytes(blob))
     assert slave._contact.Fx == fx and slave._pipeline.calls()["creep"] == 11
+
+
+# --------------------------------------------------------------------------------------------
+# line contact: Carter, velocity-dependent friction, corrugation, wear, evolution
+# --------------------------------------------------------------------------------------------
+from railcontact.carter import carter_creep_force  # noqa: E402
+from railcontact.hertz import hertz_2d  # noqa: E402
+from railcontact.wear import mean_wear  # noqa: E402
+
+LINE = ("[geometry]\nkind = 'line'\nradius = 0.46\ncontact_width = 0.02\n"
+        "[effects.creep]\nmethod = 'carter'\n")
+
+
+def _line_contact(pipe, n=1e5, xi=2e-3, x=0.0):
+    c = _contact(normal_force=n, creepage_longitudinal=xi, rail_position=x,
+                 friction_coefficient=0.3)
+    pipe.step(c)
+    pipe.auxiliary(c)
+    return c
+
+
+def test_line_contact_is_hertz_2d_and_carter():
+    pipe = build_pipeline(parse_scene(LINE))
+    for n in (1.0, 3e4, 1e5, 4e5):
+        c = _line_contact(pipe, n=n)
+        h = hertz_2d(n / 0.02, 0.46, E, NU)
+        assert c.a0 == pytest.approx(float(h.a0), rel=1e-14)
+        assert c.p0 == pytest.approx(float(h.p0), rel=1e-14)
+        assert c.Fx == pytest.approx(float(carter_creep_force(2e-3, n / 0.02, 0.46, E, NU, 0.3))
+                                     * 0.02, rel=1e-14)
+        assert c.Fy == 0.0 and c.b0 == 0.01
+
+
+def test_step_law_with_equal_coefficients_is_carter():
+    """mu_k = mu_0: the step law is Coulomb, so the force must be Carter's (independent form)."""
+    pipe = build_pipeline(parse_scene(LINE + "[effects.velocity_friction]\nlaw = 'step'\n"
+                                             "kinetic_friction_coefficient = 0.3\n"))
+    for xi in (-3e-3, -2e-4, 1e-4, 1e-3, 5e-3):
+        c = _line_contact(pipe, xi=xi)
+        want = float(carter_creep_force(xi, 1e5 / 0.02, 0.46, E, NU, 0.3)) * 0.02
+        assert c.Fx == pytest.approx(want, rel=1e-12, abs=1e-9)
+
+
+def test_step_law_saturates_at_kinetic_friction():
+    pipe = build_pipeline(parse_scene(LINE + "[effects.velocity_friction]\nlaw = 'step'\n"
+                                             "kinetic_friction_coefficient = 0.2\n"))
+    c = _line_contact(pipe, xi=0.02)
+    assert c.Fx == pytest.approx(-0.2 * 1e5, rel=1e-12) and c.r_a0 == 0.0
+
+
+def test_smooth_law_with_zero_kappa_is_carter():
+    pipe = build_pipeline(parse_scene(LINE + "[effects.velocity_friction]\nlaw = 'smooth'\n"
+                                             "kinetic_friction_coefficient = 0.2\nkappa = 0\n"))
+    c = _line_contact(pipe, xi=1e-3)
+    want = float(carter_creep_force(1e-3, 1e5 / 0.02, 0.46, E, NU, 0.3)) * 0.02
+    assert c.Fx == pytest.approx(want, rel=1e-6)
+
+
+def test_wear_on_smooth_rail_is_mean_wear():
+    pipe = build_pipeline(parse_scene(LINE + "[effects.wear]\nwear_coefficient = 1e-12\n"))
+    c = _line_contact(pipe)
+    assert c.wear_depth_per_passage == float(mean_wear(1e-12, 0.3, 1e5 / 0.02, 0.46, c.a0,
+                                                       c.r_a0))
+    assert c.wear_depth_per_passage > 0 and c.corrugation_growth_rate == 0.0
+
+
+CORR = LINE + ("[effects.corrugation]\nmethod = 'linear'\nwavelengths = [0.05]\n"
+               "amplitudes_cos = [1e-5]\namplitudes_sin = [0.0]\n")
+
+
+def test_evolution_follows_the_reported_growth_rate():
+    """Amplitude ratio over one passage == 1 + growth rate read before it (constant contact)."""
+    pipe = build_pipeline(parse_scene(CORR + "[effects.wear]\nwear_coefficient = 1e-9\n"
+                                             "evolve = true\nsection_length = 0.5\n"))
+    amps, rates = [], []
+    for k in range(7):
+        c = _line_contact(pipe, x=0.26 * k)
+        amps.append(c.corrugation_amplitude)
+        rates.append(c.corrugation_growth_rate)
+    assert pipe.effects["wear"].passages == 3
+    crossings = [k for k in range(1, 7) if int(0.26 * k / 0.5) > int(0.26 * (k - 1) / 0.5)]
+    for k in crossings:
+        assert amps[k] / amps[k - 1] == pytest.approx(1.0 + rates[k - 1], rel=1e-12)
+    assert amps[-1] < amps[0] and all(r < 0 for r in rates)   # material_point model levels
+
+
+def test_corrugation_condition_4_2_is_a_scene_error():
+    with pytest.raises(SceneError, match="Eq. .4.2."):
+        build_pipeline(parse_scene(LINE + "[effects.corrugation]\nwavelengths = [0.01]\n"
+                                          "amplitudes_cos = [1e-4]\n"))
+
+
+@pytest.mark.parametrize("effect", ["nonsteady", "roughness"])
+def test_effects_without_fmu_model_are_unavailable(effect):
+    with pytest.raises(EffectUnavailable, match=f"effect {effect} not available in this build"):
+        build_pipeline(parse_scene(f"[effects.{effect}]\n"))

@@ -26,7 +26,8 @@ import math
 
 from .scene import SceneError
 
-__all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "Corrugation", "Wear",
+__all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
+           "Corrugation", "Wear",
            "Pipeline", "build_pipeline", "EffectUnavailable"]
 
 _PACKAGE = __name__.rpartition(".")[0]     # "railcontact", or the FMU's bundled copy's name
@@ -290,6 +291,63 @@ class Creep2D(_Effect):
         c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
 
 
+class VelocityFriction(_Effect):
+    r"""Slip-velocity dependent friction on a line contact (Nielsen Ch. 5), replacing Carter.
+
+    ``mu(0)`` is ``friction.friction_coefficient``; ``law = "step"``: Ohyama's step law (5.3)
+    with the thesis' corrected (minimum) solution, force from
+    :func:`railcontact.friction.step_law_creep_force_normalised` (closed form) and the stick
+    ratio of Carter's solution for mu_k (:func:`railcontact.carter.carter_stick_ratio`), which is
+    that minimum solution (module docstring of :mod:`railcontact.friction`). ``law = "smooth"``:
+    the law (5.16) solved by :func:`railcontact.friction.solve_velocity_friction_normalised`
+    (the iteration of Sec. 5.3; accurate to about 1e-3 mu N, and slow: of the order of a second
+    per step). Normalisation by :func:`railcontact.friction.normalised_inputs`.
+    """
+
+    name = "velocity_friction"
+
+    def __init__(self, scene, **_):
+        super().__init__()
+        if scene.effects["velocity_friction"]["source"] != "analytic":
+            raise EffectUnavailable("effect velocity_friction (table) not available in this "
+                                    "build (no velocity-friction table is shipped)")
+        self._friction = _import("friction", "velocity_friction")
+        self._carter = _import("carter", "velocity_friction")
+        opts = scene.effects["velocity_friction"]
+        self.law = opts["law"]
+        self.mu_kinetic = opts["kinetic_friction_coefficient"]
+        self.kappa = opts.get("kappa", 0.0)
+        geo = scene.geometry
+        self._radius, self._width = geo["radius"], geo["contact_width"]
+        self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
+
+    def step(self, c):
+        self.calls += 1
+        mu0 = c.friction_coefficient
+        if c.normal_force <= 0.0 or mu0 <= 0.0:
+            return                       # Creep2D already gave the no-force answer
+        n_line = c.normal_force / self._width
+        norm = self._friction.normalised_inputs(
+            c.creepage_longitudinal, n_line, self._radius, self._e, self._nu, mu0,
+            self.mu_kinetic, self.kappa)
+        scale = float(norm["force_scale"]) * self._width
+        if self.law == "step":
+            ratio = float(self._friction.step_law_creep_force_normalised(
+                norm["creepage_ratio"], norm["friction_ratio"]))
+            c.r_a0 = float(self._carter.carter_stick_ratio(
+                c.creepage_longitudinal, n_line, self._radius, self._e, self._nu,
+                self.mu_kinetic))
+        else:
+            sol = self._friction.solve_velocity_friction_normalised(
+                float(norm["creepage_ratio"]), float(norm["friction_ratio"]),
+                float(norm["kappa_normalised"]))
+            ratio = float(sol.force_ratio)          # T/(mu_0 N), opposes the creepage
+            c.r_a0 = float(sol.stick_ratio)
+        c.Fx = ratio * scale
+        c.stick_area_fraction = c.r_a0
+        c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
+
+
 class Corrugation(_Effect):
     r"""Corrugated rail surface (Nielsen Ch. 4.2): rail position in; a, Delta, a*, T out.
 
@@ -519,7 +577,7 @@ def build_pipeline(scene, tables_dir=None, warn=None):
 
     effects = {"normal": NormalContact(scene)}
     for name in scene.effects:
-        if name not in ("creep", "corrugation", "wear"):
+        if name not in ("creep", "corrugation", "wear", "velocity_friction"):
             raise EffectUnavailable(f"effect {name} not available in this build")
     if "creep" in scene.effects:
         if scene.effects["creep"]["method"] == "carter":
@@ -529,6 +587,8 @@ def build_pipeline(scene, tables_dir=None, warn=None):
             if scene.effects["creep"]["source"] == "table" and tables_dir is not None:
                 table_path = Path(tables_dir) / f"{scene.effects['creep']['table']}.nc"
             effects["creep"] = Creep3D(scene, table_path=table_path, warn=warn)
+    if "velocity_friction" in scene.effects:
+        effects["velocity_friction"] = VelocityFriction(scene)
     wear = Wear(scene) if "wear" in scene.effects else None
     if "corrugation" in scene.effects:
         effects["corrugation"] = Corrugation(scene, wear=wear)

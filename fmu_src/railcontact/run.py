@@ -129,7 +129,9 @@ def plot_results(path, scene, result, inputs):
     import matplotlib.pyplot as plt
 
     driven = [n for n in INPUTS if n in scene.inputs] or ["normal_force"]
-    outputs = [n for n in result.dtype.names if n != "time"]
+    # outputs that change during the run (Fx and Fy always)
+    outputs = [n for n in result.dtype.names if n in ("Fx", "Fy") or (
+        n != "time" and np.ptp(result[n].astype(float)) > 0)]
     rows = len(driven) + len(outputs)
     fig, axes = plt.subplots(rows, 1, sharex=True, figsize=(8, 1.6 * rows + 1))
     axes = np.atleast_1d(axes)

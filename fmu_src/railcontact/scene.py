@@ -134,8 +134,7 @@ _EFFECT_KEYS = {
     "corrugation": {"enabled", "source", "method", "wavelengths", "amplitudes_cos",
                     "amplitudes_sin"},
     "wear": {"enabled", "source", "wear_coefficient", "wear_model", "evolve", "section_length"},
-    "velocity_friction": {"enabled", "source", "law", "static_friction_coefficient",
-                          "kinetic_friction_coefficient", "decay"},
+    "velocity_friction": {"enabled", "source", "law", "kinetic_friction_coefficient", "kappa"},
     "roughness": {"enabled", "source"},
     "nonsteady": {"enabled", "source"},
 }
@@ -385,6 +384,15 @@ def scene_from_dict(data):
                                  "amplitudes_sin must be non-empty lists of equal length [m]; "
                                  f"got {len(waves)}, {len(za)}, {len(zb)}")
             opts.update(wavelengths=waves, amplitudes_cos=za, amplitudes_sin=zb)
+        elif name == "velocity_friction":
+            opts["law"] = _choice("effects.velocity_friction.law", opts.get("law", "smooth"),
+                                  ("step", "smooth"))
+            opts["kinetic_friction_coefficient"] = _number(
+                "effects.velocity_friction.kinetic_friction_coefficient",
+                opts.get("kinetic_friction_coefficient"), "-", 0.0)
+            if opts["law"] == "smooth":
+                opts["kappa"] = _number("effects.velocity_friction.kappa", opts.get("kappa"),
+                                        "-", 0.0)
         elif name == "wear":
             opts["wear_coefficient"] = _number("effects.wear.wear_coefficient",
                                                opts.get("wear_coefficient"), "m^2/N", 0.0)
@@ -401,7 +409,12 @@ def scene_from_dict(data):
         raise SceneError("effects.creep.method must be 'carter' exactly when geometry.kind = "
                          "'line' (Carter's theory is the 2-D one); got method "
                          f"{effects['creep']['method']!r} with geometry.kind {geometry['kind']!r}")
-    for name in ("corrugation", "wear"):
+    if "velocity_friction" in effects and any(e in effects for e in ("corrugation", "wear")):
+        raise SceneError("effects.velocity_friction cannot be combined with corrugation or wear "
+                         "(Nielsen's Ch. 4 models assume Coulomb friction)")
+    if "velocity_friction" in effects and "creep" not in effects:
+        raise SceneError("effects.creep.enabled must be true when velocity_friction is on")
+    for name in ("corrugation", "wear", "velocity_friction"):
         if name in effects and not line:
             raise SceneError(f"effects.{name} needs geometry.kind = 'line' (Nielsen's Ch. 4 "
                              f"theory is 2-D); got {geometry['kind']!r}")
@@ -554,6 +567,17 @@ FMU_PARAMETERS = (
                   "Creep forces from the 'analytic' solver or the shipped 'table'"),
     ParameterSpec("creep_spin", ("effects", "creep", "spin"), "boolean", "",
                   "Include the spin input in the creep forces"),
+    ParameterSpec("velocity_friction_enabled", ("effects", "velocity_friction", "enabled"),
+                  "boolean", "", "Slip-velocity dependent friction (Nielsen Ch. 5; needs "
+                                 "geometry_kind = 'line'); friction_coefficient is mu(0)"),
+    ParameterSpec("velocity_friction_law", ("effects", "velocity_friction", "law"), "string", "",
+                  "Friction law: 'step' (Eq. (5.3), corrected solution (5.4)-(5.6)) or "
+                  "'smooth' (Eq. (5.16), iteration of Sec. 5.3)"),
+    ParameterSpec("kinetic_friction_coefficient",
+                  ("effects", "velocity_friction", "kinetic_friction_coefficient"), "real", "1",
+                  "Kinetic friction coefficient mu_k (large slip)"),
+    ParameterSpec("friction_kappa", ("effects", "velocity_friction", "kappa"), "real", "1",
+                  "Slope parameter kappa of the smooth law (5.16) per unit of slip s"),
     ParameterSpec("corrugation_enabled", ("effects", "corrugation", "enabled"), "boolean", "",
                   "Corrugated rail surface (Nielsen Ch. 4.2; needs geometry_kind = 'line')"),
     ParameterSpec("corrugation_method", ("effects", "corrugation", "method"), "string", "",
@@ -586,6 +610,8 @@ FMU_PARAMETERS = (
 
 #: Start values of the FMU parameters whose scene key :data:`DEFAULT_SCENE` does not hold.
 _EFFECT_PARAMETER_DEFAULTS = {
+    "velocity_friction_enabled": False, "velocity_friction_law": "smooth",
+    "kinetic_friction_coefficient": 0.2, "friction_kappa": 0.0,
     "corrugation_enabled": False, "corrugation_method": "exact", "corrugation_wavelengths": "",
     "corrugation_amplitudes_cos": "", "corrugation_amplitudes_sin": "", "wear_enabled": False,
     "wear_coefficient": 0.0, "wear_model": "material_point", "wear_evolve": False,
