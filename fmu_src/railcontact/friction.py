@@ -615,18 +615,56 @@ class VelocityFrictionSolution:
     iterations: int
     residual: float
     _raw: _Raw
+    _law: object = None
 
-    def traction(self, x_ratio):
-        """Traction q / (mu_0 p0) on the wheel at x / a0 (leading edge +1). [-]"""
+    def slip(self, x_ratio):
+        """Slip magnitude over the critical creepage, s / xi_c0, at x / a0 (0 in the stick zone,
+        closed form from the polynomial forms; outside the patch the far-field slip). [-]"""
         x = np.asarray(x_ratio, dtype=float)
         raw = self._raw
-        t = _cheb.chebval(np.clip(x, -1, 1), _u_to_t(raw.c)) * _sqrt_pos(1.0 - x * x)
+        r = raw.r
+        xin = np.clip(x, -1.0, 1.0)
+        h1 = _cheb.chebval(xin, np.concatenate([[0.0], raw.c]))   # U_n -> T_{n+1}
+        # outside |x| < 1 the transform of t1 is (x - sign(x) sqrt(x^2 - 1))^(n+1)
+        wout = x - np.sign(x) * _sqrt_pos(x * x - 1.0)
+        h1_out = np.polynomial.polynomial.polyval(wout, np.concatenate([[0.0], raw.c]))
+        h1 = np.where(np.abs(x) <= 1.0, h1, h1_out)
+        if r > 0.0:
+            y = (x - 1.0 + r) / r
+            w = y - np.sign(y) * _sqrt_pos(y * y - 1.0)
+            h2_out = np.polynomial.polynomial.polyval(w, np.concatenate([[0.0], raw.d]))
+            h2_in = _cheb.chebval(np.clip(y, -1, 1), np.concatenate([[0.0], raw.d]))
+            h2 = np.where(np.abs(y) < 1.0, h2_in, h2_out)
+            stick = np.abs(y) < 1.0
+        else:
+            h2, stick = 0.0, np.zeros(x.shape, bool)
+        sig = abs(self.creepage_ratio) - h1 - h2
+        return np.where(stick, 0.0, sig)
+
+    def traction(self, x_ratio):
+        """Traction q / (mu_0 p0) on the wheel at x / a0 (leading edge +1). [-]
+
+        Stick zone: the polynomial forms q1 + q2 of (5.8). Slip zone: ``mu(s(x)) p(x)`` with the
+        slip of the converged solution (equal to q1 at the interpolation nodes, free of the
+        polynomial's oscillation next to the square-root kink at the stick/slip limit).
+        """
+        x = np.asarray(x_ratio, dtype=float)
+        raw = self._raw
+        p = _sqrt_pos(1.0 - x * x)
+        t = _cheb.chebval(np.clip(x, -1, 1), _u_to_t(raw.c)) * p
         r = raw.r
         if r > 0.0:
             y = (x - 1.0 + r) / r
             inside = np.abs(y) < 1.0
             t2 = _cheb.chebval(np.clip(y, -1, 1), _u_to_t(raw.d)) * _sqrt_pos(1.0 - y * y)
             t = t + np.where(inside, t2, 0.0)
+            slip_zone = x < 1.0 - 2.0 * r
+        else:
+            slip_zone = np.ones(x.shape, bool)
+        if self._law is not None:
+            t_slip = self._law(np.maximum(self.slip(x), 0.0)) * p
+            t = np.where(slip_zone & (np.abs(x) < 1.0), t_slip, t)
+        t = np.where(np.abs(x) < 1.0, t, 0.0)
         return -np.sign(self.creepage_ratio) * t
 
     def friction_coefficient_ratio(self, x_ratio):
@@ -704,7 +742,7 @@ def solve_velocity_friction_normalised(creepage_ratio, friction_ratio, kappa_nor
     solver = _NormalisedSolver(g, dg, deg, tol, max_iter, label)
     raw = solver.at_creepage(abs(chi))
     return VelocityFrictionSolution(raw.r, chi, -np.sign(chi) * raw.force, raw.iterations,
-                                    raw.residual, raw)
+                                    raw.residual, raw, g)
 
 
 def velocity_friction_creep_force_normalised(creepage_ratio, friction_ratio, kappa_normalised,
@@ -907,7 +945,7 @@ def velocity_friction_traction(x, creepage, normal_load, radius, youngs_modulus,
     solver = _law_solver(friction_law, xi_c, deg, tol, max_iter, f"friction_law = {friction_law!r}")
     raw = solver.at_creepage(abs(float(xi)) / xi_c)
     sol = VelocityFrictionSolution(raw.r, float(xi) / xi_c, 0.0, raw.iterations, raw.residual,
-                                   raw)
+                                   raw, solver.g)
     q = mu0 * p0 * sol.traction(xq / a0)
     return np.where(np.abs(xq) < a0, q, 0.0)[()]
 
