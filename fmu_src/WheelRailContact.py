@@ -234,14 +234,18 @@ class WheelRailContact(Fmi2Slave):
     def exit_initialization_mode(self):
         try:
             self._build(self._parameter_values())
-            self._check_inputs()
-            self._evaluate()
         except ValueError as exc:   # SceneError is a ValueError
             self.log(f"invalid parameter: {exc}", Fmi2Status.error)
             raise
         except Exception as exc:    # report, then let PythonFMU return fmi2Fatal
             self.log(f"initialisation failed: {exc!r}", Fmi2Status.fatal)
             raise
+        try:
+            self._check_inputs()
+        except ValueError as exc:
+            self.log(f"invalid input (start value): {exc}", Fmi2Status.error)
+            raise
+        self._evaluate()
 
     # ---------------------------------------------------------------------------------------
     # stepping
@@ -274,8 +278,12 @@ class WheelRailContact(Fmi2Slave):
         except ValueError as exc:
             self.log(f"invalid input at t = {current_time:g} s: {exc}", Fmi2Status.error)
             raise
-        for step in self._steps:
-            step(self._contact)
+        try:
+            for step in self._steps:
+                step(self._contact)
+        except ValueError as exc:   # a model's own range check (e.g. Eq. (4.2) as the surface
+            self.log(f"step at t = {current_time:g} s failed: {exc}", Fmi2Status.error)
+            raise                   # evolves): an error status with the model's message
         return True
 
     # ---------------------------------------------------------------------------------------

@@ -281,3 +281,54 @@ def test_corrugation_condition_4_2_is_a_scene_error():
 def test_effects_without_fmu_model_are_unavailable(effect):
     with pytest.raises(EffectUnavailable, match=f"effect {effect} not available in this build"):
         build_pipeline(parse_scene(f"[effects.{effect}]\n"))
+
+
+# --------------------------------------------------------------------------------------------
+# property: save/restore of the slave state is bit-identical (hypothesis, seeded profile)
+# --------------------------------------------------------------------------------------------
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+_STATE_SCENES = {
+    "creep_3d": "[effects.creep]\nmethod = 'modified_strip'\n",
+    "corrugation_wear": CORR.replace("'linear'", "'linear'") + (
+        "[effects.wear]\nwear_coefficient = 1e-9\nevolve = true\nsection_length = 0.05\n"),
+}
+_OUT_FIELDS = ("Fx", "Fy", "a0", "b0", "p0", "r_a0", "contact_half_width", "patch_shift",
+               "wear_depth_per_passage", "corrugation_amplitude")
+
+
+@settings(max_examples=20, deadline=None, derandomize=True)
+@given(scene=st.sampled_from(sorted(_STATE_SCENES)),
+       rows=st.lists(st.tuples(st.floats(0.0, 2e5), st.floats(-0.02, 0.02),
+                               st.floats(-0.005, 0.005), st.floats(-1.0, 1.0),
+                               st.floats(0.0, 0.04)), min_size=3, max_size=8),
+       split=st.integers(1, 2))
+def test_slave_state_restore_is_bit_identical_property(scene, rows, split):
+    slave = _slave()
+    slave.scene_toml = _STATE_SCENES[scene]
+    c = slave._contact
+    slave.exit_initialization_mode()
+    x = 0.0
+
+    def run(part):
+        nonlocal x
+        out = []
+        for n, xi, eta, phi, dx in part:
+            x += dx
+            c.normal_force, c.creepage_longitudinal, c.rail_position = n, xi, x
+            if scene == "creep_3d":
+                c.creepage_lateral, c.spin = eta, phi
+            slave.do_step(0.0, 1e-3)
+            out.append([slave._auxiliary(f) for f in _OUT_FIELDS + (
+                "stick_area_fraction", "corrugation_growth_rate")])
+        return out
+
+    run(rows[:split])
+    blob = slave._fmu_state_to_bytes(slave._get_fmu_state())
+    x_saved = x
+    first = run(rows[split:])
+    slave._set_fmu_state(slave._fmu_state_from_bytes(blob))
+    x = x_saved
+    second = run(rows[split:])
+    assert first == second
+    assert all(math.isfinite(v) for row in first for v in row)

@@ -154,7 +154,7 @@ class Creep3D(_Effect):
 
     Table (``method = "modified_strip"`` only, the theory the shipped table holds):
     :meth:`railcontact.tables.CreepTable.creep_force_3d` gives the forces in the step (its
-    scalar fast path); the stick measures and the validity flag are computed when first read
+    scalar fast path, whose input check the slave has already made); the stick measures and the validity flag are computed when first read
     after a step (:meth:`auxiliary`) with :meth:`~railcontact.tables.CreepTable.
     creep_solution_3d` on the inputs of that step, so an importer that reads only Fx and Fy
     does not pay for them. Out of the table's grid (normalised creepage z beyond its last
@@ -190,7 +190,10 @@ class Creep3D(_Effect):
             except (OSError, ValueError) as exc:
                 raise EffectUnavailable(f"effect creep (table) not available in this build: "
                                         f"{exc}") from None
-            self._force = self._table.creep_force_3d
+            # The slave has range-checked every input (finite, N >= 0) and a0, b0 come from
+            # Hertz, so the reader's scalar fast path without its own input check is used
+            # ("inputs already range-checked"); the public method otherwise.
+            self._force = getattr(self._table, "_scalar", self._table.creep_force_3d)
             self._z_max = float(self._table.table.axes[0]["nodes"][-1])
 
     def step(self, c):
