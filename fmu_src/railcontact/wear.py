@@ -62,7 +62,7 @@ from ._validation import check_choice, check_range
 from .corrugation import _TWO_PI, solve_normal_exact, solve_stick_zone_exact, _surface_terms
 
 __all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
-           "wear_first_harmonic_reference",
+           "wear_first_harmonic_reference", "wear_first_harmonic_transient",
            "passage_time_response", "wear_first_harmonic_exact", "wear_shape_function"]
 
 WEAR_MODELS = ("material_point", "patch_coordinate", "nielsen1998", "time_domain_carter")
@@ -329,7 +329,7 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
     Returns
     -------
     dict
-        ``{"material_point": w, "patch_coordinate": w, "mean": W0 / (K mu^2 N)}`` with ``w`` the
+        ``{"material_point": w, "patch_coordinate": w, "mean": W0 R / (K mu^2 N a0)}`` with ``w`` the
         normalised complex coefficient of :func:`wear_coefficients` (first harmonic divided by the
         surface amplitude; equal to the linear coefficient up to O(amplitude^2)). [-]
     """
@@ -472,3 +472,81 @@ def wear_first_harmonic_reference(a0_over_wavelength, stick_ratio, relative_ampl
     out["patch_shift"] = harmonic(d_s)
     out["stick_half_width"] = harmonic(as_s)
     return out
+
+
+def wear_first_harmonic_transient(a0_over_wavelength, stick_ratio, relative_amplitude, *,
+                                  phase=0.0, n_elements=200, domain_half_width=1.6,
+                                  reference_length_over_a0=10.0, n_periods=1, run_in=6.0):
+    r"""Wear first harmonic from a *transient* (non-steady) rolling simulation (study tool).
+
+    Beyond the thesis' quasi-static model: the wheel axis advances one element width per time
+    step over the corrugated rail; the pressure of every step is the quasi-static normal
+    solution there, and the tangential problem is time-stepped with the ``du/dt`` term of (2.16)
+    by :func:`railcontact.reference.halfspace2d.solve_transient_rolling_2d` (so the patch's
+    motion relative to the material, the dwell, and the memory of the traction are all in).
+    The frictional work ``|q s|`` is then summed at material points, as (4.74) says. After a
+    run-in of one contact length, ``n_periods`` wave lengths are analysed.
+
+    Parameters
+    ----------
+    a0_over_wavelength, stick_ratio, relative_amplitude, phase
+        As in :func:`wear_first_harmonic_exact`.
+    n_elements : int
+        Elements of the solver grid (axis frame). [-]
+    domain_half_width : float
+        Grid half-width in units of a0. [-]
+    reference_length_over_a0 : float
+        Datum of the 2-D log kernel (the non-steady 2-D problem depends on it, Nielsen after
+        (2.46) and Ch. 7), in units of a0. [-]
+    n_periods : int
+        Wave lengths analysed. [-]
+    run_in : float
+        Run-in before the analysis, in grid lengths (the time stepping approaches the steady
+        state only slowly when the datum is large). [-]
+
+    Returns
+    -------
+    dict
+        ``{"material_point": w, "mean": W0 R / (K mu^2 N a0)}``, normalised as in
+        :func:`wear_first_harmonic_exact` (the mean is (1 - r)^2 (1 + r) for Carter). [-]
+    """
+    from .reference.halfspace2d import solve_quasistatic_corrugated_2d, \
+        solve_transient_rolling_2d
+
+    ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                              lower_closed=False))
+    r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
+                          upper_closed=False))
+    eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
+                            lower_closed=False))
+    e_mod, nu, big_r, mu = 2.1e11, 0.28, 0.5, 0.3
+    comp = 4 * (1 - nu * nu) / (np.pi * e_mod)
+    a0 = 0.006
+    n_load = a0 * a0 / (2 * big_r * comp)
+    lam = a0 / ratio
+    k = _TWO_PI / lam
+    amp = eps * a0 / (k * big_r)
+    za, zb = amp * np.cos(phase), amp * np.sin(phase)
+    xi = mu * a0 * (1 - r) / big_r
+    hw = domain_half_width * a0
+    dx = 2 * hw / n_elements
+    per_period = int(round(lam / dx))
+    dx_rail = lam / per_period                   # rail step = grid spacing (adjusted)
+    hw = 0.5 * n_elements * dx_rail
+    run_in = int(np.ceil(run_in * 2 * hw / dx_rail)) + 1
+    steps = run_in + n_periods * per_period
+    xc = np.arange(steps) * dx_rail - run_in * dx_rail
+    qs = solve_quasistatic_corrugated_2d(
+        xc, lambda xr: za * np.cos(k * xr) + zb * np.sin(k * xr), big_r, n_load, e_mod, nu,
+        -hw, hw, n_elements)
+    tr = solve_transient_rolling_2d(qs.x, qs.pressure, e_mod, nu,
+                                    creepage=np.full(steps, -xi), friction=mu,
+                                    reference_length=reference_length_over_a0 * a0)
+    dens = np.abs(tr.traction * tr.slip)[run_in:]
+    xcs = xc[run_in:]
+    first = np.sum(dens * np.exp(-1j * k * (xcs[:, None] + qs.x[None, :]))) * dx_rail * dx_rail
+    first = first / (n_periods * lam)
+    zeta = za - 1j * zb
+    mean = np.sum(dens) * dx_rail * dx_rail / (n_periods * lam) / (mu * mu * n_load)
+    return {"material_point": np.conj(2 * first / zeta) / (mu * mu * n_load / a0),
+            "mean": float(mean * big_r / a0)}
