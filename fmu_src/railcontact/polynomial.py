@@ -592,12 +592,13 @@ def solve_normal_polynomial(gap_coefficients, normal_load, youngs_modulus, poiss
     load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
     kern = float(kernel_factor(youngs_modulus, poisson_ratio))
     n = z.size - 1
-    if z[-1] == 0.0:
-        raise ValueError("gap_coefficients must have a non-zero leading coefficient [m^(1-n)]; "
-                         f"got {z[-1]:g}")
+    ztrim = np.trim_zeros(z, "b")
+    if ztrim.size < 3:
+        raise ValueError("gap_coefficients must have degree >= 2 (a curved gap) [m^(1-n)]; "
+                         f"got {z!r}")
     # --- start value for the centre: lowest real minimum of Z
     if centre_guess is None:
-        dz = np.polynomial.polynomial.polyder(z)
+        dz = np.polynomial.polynomial.polyder(ztrim)
         crit = np.polynomial.polynomial.polyroots(dz)
         scale = max(1.0, np.abs(crit).max()) if crit.size else 1.0
         real = crit[np.abs(crit.imag) <= 1e-7 * scale].real
@@ -610,41 +611,63 @@ def solve_normal_polynomial(gap_coefficients, normal_load, youngs_modulus, poiss
     else:
         d0 = float(check_range("centre_guess", centre_guess, "m"))
 
-    def load_residual(a, d):
-        return (_force_from_normalised(_pressure_for(z, a, d, kern)) - load) / load
+    def load_residual(a, d, target=load):
+        return (_force_from_normalised(_pressure_for(z, a, d, kern)) - target) / target
+
+    def start_width(d, target):
+        hi = 1e-12 * max(1.0, abs(d))
+        best, best_val = hi, -np.inf
+        for _ in range(1000):
+            hi *= 1.25
+            with np.errstate(over="ignore", invalid="ignore"):
+                val = load_residual(hi, d, target)
+            if val > 0.0:
+                break
+            if val > best_val:
+                best, best_val = hi, val
+        else:
+            # the load may peak between two samples (e.g. negative flatness near its limit)
+            peak = optimize.minimize_scalar(lambda a: -load_residual(a, d, target),
+                                            bounds=(best / 1.25, best * 1.25), method="bounded",
+                                            options={"xatol": 1e-15 * best})
+            if not -peak.fun > 0.0:
+                raise ValueError("gap_coefficients: no half-width carries normal_load [N/m] "
+                                 f"(gap not convex at the centre guess {d:g} m)")
+            hi = peak.x
+        return optimize.brentq(lambda a: load_residual(a, d, target), hi / 1.25, hi,
+                               xtol=1e-16, rtol=1e-14)
+
+    def solve(target, a_start, d_start):
+        def residual(u):
+            a = a_start * u[0]
+            d = d_start + a_start * u[1]
+            if a <= 0.0:
+                return np.array([1e3 * (1.0 - u[0]), 1e3])
+            b = _pressure_for(z, a, d, kern)
+            scale = max(np.abs(b).sum(), 1e-300)
+            return np.array([b[1::2].sum() / scale, load_residual(a, d, target)])
+
+        sol = optimize.root(residual, np.array([1.0, 0.0]), method="hybr", tol=xtol)
+        ok = sol.x[0] > 0 and np.all(np.abs(residual(sol.x)) < 1e-9)
+        return ok, a_start * sol.x[0], d_start + a_start * sol.x[1], np.abs(residual(sol.x)).max()
 
     if half_width_guess is None:
-        lo = 1e-12 * max(1.0, abs(d0))
-        hi = lo
-        for _ in range(400):
-            hi *= 2.0
-            if load_residual(hi, d0) > 0.0:
-                break
-        else:
-            raise ValueError("gap_coefficients: no half-width carries normal_load [N/m] "
-                             f"(gap not convex at the centre guess {d0:g} m)")
-        a0 = optimize.brentq(lambda a: load_residual(a, d0), hi / 2.0, hi, xtol=1e-16,
-                             rtol=1e-14)
+        a0 = start_width(d0, load)
     else:
         a0 = float(check_range("half_width_guess", half_width_guess, "m", 0.0, None,
                                lower_closed=False))
-
-    def residual(u):
-        a = a0 * u[0]
-        d = d0 + a0 * u[1]
-        if a <= 0.0:
-            return np.array([1e3 * (1.0 - u[0]), 1e3])
-        b = _pressure_for(z, a, d, kern)
-        scale = max(np.abs(b).sum(), 1e-300)
-        return np.array([b[1::2].sum() / scale, load_residual(a, d)])
-
-    sol = optimize.root(residual, np.array([1.0, 0.0]), method="hybr", tol=xtol)
-    res = residual(sol.x)
-    if not (sol.x[0] > 0 and np.all(np.abs(res) < 1e-9)):
+    ok, a, d, res = solve(load, a0, d0)
+    if not ok:
+        # continuation in the load from 1e-3 N (robust when the patch moves far from the
+        # minimum, e.g. on the flank of a double well)
+        a, d = start_width(d0, 1e-3 * load), d0
+        for target in load * np.geomspace(1e-3, 1.0, 40):
+            ok, a, d, res = solve(target, a, d)
+            if not ok:
+                break
+    if not ok:
         raise ValueError("gap_coefficients: the normal problem did not converge "
-                         f"(residual {np.abs(res).max():.3g}); give centre_guess/half_width_guess")
-    a = float(a0 * sol.x[0])
-    d = float(d0 + a0 * sol.x[1])
+                         f"(residual {res:.3g}); give centre_guess/half_width_guess")
     b = _pressure_for(z, a, d, kern)
     if not _pressure_is_physical(b):
         raise ValueError("gap_coefficients: the solution has negative pressure (contact not "
