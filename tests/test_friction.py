@@ -137,23 +137,28 @@ def test_mu_k_equal_mu_0_and_kappa_zero_reduce_to_carter_exactly():
 
 @pytest.mark.parametrize("m, kap, chis", [
     (1.4, 10.0, [0.1, 0.5, 1.2]),   # rising law: partial slip and full sliding
-    (0.6, 5.0, [0.8, 1.2]),         # falling law, full sliding
+    (0.6, 5.0, [0.05, 0.8, 1.2]),   # falling law: partial slip (small creepage), full sliding
 ])
 def test_against_reference_solver(m, kap, chis):
-    """Same law in the discretised half-space solver (200 elements)."""
+    """Same law in the discretised half-space solver at 100 and 200 elements; its error is
+    first order in the element size, so the Richardson extrapolation 2 T_200 - T_100 is compared
+    (measured: |difference| <= 1.7e-4 mu_0 N; the 200-element value alone differs by <= 1.4e-3)."""
     law = SmoothFriction(MU0, m * MU0, kap / XIC)
-    dx = 2 * A0 / 200
-    x = np.arange(-A0 + dx / 2, A0, dx)
-    p = P0 * np.sqrt(np.clip(1 - (x / A0) ** 2, 0, None))
     ours = velocity_friction_creep_force_normalised(np.array(chis), m, kap)
-    for chi, f in zip(chis, ours):
-        ref = solve_rolling_2d(x, p, E, NU, creepage=chi * XIC, friction=law)
-        assert f == pytest.approx(ref.tangential_force / (MU0 * ref.normal_load), rel=3e-3)
+    refs = []
+    for nel in (100, 200):
+        dx = 2 * A0 / nel
+        x = np.arange(-A0 + dx / 2, A0, dx)
+        p = P0 * np.sqrt(np.clip(1 - (x / A0) ** 2, 0, None))
+        refs.append(np.array([solve_rolling_2d(x, p, E, NU, creepage=c * XIC, friction=law)
+                              .tangential_force / (MU0 * N) for c in chis]))
+    assert np.max(np.abs(refs[1] - ours)) < 2e-3
+    np.testing.assert_allclose(2 * refs[1] - refs[0], ours, atol=3e-4)
 
 
 def test_falling_law_satisfies_governing_equations():
-    """Falling law in partial slip (the reference solver's continuation does not converge
-    there at 200 elements): the returned traction, put into an independent element quadrature of
+    """Falling law in partial slip at a creepage where the reference solver's continuation does
+    not converge (200 elements, creepage 0.3 xi_c0): the returned traction, put into an independent element quadrature of
     the PV integral, has s = 0 in the stick zone, q = mu(s) p in the slip zone (away from the
     square-root kink at the stick/slip limit) and |q| <= mu_0 p in the stick zone."""
     m, kap, chi = 0.6, 10.0, 0.3
