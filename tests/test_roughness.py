@@ -431,3 +431,14 @@ def test_two_patch_tangential_errors(patches_4e6):
         Rg.two_patch_tangential_contact(two, 0.0, 1e-3)
     with pytest.raises(ValueError, match="normal"):
         Rg.two_patch_tangential_contact(None, MU, 1e-3)
+
+
+def test_general_case_beyond_fold_raises():
+    """Hard case: l4 < 0 with l3 != 0 has a local maximum of Z at -1.88 mm; above ~1.2e5 N/m
+    no coherent single patch exists (the general Ch. 3 solver fails too)."""
+    lam = (2.0, 1500.0, -1e6)
+    assert Rg.asperity_normal_contact(1e5, *lam, E, NU).method == "numerical"
+    with pytest.raises(ValueError, match="normal_load"):
+        Rg.asperity_normal_contact(2e5, *lam, E, NU)
+    with pytest.raises(ValueError, match="gap_coefficients"):
+        general(*lam, load=2e5)
