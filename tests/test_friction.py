@@ -288,6 +288,33 @@ def test_zero_friction_and_zero_kinetic():
 def test_non_convergence_raises_naming_parameters():
     with pytest.raises(ValueError, match="friction_ratio = 1.4, kappa_normalised = 1000"):
         velocity_friction_creep_force_normalised(0.5, 1.4, 1000.0, max_iter=1)
+    step = lambda s: np.where(np.abs(s) > 0, 0.6 * MU0, MU0)  # noqa: E731
+    with pytest.raises(ValueError, match="friction_law = <function"):
+        velocity_friction_creep_force(0.7 * XIC, N, R, E, NU, step, max_iter=1)
+
+
+@pytest.mark.parametrize("m", [0.6, 1.4])
+def test_general_iteration_with_step_law_finds_minimum_solution(m):
+    """The step law (5.3) given as a plain callable to the general iteration (no closed form
+    involved) converges, where it converges, to Carter with mu_k: an independent confirmation of
+    the thesis' corrected solution (5.4)-(5.6) for mu_k < mu_0 and mu_k > mu_0."""
+    step = lambda s: np.where(np.abs(s) > 0, m * MU0, MU0)  # noqa: E731
+    chi = np.array([0.01, 0.05, 0.2, 2.0])
+    t = velocity_friction_creep_force(chi * XIC, N, R, E, NU, step) / (MU0 * N)
+    np.testing.assert_allclose(t, step_law_creep_force_normalised(chi, m), atol=2e-4)
+
+
+def test_step_friction_object_uses_minimum_solution():
+    law = StepFriction(MU0, 0.6 * MU0)
+    chi = np.array([-0.4, 0.1, 0.5, 1.0])
+    np.testing.assert_allclose(velocity_friction_creep_force(chi * XIC, N, R, E, NU, law),
+                               MU0 * N * step_law_creep_force_normalised(chi, 0.6), rtol=1e-12)
+    x = np.linspace(-A0, A0, 5)[1:-1]
+    np.testing.assert_allclose(velocity_friction_traction(x, 0.3 * XIC, N, R, E, NU, law),
+                               MU0 * P0 * step_law_traction_normalised(x / A0, 0.3, 0.6),
+                               rtol=1e-12)
+    xi, t = velocity_friction_peak_creepage(N, R, E, NU, law)
+    assert xi == pytest.approx(0.6 * XIC) and t == pytest.approx(0.6 * MU0 * N)
 
 
 @pytest.mark.parametrize("kwargs, name", [

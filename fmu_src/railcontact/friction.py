@@ -517,7 +517,9 @@ class _NormalisedSolver:
         raise ValueError(f"{self.label}: the friction iteration of Sec. 5.3 did not converge to "
                          f"tol = {self.tol:g} in max_iter = {self.max_iter} Newton steps, also "
                          f"not by continuation in the law (stopped at {lam:.3g} of the slip "
-                         f"scale; residual {res:.3g}, degree = {self.n})")
+                         f"scale; residual {res:.3g}, degree = {self.n}). A discontinuous law "
+                         "has no polynomial solution: use StepFriction (solved in closed form) "
+                         "or a smooth law")
 
     def at_stick_ratio(self, r):
         """Converged solution for stick ratio r in [0, 1] (always started from mu = mu_0, so
@@ -886,7 +888,9 @@ def velocity_friction_creep_force(creepage, normal_load, radius, youngs_modulus,
         Poisson's ratio, in [0, 0.5). [-]
     friction_law : callable
         mu(s) of the slip magnitude s >= 0 (e.g. :class:`SmoothFriction`); mu(0) >= 0. A law
-        with a ``derivative`` method uses it in the Newton iteration. [-]
+        with a ``derivative`` method uses it in the Newton iteration. A :class:`StepFriction`
+        is solved by the closed-form minimum solution (:func:`step_law_creep_force_normalised`);
+        other discontinuous laws raise ``ValueError``. [-]
     degree, tol, max_iter
         See :func:`solve_velocity_friction_normalised`.
 
@@ -903,6 +907,9 @@ def velocity_friction_creep_force(creepage, normal_load, radius, youngs_modulus,
     scale = float(mu0 * n_load)
     if scale == 0.0:
         return np.zeros(xi.shape)[()]
+    if isinstance(friction_law, StepFriction):   # discontinuous: the minimum solution (5.4)-(5.6)
+        return (scale * step_law_creep_force_normalised(
+            xi / xi_c, friction_law.mu_kinetic / mu0))[()]
     solver = _law_solver(friction_law, xi_c, deg, tol, max_iter, f"friction_law = {friction_law!r}")
     out = np.empty(xi.shape)
     for idx in np.ndindex(xi.shape):
@@ -942,6 +949,10 @@ def velocity_friction_traction(x, creepage, normal_load, radius, youngs_modulus,
     if mu0 * n_load == 0.0:
         return np.zeros(xq.shape)[()]
     xi_c = mu0 * a0 / float(rad)
+    if isinstance(friction_law, StepFriction):
+        q = mu0 * p0 * step_law_traction_normalised(xq / a0, float(xi) / xi_c,
+                                                    friction_law.mu_kinetic / mu0)
+        return np.where(np.abs(xq) < a0, q, 0.0)[()]
     solver = _law_solver(friction_law, xi_c, deg, tol, max_iter, f"friction_law = {friction_law!r}")
     raw = solver.at_creepage(abs(float(xi)) / xi_c)
     sol = VelocityFrictionSolution(raw.r, float(xi) / xi_c, 0.0, raw.iterations, raw.residual,
@@ -976,6 +987,9 @@ def velocity_friction_peak_creepage(normal_load, radius, youngs_modulus, poisson
     if mu0 * float(n_load) == 0.0:
         return 0.0, 0.0
     xi_c = mu0 * float(h.a0) / float(rad)
+    if isinstance(friction_law, StepFriction):   # Carter with mu_k: saturates at mu_k N
+        m = friction_law.mu_kinetic / mu0
+        return m * xi_c, m * mu0 * float(n_load)
     solver = _law_solver(friction_law, xi_c, deg, tol, max_iter, f"friction_law = {friction_law!r}")
     top = solver.peak()
     return top.chi * xi_c, top.force * mu0 * float(n_load)
