@@ -27,6 +27,7 @@ from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,  # noqa: F4
                       creep_solution_3d, spin_coefficient, saturation_creepage_3d,
                       normalised_creepage_3d, strip_force_function)
 from . import polynomial  # noqa: F401
+from . import roughness  # noqa: F401
 from . import friction, nonsteady  # noqa: F401
 
 __version__ = "0.1.0"

@@ -219,6 +219,39 @@ def _toeplitz_even(coef, size):
     return out
 
 
+@lru_cache(maxsize=128)
+def _unit_matrices(n):
+    """Normalised [A] and [A]^-1 (a = 1) of degree n, cached, read-only."""
+    c = np.asarray(_moment_ratios((n + 1) // 2))
+    k = np.arange(c.size, dtype=float)
+    amat = _toeplitz_even(-np.pi * c, n)
+    ainv = _toeplitz_even(c / (np.pi * (2.0 * k - 1.0)), n)
+    amat.setflags(write=False)
+    ainv.setflags(write=False)
+    return amat, ainv
+
+
+def _inverse_scaled(n, a):
+    """[A]^-1 for half-width a (no validation; internal)."""
+    c = np.asarray(_moment_ratios((n + 1) // 2))
+    k = np.arange(c.size, dtype=float)
+    return _toeplitz_even(c * a ** (2.0 * k) / (np.pi * (2.0 * k - 1.0)), n)
+
+
+@lru_cache(maxsize=128)
+def _binomials(n):
+    i, j = np.indices((n + 1, n + 1))
+    out = np.where(j >= i, comb(j, i), 0.0)
+    out.setflags(write=False)
+    return out, np.maximum(j - i, 0), j >= i
+
+
+def _base_change(n, d):
+    """[D(d)] without validation (internal)."""
+    binom, power, upper = _binomials(n)
+    return np.where(upper, binom * float(d) ** power, 0.0)
+
+
 def transform_matrix(degree, half_width=1.0):
     r"""The matrix ``[A]`` of Eq. (3.9): ``{beta_0..beta_(N-1)} = [A] {B_1..B_N}``, Eq. (3.6).
 
@@ -384,7 +417,7 @@ def principal_value_integral(coefficients, x, half_width=1.0):
     if bn.size == 1:
         beta = np.zeros(1)
     else:
-        beta = transform_matrix(bn.size - 1) @ bn[1:]
+        beta = _unit_matrices(bn.size - 1)[0] @ bn[1:]
     inside = np.polynomial.polynomial.polyval(s, beta)
     outside = np.abs(s) > 1.0
     # Outside the strip, beta(s) + I_-1(s) b(s) cancels like |s|^N (the sum decays as 1/s while
@@ -526,7 +559,7 @@ def normal_contact_from_coefficients(pressure_coefficients, half_width, youngs_m
 def _normalised_gap_slope(z, a, d):
     """Coefficients g_m of dZ/dX at X = d + a s, in powers of s (m = 0..N-1)."""
     n = z.size - 1
-    zbar = base_change_matrix(n, d) @ z
+    zbar = _base_change(n, d) @ z
     m = np.arange(1, n + 1)
     return m * zbar[1:] * a ** (m - 1)
 
@@ -536,7 +569,7 @@ def _pressure_for(z, a, d, kern):
     n = z.size - 1
     g = _normalised_gap_slope(z, a, d)
     b = np.empty(n + 1)
-    b[1:] = (a / kern) * (inverse_transform_matrix(n) @ g)
+    b[1:] = (a / kern) * (_unit_matrices(n)[1] @ g)
     b[0] = -b[2::2].sum()
     return b
 
@@ -615,7 +648,13 @@ def solve_normal_polynomial(gap_coefficients, normal_load, youngs_modulus, poiss
         return (_force_from_normalised(_pressure_for(z, a, d, kern)) - target) / target
 
     def start_width(d, target):
+        curv = np.polynomial.polynomial.polyval(d, np.polynomial.polynomial.polyder(z, 2))
         hi = 1e-12 * max(1.0, abs(d))
+        if curv > 0.0:  # start a decade below the Hertz estimate a^2 = 2 K N / Z''
+            guess = 0.1 * np.sqrt(2.0 * kern * target / curv)
+            with np.errstate(over="ignore", invalid="ignore"):
+                if load_residual(guess, d, target) < 0.0:
+                    hi = guess
         best, best_val = hi, -np.inf
         for _ in range(1000):
             hi *= 1.25
@@ -688,13 +727,13 @@ def _stick_solution(b, r):
     ``force2 = int Q2 ds`` (negative).
     """
     n = b.size - 1
-    beta = transform_matrix(n) @ b[1:]                          # slope of q1 / mu, in s
+    beta = _unit_matrices(n)[0] @ b[1:]                         # slope of q1 / mu, in s
     delta = 1.0 - r
-    gamma = base_change_matrix(n - 1, delta) @ beta           # slope of q1 in powers of s*
+    gamma = _base_change(n - 1, delta) @ beta                 # slope of q1 in powers of s*
     if r == 0.0:
         return float(gamma[0]), np.zeros(n + 1), 0.0
     rhs = np.concatenate(([0.0], -gamma[1:]))                 # beta*_0 = t unknown (first entry)
-    u = inverse_transform_matrix(n, r) @ rhs                   # e_1..e_N for t = 0
+    u = _inverse_scaled(n, r) @ rhs                             # e_1..e_N for t = 0
     rn = r ** np.arange(1, n + 1)
     # odd boundary condition: (u_1 - t/pi) r + sum_{odd n >= 3} u_n r^n = 0
     t = np.pi * (u[0] + (u[2::2] * rn[2::2] / r).sum())
@@ -805,7 +844,7 @@ def tangential_state_polynomial(normal_contact, friction_coefficient, stick_rati
     return xi.reshape(r.shape), force.reshape(r.shape)
 
 
-def _stick_ratio_for(b, target, func, n_scan=128):
+def _stick_ratio_for(b, target, func, n_scan=64):
     """Largest r in [0, 1] with func(r) = target, func(1) = 0 side; bracket by scanning."""
     grid = np.linspace(1.0, 0.0, n_scan + 1)
     prev_r, prev_f = 1.0, func(1.0) - target

@@ -594,7 +594,7 @@ def _pv_basis(degree, s):
     n = degree
     inside_vals = np.zeros((s.size, n + 1))
     if n >= 1:
-        amat = _poly.transform_matrix(n)
+        amat = _poly._unit_matrices(n)[0]
         vand = np.vander(s, n, increasing=True)
         inside_vals[:, 1:] = vand @ amat
     outside = np.abs(s) > 1.0
@@ -613,7 +613,7 @@ def _pv_basis_complex(degree, z):
     n = degree
     vals = np.zeros((z.size, n + 1), dtype=complex)
     if n >= 1:
-        vals[:, 1:] = np.vander(z, n, increasing=True) @ _poly.transform_matrix(n)
+        vals[:, 1:] = np.vander(z, n, increasing=True) @ _poly._unit_matrices(n)[0]
     factor = np.pi / (np.sqrt(z - 1.0) * np.sqrt(z + 1.0))
     return vals + factor[:, None] * np.vander(z, n + 1, increasing=True)
 
