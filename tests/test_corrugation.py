@@ -245,3 +245,34 @@ def test_hundred_harmonics_vectorised():
     assert np.max(np.abs(ex.stick_half_width - li.stick_half_width)) < 2e-3 * np.max(
         np.abs(li.stick_half_width - np.mean(li.stick_half_width)))
     assert elapsed < 20.0   # generous; the benchmark prints the real figure
+
+
+def test_near_limit_4_2_against_halfspace_solver():
+    """Amplitude near the limit (4.2), k^2 R |Z| = 0.8, at a trough (flattest gap)."""
+    ratio = 0.1
+    lam = A0 / ratio
+    k = 2 * np.pi / lam
+    za = 0.8 / (k * k * R)
+    xc = 0.5 * lam                                     # trough of Z_A cos kX
+    def gap(xb):
+        return xb ** 2 / (2 * R) - za * np.cos(k * (xc + xb))
+    ref = solve_normal_2d(gap, N, E, NU, -3 * A0, 3 * A0, 600)
+    res = cg.corrugated_contact(xc, N, R, E, NU, MU, 0.0, [za], [0.0], [lam])
+    assert len(ref.zones) == 1
+    assert abs(0.5 * (ref.contact_end - ref.contact_start) - res.half_width) < 2e-3 * A0
+    assert res.half_width > 1.3 * A0                   # far from Hertz: flattened gap
+
+
+def test_wear_depth_physical_units():
+    """corrugated_contact(..., wear_coefficient=K): W(X) = W0 + Re[(K mu^2 N/a0) w (Z_A+iZ_B)
+    e^{-ikX}] with W0 (4.96); checked by its mean and first harmonic over one wave length."""
+    from railcontact import wear
+    ratio, r, kw = 0.12, 0.4, 1e-10
+    lam, k, za, zb = _surface(ratio, 0.01)
+    xi = MU * A0 * (1 - r) / R
+    x = np.arange(64) * lam / 64
+    res = cg.corrugated_contact(x, N, R, E, NU, MU, xi, [za], [zb], [lam], wear_coefficient=kw)
+    assert np.mean(res.wear_depth) == pytest.approx(
+        wear.mean_wear(kw, MU, N, R, A0, r), rel=1e-12)
+    c = _first_harmonic(res.wear_depth, k, x, za, zb) / (kw * MU ** 2 * N / A0)
+    assert abs(c - wear.wear_coefficients(ratio, r)) < 1e-9

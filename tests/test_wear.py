@@ -235,3 +235,18 @@ def test_bad_model_and_inputs():
         wear.passage_time_response(0.1, 0.5, convention="x")
     with pytest.raises(ValueError, match="curvature_amplitude"):
         wear.wear_first_harmonic_exact(0.5, 0.5, 1.0)
+
+
+def test_linear_response_bundle_matches_exact():
+    """The table/FMU entry point against the exact nonlinear first harmonics (amplitude 1e-3)."""
+    ex = wear.wear_first_harmonic_exact(0.3, 0.6, 1e-3, phase=0.3)
+    lr = wear.linear_response(0.3, 0.6, wear_number=1e-3)
+    for name in ("half_width", "patch_shift", "stick_half_width", "tangential_force"):
+        assert abs(ex[name] - getattr(lr, name)) < 1e-5
+    assert abs(ex["material_point"] - lr.wear) < 1e-5
+    assert lr.growth_factor == pytest.approx(1 - 2e-3 * lr.wear.real)
+    grid = wear.linear_response(np.linspace(0.01, 1, 5)[:, None], np.linspace(0, 1, 4)[None, :],
+                                "nielsen1998", 1e-4)
+    assert grid.wear.shape == (5, 4) and np.all(np.isfinite(grid.growth_factor))
+    with pytest.raises(ValueError, match="wear_number"):
+        wear.linear_response(0.1, 0.5, wear_number=-1)

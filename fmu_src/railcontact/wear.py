@@ -55,13 +55,17 @@ References
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 from scipy.special import itj0y0, j0, j1, jv
 
 from ._validation import check_choice, check_range
-from .corrugation import _TWO_PI, solve_normal_exact, solve_stick_zone_exact, _surface_terms
+from .corrugation import (_TWO_PI, normal_response, solve_normal_exact, solve_stick_zone_exact,
+                          stick_zone_response, tangential_force_response)
 
 __all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
+           "linear_response", "LinearResponse",
            "wear_first_harmonic_reference", "wear_first_harmonic_transient",
            "passage_time_response", "wear_first_harmonic_exact", "wear_shape_function"]
 
@@ -329,9 +333,15 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
     Returns
     -------
     dict
-        ``{"material_point": w, "patch_coordinate": w, "mean": W0 R / (K mu^2 N a0)}`` with ``w`` the
-        normalised complex coefficient of :func:`wear_coefficients` (first harmonic divided by the
-        surface amplitude; equal to the linear coefficient up to O(amplitude^2)). [-]
+        ``"material_point"``, ``"patch_coordinate"``: ``w`` normalised as in
+        :func:`wear_coefficients` (first harmonic of the exact wear divided by the surface
+        amplitude; equals the linear coefficient up to O(amplitude^2)); ``"mean"``:
+        ``W0 R / (K mu^2 N a0)``; ``"half_width"``, ``"patch_shift"``, ``"stick_half_width"``:
+        first harmonics of the exact a, Delta, a* over ``k R`` (compare
+        :func:`railcontact.corrugation.normal_response`,
+        :func:`railcontact.corrugation.stick_zone_response`); ``"tangential_force"``: of the
+        exact |T| (4.67) in units of ``mu pi E/(4(1-nu^2))`` (compare
+        :func:`railcontact.corrugation.tangential_force_response`). [-]
     """
     ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
                               lower_closed=False))
@@ -379,6 +389,18 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
     dens = np.sum(p * s * np.exp(-1j * k * x) * wq, -1) * half[:, 0]
     base = np.exp(-1j * k * (xc + d)) * lam / npos
     out = {}
+    zc_ab = za + 1j * zb
+
+    def harmonic(vals):          # c with Q_A + i Q_B = c (Z_A + i Z_B), per unit k R (R = 1)
+        return 2 * np.mean(vals * np.exp(1j * k * xc)) / zc_ab / k
+
+    xs_axis = d + a - ast
+    t_exact = -(ast ** 2 / 2 + k * ast * j1(k * ast) * (za * np.cos(k * (xc + xs_axis))
+                                                        + zb * np.sin(k * (xc + xs_axis))))
+    out["half_width"] = harmonic(a)
+    out["patch_shift"] = harmonic(d)
+    out["stick_half_width"] = harmonic(ast)
+    out["tangential_force"] = harmonic(t_exact) * k      # units mu pi E/(4(1-nu^2)), C = 1
     for name, weight in (("material_point", 1.0), ("patch_coordinate", 1.0 + dd)):
         first = np.sum(weight * dens * base) / lam      # (1/L) int W e^{-ikX0} dX0, K = 1
         # W = W0 + Re[H zeta e^{ikX0}] -> first = H zeta / 2 ; c = conj(H); w = c / (1/2)
@@ -550,3 +572,61 @@ def wear_first_harmonic_transient(a0_over_wavelength, stick_ratio, relative_ampl
     mean = np.sum(dens) * dx_rail * dx_rail / (n_periods * lam) / (mu * mu * n_load)
     return {"material_point": np.conj(2 * first / zeta) / (mu * mu * n_load / a0),
             "mean": float(mean * big_r / a0)}
+
+
+LinearResponse = namedtuple("LinearResponse", [
+    "patch_shift", "half_width", "stick_half_width", "tangential_force", "tau", "tau_star",
+    "wear", "w1", "w2", "growth_factor"])
+LinearResponse.__doc__ = """Result of :func:`linear_response` (all arrays broadcast over the inputs).
+
+Complex coefficients ``c`` with ``Q_A + i Q_B = c (Z_A + i Z_B)`` (amplitude ``|c| |Z|``, phase
+``arg c`` in the package orientation, rolling +X; the thesis' phase is ``-arg c``):
+
+patch_shift, half_width, stick_half_width : complex
+    Delta, a, a* over ``k R`` ((4.36), (4.37), (4.59)-(4.62)).
+tangential_force : complex
+    |T| in units of ``mu pi E / (4 (1 - nu^2))`` ((4.68)-(4.71)); ``T0 = mu N (1 - r^2)``.
+tau, tau_star : complex
+    Half passage times |tau|, |tau*| over ``k R / V`` (consistent kinematics; see
+    :func:`passage_time_response`).
+wear : complex
+    ``w = (W1 + i W2) a0 / (K mu^2 N)`` of the chosen wear model.
+w1, w2 : float
+    ``W1 = wear_number Re(w)``, ``W2 = wear_number Im(w)`` (0 when ``wear_number = 0``).
+growth_factor : float
+    ``1 - 2 W1`` (4.104); 1 if no wear number was given.
+"""
+
+
+def linear_response(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MODEL,
+                    wear_number=0.0):
+    r"""All linearised response coefficients of one harmonic, normalised (tables, FMU).
+
+    One call for the table builder: Delta, a, a*, T, tau, tau*, wear ``w`` and, with the wear
+    number ``K mu^2 N / a0``, ``W1``, ``W2`` and the growth factor ``1 - 2 W1``.
+
+    Parameters
+    ----------
+    a0_over_wavelength : array_like
+        a0/L, > 0. [-]
+    stick_ratio : array_like
+        r_a0 in [0, 1]. [-]
+    wear_model : str
+        One of :data:`WEAR_MODELS`; default ``"material_point"`` (see module docstring and
+        ``docs/wear_finding.md``).
+    wear_number : array_like
+        ``K mu^2 N / a0`` (:func:`railcontact.evolution.wear_number`), >= 0; 0 gives
+        ``w1 = w2 = 0`` and ``growth_factor = 1``. [-]
+
+    Returns
+    -------
+    LinearResponse
+    """
+    eps = check_range("wear_number", wear_number, "-", 0.0, None)
+    cd, ca = normal_response(a0_over_wavelength)
+    cs = stick_zone_response(a0_over_wavelength, stick_ratio)
+    ct = tangential_force_response(a0_over_wavelength, stick_ratio)
+    tau, taus = passage_time_response(a0_over_wavelength, stick_ratio)
+    w = wear_coefficients(a0_over_wavelength, stick_ratio, wear_model)
+    w1, w2 = eps * w.real, eps * w.imag
+    return LinearResponse(cd, ca, cs, ct, tau, taus, w, w1, w2, 1.0 - 2.0 * w1)
