@@ -39,14 +39,19 @@ _effects = importlib.import_module(_PACKAGE + ".effects")
 OUTPUTS = {
     "Fx": ("N", "Longitudinal tangential contact force on the wheel (opposes the longitudinal "
                 "creepage; |(Fx, Fy)| <= mu N)", "Fx"),
-    "Fy": ("N", "Lateral tangential contact force on the wheel", "Fy"),
-    "a0": ("m", "Contact ellipse semi-axis in the rolling direction (Hertz)", "a0"),
-    "b0": ("m", "Contact ellipse lateral semi-axis (Hertz)", "b0"),
-    "p0": ("Pa", "Maximum Hertz contact pressure, 3 N / (2 pi a0 b0)", "p0"),
+    "Fy": ("N", "Lateral tangential contact force on the wheel (0 for a line contact: "
+                "Carter's theory is 2-D)", "Fy"),
+    "a0": ("m", "Hertz semi-axis in the rolling direction (line contact: Hertz half-width)",
+           "a0"),
+    "b0": ("m", "Hertz lateral semi-axis (line contact: half the contact width)", "b0"),
+    "p0": ("Pa", "Maximum Hertz pressure: 3 N / (2 pi a0 b0) for an ellipse, 2-D Hertz "
+                 "(Eq. (2.40)) for a line contact", "p0"),
     "stick_area_fraction": ("1", "Stick area over contact area (1 = full stick, 0 = full "
-                                 "slip), strip-theory estimate", "stick_area_fraction"),
+                                 "slip): strip-theory estimate; a*/a0 for a line contact",
+                            "stick_area_fraction"),
     "stick_width_ratio": ("1", "Lateral extent of the stick zone b*/b0 = sqrt(1 - z^2) (Nielsen "
-                               "Eq. (2.84))", "stick_width_ratio"),
+                               "Eq. (2.84)); line contact: 1 while a stick zone exists",
+                          "stick_width_ratio"),
     "r_a0": ("1", "Stick zone length over contact length, a*/a0: centre line of the 3-D strip "
                   "theories 1 - min(z, 1) (Nielsen Eq. (2.83)), Carter's ratio (2.51) for a "
                   "line contact; 1 = full stick", "r_a0"),
@@ -71,8 +76,10 @@ OUTPUTS = {
 #: Boolean outputs: name -> (description, ContactPoint field).
 BOOLEAN_OUTPUTS = {
     "creep_within_validity": ("False when the creep theory is used outside its range: spin "
-                              "pole inside the contact (spin coefficient > 1, Eq. (2.98)) or, "
-                              "for the linear theory, |T| > mu N", "creep_within_validity"),
+                              "pole inside the contact (spin coefficient > 1, Eq. (2.98)); for "
+                              "the linear theory also |T| > mu N; for a line contact any "
+                              "lateral creepage or spin (ignored by the 2-D theory)",
+                              "creep_within_validity"),
 }
 
 #: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
