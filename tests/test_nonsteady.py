@@ -209,7 +209,7 @@ def test_large_wave_ratio():
         amp, ph = nonsteady_amplitude_phase_normalised(wr, r)
         lam = displacement_factor("carter", 0.28, 20.0, r)
         prod = amp * 2 * np.pi * wr * r * lam
-        assert np.all(np.isfinite(amp)) and np.all((prod > 0.75) & (prod < 1.35))
+        assert np.all(np.isfinite(amp)) and np.all((prod > 0.95) & (prod < 1.1))   # measured 1.03-1.05
         assert np.all(np.abs(ph + np.pi / 2) < 0.35)
 
 
