@@ -251,7 +251,12 @@ def stability_boundary(stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *, wavelength
 
 def characteristic_wavelength(stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *,
                               wavelength_ratio_min=2.0, wavelength_ratio_max=40.0, n_scan=800):
-    r"""Characteristic wave length: L/a0 of the maximum of ``1 - 2 W1`` (Fig. 4.14).
+    r"""Characteristic wave length: L/a0 of the local maximum of ``1 - 2 W1`` (Fig. 4.14).
+
+    The thesis' line marks the local maximum of ``1 - 2 W1`` (minimum of W1) in the long-wave
+    amplifying band; where W1 has several local minima in the range (the thesis' model also
+    amplifies very short waves, L/a0 < 2.3, for r_a0 >= 0.8) the one at the largest L/a0 is
+    returned.
 
     Parameters
     ----------
@@ -268,20 +273,25 @@ def characteristic_wavelength(stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *,
     Returns
     -------
     wavelength_ratio : ndarray
-        L/a0 of the largest ``-W1`` in the range. [-]
+        L/a0 of that local minimum of W1 (of the global minimum if there is no interior one). [-]
     w1_normalised : ndarray
         ``W1 a0 / (K mu^2 N)`` there (negative: the wave length grows fastest; positive: every
         wave length is levelled and the "maximum" is only the slowest levelling). [-]
     interior : ndarray of bool
-        True if the maximum lies inside the range (a genuine characteristic wave length); False
-        if at the range end (no characteristic wave length, e.g. ``"material_point"``). [-]
+        True if W1 has a local minimum inside the range (a characteristic wave length); False
+        if W1 is monotonic (no characteristic wave length, e.g. ``"material_point"``, whose
+        W1 decreases towards 0+ for long waves). [-]
     """
     r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
                     upper_closed=False)
     la, vals = _scan(lambda q, rr: np.real(wear_coefficients(q, rr, wear_model)), r,
                      wavelength_ratio_min, wavelength_ratio_max, n_scan)
-    i = np.argmin(vals, -1)
-    interior = (i > 0) & (i < n_scan - 1)
+    # local minima of W1 (local maxima of 1 - 2 W1); the thesis' line is the one of the
+    # long-wave amplifying band, i.e. the local minimum at the largest L/a0
+    local = (vals[..., 1:-1] < vals[..., :-2]) & (vals[..., 1:-1] <= vals[..., 2:])
+    interior = local.any(-1)
+    last = n_scan - 2 - np.argmax(local[..., ::-1], -1)
+    i = np.where(interior, last, np.argmin(vals, -1))
     ic = np.clip(i, 1, n_scan - 2)
     y0 = np.take_along_axis(vals, (ic - 1)[..., None], -1)[..., 0]
     y1 = np.take_along_axis(vals, ic[..., None], -1)[..., 0]
