@@ -276,3 +276,28 @@ def test_wear_depth_physical_units():
         wear.mean_wear(kw, MU, N, R, A0, r), rel=1e-12)
     c = _first_harmonic(res.wear_depth, k, x, za, zb) / (kw * MU ** 2 * N / A0)
     assert abs(c - wear.wear_coefficients(ratio, r)) < 1e-9
+
+
+@pytest.mark.parametrize("ratio, degree", [(0.1, 12), (0.3, 20), (0.6, 30)])
+def test_bessel_forms_equal_polynomial_series_of_chapter_3(ratio, degree):
+    """The thesis' route (4.18)-(4.26): Taylor series of the corrugated gap of degree ``degree``
+    solved with the chapter-3 polynomial approach (railcontact.polynomial, (k!)^2 matrices);
+    its a, Delta, a*, T converge to the exact Bessel-function solution of (4.31), (4.33), (4.57),
+    (4.67)."""
+    from math import factorial
+
+    from railcontact.polynomial import solve_normal_polynomial, solve_tangential_polynomial
+    lam, k, za, zb = _surface(ratio, 0.05)
+    xc = 0.3 * lam
+    zeta = (za - 1j * zb) * np.exp(1j * k * xc)
+    z = np.array([-np.real(zeta * (1j * k) ** n) / factorial(n) for n in range(degree + 1)])
+    z[2] += 1 / (2 * R)
+    nc = solve_normal_polynomial(z, N, E, NU, centre_guess=0.0, half_width_guess=A0)
+    r = 0.5
+    xi = MU * A0 * (1 - r) / R
+    tc = solve_tangential_polynomial(nc, MU, creepage=-xi)
+    res = cg.corrugated_contact(xc, N, R, E, NU, MU, xi, [za], [zb], [lam])
+    assert abs(nc.half_width - res.half_width) < 1e-8 * A0
+    assert abs(nc.centre - res.patch_shift) < 1e-8 * A0
+    assert abs(tc.stick_half_width - res.stick_half_width) < 1e-7 * A0
+    assert abs(abs(tc.tangential_force) - res.tangential_force) < 1e-7 * MU * N
