@@ -44,7 +44,8 @@ def bench_degree():
 
 
 def bench_reference():
-    print("\n== smooth law vs discretised reference solver (rising law m = 1.4, kappa xi_c0 = 10) ==")
+    print("\n== smooth law vs discretised reference solver "
+          "(rising law m = 1.4, kappa xi_c0 = 10) ==")
     h = hertz_2d(N, R, E, NU)
     a0, p0 = float(h.a0), float(h.p0)
     xic = MU0 * a0 / R
@@ -64,7 +65,8 @@ def bench_reference():
                        .tangential_force / (MU0 * N) for c in chi])
         t_ref = (time.perf_counter() - t0) / chi.size
         refs[nel] = ref
-        print(f"  {nel:4d} elements: max |T_poly - T_ref|/(mu0 N) = {np.max(np.abs(ours - ref)):.2e}"
+        err = np.max(np.abs(ours - ref))
+        print(f"  {nel:4d} elements: max |T_poly - T_ref|/(mu0 N) = {err:.2e}"
               f" ({t_ref * 1e3:.0f} ms per point; polynomial degree 128: {t_ours * 1e3:.0f} ms)")
     rich = 2 * refs[400] - refs[200]
     print(f"  Richardson 2 T_400 - T_200: max |T_poly - T_ref| = {np.max(np.abs(ours - rich)):.2e}")

@@ -26,7 +26,7 @@ import numpy as np  # noqa: E402
 
 from railcontact.friction import (  # noqa: E402
     ohyama_creep_force_normalised, ohyama_traction_normalised, solve_velocity_friction_normalised,
-    step_law_creep_force_normalised, step_law_traction_normalised,
+    step_law_traction_normalised,
     velocity_friction_creep_force_normalised, velocity_friction_peak_normalised)
 from railcontact.nonsteady import (  # noqa: E402
     gross_thebing_transfer_function_normalised, nonsteady_transfer_function_normalised)

@@ -158,7 +158,8 @@ def test_against_reference_solver(m, kap, chis):
 
 def test_falling_law_satisfies_governing_equations():
     """Falling law in partial slip at a creepage where the reference solver's continuation does
-    not converge (200 elements, creepage 0.3 xi_c0): the returned traction, put into an independent element quadrature of
+    not converge (200 elements, creepage 0.3 xi_c0): the returned traction, put into an
+    independent element quadrature of
     the PV integral, has s = 0 in the stick zone, q = mu(s) p in the slip zone (away from the
     square-root kink at the stick/slip limit) and |q| <= mu_0 p in the stick zone."""
     m, kap, chi = 0.6, 10.0, 0.3

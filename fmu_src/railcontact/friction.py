@@ -556,7 +556,8 @@ class _NormalisedSolver:
         if abs(raw.chi - chi) > 1e-7:
             # chi(r) jumps here (a law far too steep for the polynomial degree makes the
             # discrete chi(r) slightly non-monotone): interpolate the creep curve across the jump
-            lo, hi = self.at_stick_ratio(min(1.0, r + 1e-9)), self.at_stick_ratio(max(0.0, r - 1e-9))
+            lo = self.at_stick_ratio(min(1.0, r + 1e-9))
+            hi = self.at_stick_ratio(max(0.0, r - 1e-9))
             w = (chi - lo.chi) / (hi.chi - lo.chi) if hi.chi != lo.chi else 0.5
             force = lo.force + w * (hi.force - lo.force)
             raw = _Raw(r=r, chi=chi, force=force, c=raw.c, d=raw.d, mu=raw.mu,
