@@ -95,7 +95,7 @@ def high_degree_problem(degrees):
         nc = P.solve_normal_polynomial(cosh_gap(n, kappa), N, E, NU, centre_guess=0.0)
         xi, t = P.tangential_state_polynomial(nc, MU, 0.5)
         print(f"{n:5d} {nc.half_width * 1e3:16.12f} {float(xi):22.15e} "
-              f"{float(-t) / (MU * N):18.15f}")
+              f"{float(t) / (MU * N):18.15f}")
 
 
 def speed():

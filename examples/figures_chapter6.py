@@ -99,7 +99,7 @@ def fig_6_6_6_9(out):
     fig6, axes6 = plt.subplots(2, 2, figsize=(8, 6), sharex=True)
     fig9, axes9 = plt.subplots(2, 2, figsize=(8, 6), sharex=True)
     two0 = Rg.two_patch_normal_contact(z, N0, E, NU, (-d, d))
-    xi0 = 0.3 * min(P.tangential_state_polynomial(p, MU, 0.0)[0] for p in two0.patches)
+    xi0 = 0.3 * min(-P.tangential_state_polynomial(p, MU, 0.0)[0] for p in two0.patches)
     x = np.linspace(-1.4 * d, 1.4 * d, 4001)
     for ax6, ax9, f in zip(axes6.ravel(), axes9.ravel(), LOADS):
         with_ci = Rg.two_patch_normal_contact(z, f * N0, E, NU, (-d, d))

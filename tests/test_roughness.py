@@ -190,12 +190,12 @@ def test_6_38_6_39_against_general_tangential(name):
     g = c.normal_contact
     r = np.array([0.0, 0.2, 0.55, 0.9, 1.0])
     xi, t = Rg.asperity_tangential_state(c, MU, r)
-    xi_g, t_g = P.tangential_state_polynomial(g, MU, r)  # branch xi >= 0, T <= 0
-    np.testing.assert_allclose(xi, -xi_g, rtol=1e-9, atol=1e-15)
-    np.testing.assert_allclose(t, -t_g, rtol=1e-9, atol=1e-9 * N)
+    xi_g, t_g = P.tangential_state_polynomial(g, MU, r)  # same branch: xi <= 0, T >= 0
+    np.testing.assert_allclose(xi, xi_g, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(t, t_g, rtol=1e-9, atol=1e-9 * N)
     # critical creepage (6.40) needs mu (erratum)
-    assert Rg.asperity_critical_creepage(c, MU) == pytest.approx(xi_g[0], rel=1e-10)
-    assert Rg.asperity_critical_creepage(c, MU) / MU != pytest.approx(xi_g[0], rel=0.1)
+    assert Rg.asperity_critical_creepage(c, MU) == pytest.approx(-xi_g[0], rel=1e-10)
+    assert Rg.asperity_critical_creepage(c, MU) / MU != pytest.approx(-xi_g[0], rel=0.1)
 
 
 @pytest.mark.parametrize("name", list(CASES))
@@ -402,7 +402,7 @@ def test_table_6_2_trends():
     neither); regression pins of our numbers (computed once by this code) at the corners."""
     mu = MU
     two0 = Rg.two_patch_normal_contact(Z_A, N0, E, NU, (-D_A, D_A))
-    xi0 = 0.3 * min(P.tangential_state_polynomial(p, mu, 0.0)[0] for p in two0.patches)
+    xi0 = 0.3 * min(-P.tangential_state_polynomial(p, mu, 0.0)[0] for p in two0.patches)
     table = {}
     for fn in (1.0, 2.5):
         two = two0 if fn == 1.0 else Rg.two_patch_normal_contact(Z_A, fn * N0, E, NU,

@@ -812,7 +812,8 @@ def tangential_state_polynomial(normal_contact, friction_coefficient, stick_rati
     r"""Creepage and force for a prescribed stick ratio ``a*/a``, Eqs. (3.38)-(3.44).
 
     The stick zone ``[a - 2a*, a]`` sits at the leading edge. Returned for the branch
-    ``xi >= 0`` (the force is then <= 0); flip both signs for ``xi < 0``.
+    ``xi <= 0``, force ``>= 0`` (as Carter (2.51)-(2.53) and
+    :func:`railcontact.roughness.asperity_tangential_state`); flip both signs for ``xi > 0``.
 
     Parameters
     ----------
@@ -826,9 +827,9 @@ def tangential_state_polynomial(normal_contact, friction_coefficient, stick_rati
     Returns
     -------
     creepage : ndarray
-        [-]
+        (<= 0). [-]
     tangential_force : ndarray
-        [N/m]
+        (>= 0). [N/m]
     """
     nc = _check_normal(normal_contact)
     mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None))
@@ -839,8 +840,8 @@ def tangential_state_polynomial(normal_contact, friction_coefficient, stick_rati
     force = np.empty(flat.size)
     for i, ri in enumerate(flat):
         f, _, f2 = _stick_solution(nc.normalised_coefficients, float(ri))
-        xi[i] = kern * mu * f / nc.half_width
-        force[i] = -mu * (nc.normal_load + f2)
+        xi[i] = -kern * mu * f / nc.half_width
+        force[i] = mu * (nc.normal_load + f2)
     return xi.reshape(r.shape), force.reshape(r.shape)
 
 
