@@ -424,8 +424,9 @@ class _NormalisedSolver:
     # affine maps (linear, no constant term) for a given stick ratio r
     def maps(self, r):
         key = float(r)
-        if key in self._maps:
-            return self._maps[key]
+        hit = self._maps.get(key)
+        if hit is not None:
+            return hit
         n, x = self.n, self.x
         h1 = self.tx @ self.cmat                            # H[t1] at nodes
         if r > 0.0:
