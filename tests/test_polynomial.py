@@ -386,3 +386,19 @@ def test_high_degree_normal_and_tangential_converge():
     # and the truncation at N = 8 is visibly different (the high-order terms matter)
     nc8 = P.solve_normal_polynomial(gap(8), N, E, NU, centre_guess=0.0)
     assert abs(nc8.half_width / res[1][0] - 1) > 1e-5
+
+
+def test_normal_contact_from_coefficients_hertz_and_admissible():
+    """A given Hertz pressure (b = p0 a [1, 0, -1]) wrapped and rolled: Carter, admissible."""
+    a0 = np.sqrt(8 * (1 - NU**2) * R * N / (np.pi * E))
+    p0 = 2 * N / (np.pi * a0)
+    nc = P.normal_contact_from_coefficients([p0 * a0, 0.0, -p0 * a0], a0, E, NU, centre=1e-3,
+                                            normalised=True)
+    assert nc.normal_load == pytest.approx(N, rel=1e-14)
+    assert nc.pressure(1e-3) == pytest.approx(p0, rel=1e-14)
+    phys = P.normal_contact_from_coefficients(nc.coefficients, a0, E, NU, centre=1e-3)
+    np.testing.assert_allclose(phys.normalised_coefficients, nc.normalised_coefficients,
+                               rtol=1e-14)
+    t = P.solve_tangential_polynomial(nc, 0.3, creepage=-0.4 * 0.3 * a0 / R)
+    assert t.stick_ratio == pytest.approx(0.6, rel=1e-12) and t.is_admissible
+    assert t.stick_centre == pytest.approx(1e-3 + 0.4 * a0, rel=1e-12)

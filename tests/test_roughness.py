@@ -53,6 +53,9 @@ def test_table_6_1_against_general_solver(name):
     np.testing.assert_allclose(c.normal_contact.normalised_coefficients,
                                g.normalised_coefficients, rtol=0, atol=1e-11 * N)
     assert c.normal_contact.normal_load == pytest.approx(N, rel=1e-12)  # (6.10)
+    # (6.4)-(6.8) in the thesis' geometric form (3.30) directly
+    np.testing.assert_allclose(c.geometric_coefficients, g.geometric_coefficients,
+                               rtol=1e-9, atol=1e-12 * np.abs(c.geometric_coefficients).max())
     expected = "numerical" if (l2 and l3 and l4) else "closed form"
     assert c.method == expected
 

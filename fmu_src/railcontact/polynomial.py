@@ -784,6 +784,21 @@ class PolynomialTangentialContact:
         """Global position of the stick-zone centre, ``d + a - a*``. [m]"""
         return self.normal.centre + self.normal.half_width - self.stick_half_width
 
+    @property
+    def is_admissible(self):
+        """Whether ``|q| <= mu p`` holds on the stick zone (sampled at 400 points).
+
+        The Carter-like construction (3.31)-(3.33) does not enforce the friction bound in the
+        stick zone; for strongly non-Hertzian pressures it can be violated, and the solution is
+        then not the physical one (several stick zones; see the text after (3.45)).
+        """
+        if self.stick_ratio == 0.0 or self.creepage == 0.0:
+            return True
+        u = np.cos(np.linspace(0.0, np.pi, 402))[1:-1]
+        x = self.stick_centre + self.stick_half_width * u
+        bound = self.friction_coefficient * self.normal.pressure(x)
+        return bool(np.all(np.abs(self.traction(x)) <= bound * (1 + 1e-9) + 1e-12 * bound.max()))
+
     def traction(self, x):
         """Traction on the wheel at global ``x`` (Eqs. (3.31)-(3.33)). [Pa]"""
         x = check_range("x", x, "m")
