@@ -166,7 +166,7 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     spline = TensorSpline([dict(name=a.name, nodes=a.nodes, knots=t, units=a.units,
                                 out_of_range=a.out_of_range) for a, t in zip(axes, knots)],
                           coefs, [v.name for v in spec.variables], source=name)
-    got = spline.evaluate(check, check=False)
+    got = spline.evaluate(np.ascontiguousarray(check[:, :len(axes)]), check=False)
     accuracy = {}
     for k, v in enumerate(spec.variables):
         err = np.abs(got[:, k] - check_vals[:, k]) / v.error_scale

@@ -120,6 +120,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         "method": spec.method,
     }
     attrs.update({k: v for k, v in spec.attributes.items()})
+    if spec.build_attributes is not None:
+        attrs.update(spec.build_attributes())
     attrs.update(build_info)
     ds = xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
     encoding = {name: {"_FillValue": None} for name in list(ds.data_vars) + list(ds.coords)}

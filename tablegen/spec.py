@@ -113,6 +113,9 @@ class TableSpec:
         Extra global attributes (e.g. the fixed Poisson ratio).
     hidden : bool
         Not built by ``build`` without ``--only`` (self-tests).
+    build_attributes : callable, optional
+        ``build_attributes() -> dict`` of global attributes computed at build time (e.g. the
+        hash of the solver's source file).
     """
 
     name: str
@@ -129,6 +132,7 @@ class TableSpec:
     requires: tuple = ()
     attributes: dict = field(default_factory=dict)
     hidden: bool = False
+    build_attributes: Callable | None = None
 
     def available(self):
         """``None`` if buildable, else the reason (a module that does not import)."""

@@ -120,3 +120,148 @@ register(TableSpec(
         "the direction of w, so one 1-D table serves every load, material, a0/b0, creepage "
         "direction and (small) spin; the reader converts with railcontact.kalker_coefficients")},
 ))
+
+
+# --------------------------------------------------------------------------------------------
+# Creep forces, exact theory (discretised, railcontact.reference.rolling3d)
+# --------------------------------------------------------------------------------------------
+
+EXACT_POISSON_RATIO = 0.28
+EXACT_POISSON_RANGE = (0.25, 0.31)
+EXACT_SOLVER = dict(mx=40, my=20, tolerance=1e-7, max_iterations=2000)
+
+_EXACT_COUNTS = {  # nodes: aspect ratio, rho on [0, 1], theta, sigma
+    "coarse": (5, 6, 5, 4),
+    "default": (7, 8, 7, 9),
+    "fine": (13, 20, 13, 13),
+}
+EXACT_RHO_MAX = 3.0
+EXACT_SIGMA_MAX = 2.0
+
+
+def _exact_axes(resolution):
+    n_g, n_r, n_t, n_s = _EXACT_COUNTS[resolution]
+    u = np.linspace(0.0, 1.0, n_r + 1)
+    rho = np.r_[1.0 - (0.5 * (1.0 + np.cos(np.pi * u))) ** 2, 1.25, 1.6, 2.2, EXACT_RHO_MAX]
+    sig = EXACT_SIGMA_MAX * np.linspace(0.0, 1.0, n_s) ** 1.3
+    return [
+        Axis("log_aspect_ratio", np.linspace(np.log(0.1), np.log(10.0), n_g), "1",
+             "natural logarithm of the semi-axis ratio a0/b0 (rolling over lateral)",
+             comment="a0/b0 from 0.1 to 10"),
+        Axis("normalised_creepage", rho, "1",
+             "rho = |v|, v = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) / w_sat, w_sat = "
+             "pi^2 (1 + nu) mu p0 / E, p0 = 3 N / (2 pi a0 b0), C_ij Kalker's coefficients",
+             comment="nodes crowd towards 0 (linear theory) and 1 (onset of full sliding "
+                     "without spin, near rho = 1.04 in the exact theory); beyond the last "
+                     "node the reader raises"),
+        Axis("creepage_angle", np.linspace(-0.5 * np.pi, 0.5 * np.pi, n_t), "rad",
+             "theta = atan2(v_y, |v_x|), the direction of the combined creepage v, with v_y "
+             "taken relative to the sign of the spin (mirror symmetry)"),
+        Axis("normalised_spin", sig, "1",
+             "sigma = sqrt(a0 b0) C23 |phi| / w_sat",
+             comment="nodes crowd towards 0 (sigma = 2 s^1.3, s uniform)"),
+    ]
+
+
+def exact_creep_function(points):
+    """Exact-theory forces at table points (n, 4) or (n, 5) (last column: Poisson's ratio):
+    (f_par, f_perp, spin moment ratio, stick area fraction), see
+    :func:`railcontact.tables.exact_table_coordinates`.
+
+    Calls :func:`railcontact.reference.rolling3d.solve_rolling_3d` once per point on the
+    reference contact of :data:`railcontact.tables.EXACT_REFERENCE_CONTACT`.
+    """
+    import warnings  # noqa: PLC0415
+
+    from railcontact.reference.rolling3d import (  # noqa: PLC0415
+        RollingConvergenceError, solve_rolling_3d)
+    from railcontact.tables import exact_table_inverse  # noqa: PLC0415
+
+    nu = points[:, 4] if points.shape[1] > 4 else np.full(len(points), EXACT_POISSON_RATIO)
+    phys = exact_table_inverse(points[:, 0], points[:, 1], points[:, 2], points[:, 3], nu)
+    out = np.empty((len(points), 4))
+    for i in range(len(points)):
+        kw = {k: float(v[i]) for k, v in phys.items()}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                r = solve_rolling_3d(**kw, **EXACT_SOLVER)
+            except RollingConvergenceError:
+                # one retry, looser and longer; a second failure fails the chunk (kept
+                # chunks survive, the build can be resumed)
+                r = solve_rolling_3d(**dict(EXACT_SOLVER, tolerance=1e-6,
+                                            max_iterations=20000), **kw)
+        mu_n = kw["friction_coefficient"] * kw["normal_load"]
+        n_contact = np.count_nonzero(r.pn > 0.0)
+        c, s = np.cos(points[i, 2]), np.sin(points[i, 2])
+        fx, fy = -r.tx / mu_n, -r.ty / mu_n          # T/(mu N) = -(f_par e + f_perp e_perp)
+        out[i] = (fx * c + fy * s, -fx * s + fy * c,
+                  r.mz / (mu_n * np.sqrt(kw["a0"] * kw["b0"])),
+                  np.count_nonzero(r.adhesion) / max(n_contact, 1))
+    return out
+
+
+def _exact_provenance():
+    import hashlib  # noqa: PLC0415
+
+    import railcontact.reference.rolling3d as mod  # noqa: PLC0415
+
+    with open(mod.__file__, "rb") as fh:
+        digest = hashlib.sha1(fh.read()).hexdigest()
+    return {"solver_source_sha1": f"railcontact/reference/rolling3d.py sha1 {digest} (at the "
+                                  "end of the build)"}
+
+
+def _exact_check(axes, n, rng):
+    lo = np.array([a.nodes[0] for a in axes])
+    hi = np.array([a.nodes[-1] for a in axes])
+    pts = lo + (hi - lo) * rng.random((n, len(axes)))
+    pts[:, 1] = EXACT_RHO_MAX * rng.random(n) ** 1.5      # more points at small creepage
+    nu = rng.uniform(*EXACT_POISSON_RANGE, n)
+    return np.column_stack([pts, nu])[np.argsort(pts[:, 0])]
+
+
+register(TableSpec(
+    name="creep_exact",
+    title="Creep forces of Kalker's exact theory (discretised, 40 x 20 elements) with spin",
+    axes=_exact_axes,
+    function=exact_creep_function,
+    variables=[
+        Variable("force_ratio_parallel", "1", "force on the wheel over the Coulomb limit, "
+                 "component opposing the combined creepage v: f_par = -T.e/(mu N), e = "
+                 "(cos theta, sin theta)", error_target=1e-3,
+                 comment="T/(mu N) = -(f_par e + f_perp e_perp) in the reduced problem; the "
+                         "reader restores the signs (see railcontact.tables)"),
+        Variable("force_ratio_perpendicular", "1", "force on the wheel over the Coulomb limit, "
+                 "component along -e_perp, e_perp = (-sin theta, cos theta)",
+                 error_target=1e-3),
+        Variable("spin_moment_ratio", "1", "spin moment on the wheel about the ellipse "
+                 "centre over mu N sqrt(a0 b0)", error_target=1e-3),
+        Variable("stick_area_fraction", "1", "adhesion area over contact area (element counts of "
+                 "the discrete solution)",
+                 error_target=1e-2, comment="piecewise constant in the solver (element "
+                 "count), so only approximately smooth"),
+    ],
+    references=("J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, "
+                "1990 (exact theory, steady rolling, creep coefficients); E.A.H. Vollebregt, "
+                "J. Optim. Theory Appl. 157 (2013) (block Gauss-Seidel); "
+                f"{THESIS}, Sec. 2.5.3-2.5.4 (discretisation, tables)"),
+    method=("railcontact.reference.rolling3d.solve_rolling_3d(mx=40, my=20, scale=1.08, "
+            "tolerance=1e-7) on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3, "
+            f"nu = {EXACT_POISSON_RATIO}"),
+    check_points=_exact_check,
+    n_check={"coarse": 100, "default": 300, "fine": 2000},
+    chunk_size=16,
+    requires=("railcontact.reference.rolling3d",),
+    build_attributes=_exact_provenance,
+    attributes={
+        "poisson_ratio": EXACT_POISSON_RATIO,
+        "poisson_ratio_range": np.array(EXACT_POISSON_RANGE),
+        "solver_grid": "40 x 20 elements over [-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]",
+        "normalisation": (
+            "forces over mu N depend only on a0/b0, nu and the Kalker-weighted creepages "
+            "(C11 xi_x, C22 xi_y, sqrt(a0 b0) C23 phi)/w_sat; symmetry reduces to xi_x >= 0, "
+            "phi >= 0; the check points draw nu from poisson_ratio_range, so the recorded "
+            "accuracy includes using the nu = 0.28 table at other nu in that range"),
+    },
+))

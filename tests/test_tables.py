@@ -324,3 +324,132 @@ def test_creep_table_bad_input_names_parameter(creep_table, name, value):
     args[name] = value
     with pytest.raises(ValueError, match=name):
         creep_table.creep_force_3d(**args)
+
+
+# --------------------------------------------------------------------------------------------
+# Exact-theory creep table (creep_exact) against the 3-D solver
+# --------------------------------------------------------------------------------------------
+
+HAVE_EXACT = (tables_directory() / "creep_exact.nc").exists()
+needs_exact = pytest.mark.skipif(not HAVE_EXACT, reason="tables/creep_exact.nc not built")
+
+
+@pytest.fixture(scope="module")
+def exact_table():
+    from railcontact.tables import ExactCreepTable
+
+    return ExactCreepTable.from_file()
+
+
+def _solver(case):
+    import warnings
+
+    from railcontact.reference.rolling3d import solve_rolling_3d
+    from tablegen.specs import EXACT_SOLVER
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return solve_rolling_3d(**case, **EXACT_SOLVER)
+
+
+def test_exact_normalisation_and_symmetry_against_solver():
+    """The table's claim: normalised forces depend only on (a0/b0, nu, u_x, u_y, sigma), and
+    the symmetry reduction (xi_x -> |xi_x|, phi -> |phi|) holds. A physical case with a
+    different load, modulus, friction and size, negative xi_x and negative spin, solved
+    directly, equals the spec's point function at the mapped coordinates."""
+    from railcontact.tables import exact_table_coordinates
+    from tablegen.specs import exact_creep_function
+
+    case = dict(creepage_longitudinal=-8e-4, creepage_lateral=5e-4, spin=-0.9,
+                normal_load=4e4, a0=4e-3, b0=7e-3, youngs_modulus=190e9, poisson_ratio=0.28,
+                friction_coefficient=0.45)
+    direct = _solver(case)
+    s, rho, theta, sig, sx, sy, mu_n, _ = exact_table_coordinates(**case)
+    f_par, f_perp, *_ = exact_creep_function(np.array([[s, rho, theta, sig]]))[0]
+    c, s_ = np.cos(theta), np.sin(theta)
+    assert direct.tx / mu_n == pytest.approx(-sx * (f_par * c - f_perp * s_), abs=2e-6)
+    assert direct.ty / mu_n == pytest.approx(-sy * (f_par * s_ + f_perp * c), abs=2e-6)
+
+
+@needs_exact
+def test_exact_table_recorded_accuracy_rechecked_off_grid(exact_table):
+    """Re-check the file's recorded accuracy on fresh seeded off-grid physical cases."""
+    rng = np.random.default_rng(21)
+    acc = exact_table.table.accuracy()
+    worst = 0.0
+    for _ in range(6):
+        g = np.exp(rng.uniform(np.log(0.15), np.log(7.0)))
+        case = dict(creepage_longitudinal=rng.uniform(-3e-3, 3e-3),
+                    creepage_lateral=rng.uniform(-3e-3, 3e-3), spin=rng.uniform(-1.5, 1.5),
+                    normal_load=rng.uniform(3e4, 1.2e5), a0=6e-3 * np.sqrt(g),
+                    b0=6e-3 / np.sqrt(g), youngs_modulus=210e9,
+                    poisson_ratio=rng.uniform(0.26, 0.30),
+                    friction_coefficient=rng.uniform(0.2, 0.5))
+        try:
+            tab = exact_table.creep_force_3d(**case)
+        except ValueError:      # beyond rho = 3: the reader raises by design
+            continue
+        ref = _solver(case)
+        mu_n = case["normal_load"] * case["friction_coefficient"]
+        worst = max(worst, abs(tab.tx - ref.tx) / mu_n, abs(tab.ty - ref.ty) / mu_n)
+    recorded = max(acc["force_ratio_longitudinal"]["max_abs_error"],
+                   acc["force_ratio_lateral"]["max_abs_error"])
+    assert worst <= 1.5 * recorded, (worst, recorded)
+
+
+@needs_exact
+def test_exact_table_never_exceeds_coulomb_and_is_odd(exact_table):
+    rng = np.random.default_rng(22)
+    n = 20000
+    g = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
+    case = dict(creepage_longitudinal=rng.uniform(-2e-3, 2e-3, n),
+                creepage_lateral=rng.uniform(-2e-3, 2e-3, n), spin=rng.uniform(-1, 1, n),
+                normal_load=1e5, a0=6e-3 * np.sqrt(g), b0=6e-3 / np.sqrt(g),
+                youngs_modulus=210e9, poisson_ratio=0.28, friction_coefficient=0.3)
+    t = exact_table.creep_force_3d(**case)
+    assert np.all(np.hypot(t.tx, t.ty) <= 3e4)
+    flipped = dict(case, creepage_longitudinal=-case["creepage_longitudinal"])
+    f = exact_table.creep_force_3d(**flipped)
+    np.testing.assert_allclose(f.tx, -t.tx, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(f.ty, t.ty, rtol=0, atol=1e-9)
+
+
+@needs_exact
+def test_exact_table_linear_regime(exact_table):
+    """Tiny creepage: relative agreement with the solver (both linear in the creepage)."""
+    case = dict(creepage_longitudinal=2e-7, creepage_lateral=-1e-7, spin=0.0, normal_load=1e5,
+                a0=6e-3, b0=6e-3, youngs_modulus=210e9, poisson_ratio=0.28,
+                friction_coefficient=0.3)
+    tab = exact_table.creep_force_3d(**case)
+    ref = _solver(case)
+    assert tab.tx / ref.tx == pytest.approx(1.0, abs=2e-3)
+    assert tab.ty / ref.ty == pytest.approx(1.0, abs=2e-3)
+    zero = exact_table.creep_force_3d(**dict(case, creepage_longitudinal=0.0,
+                                             creepage_lateral=0.0))
+    assert zero.tx == 0.0 and zero.ty == 0.0
+
+
+@needs_exact
+@pytest.mark.parametrize("name, kwargs", [
+    ("a0/b0", dict(a0=6e-3, b0=2e-4)),
+    ("poisson_ratio", dict(poisson_ratio=0.4)),
+    ("normalised_creepage", dict(creepage_longitudinal=0.1)),
+])
+def test_exact_table_out_of_grid_raises(exact_table, name, kwargs):
+    case = dict(creepage_longitudinal=1e-3, creepage_lateral=0.0, spin=0.0, normal_load=1e5,
+                a0=6e-3, b0=6e-3, youngs_modulus=210e9, poisson_ratio=0.28,
+                friction_coefficient=0.3)
+    case.update(kwargs)
+    with pytest.raises(ValueError, match=name.replace("/", "/")):
+        exact_table.creep_force_3d(**case)
+
+
+@needs_exact
+def test_exact_table_jacobian_consistent(exact_table):
+    case = (1e-3, -4e-4, 0.5, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
+    jac = exact_table.creep_force_jacobian_3d(*case)
+    h = 1e-6
+    tp = exact_table.creep_force_3d(case[0] + h, *case[1:])
+    tm = exact_table.creep_force_3d(case[0] - h, *case[1:])
+    assert jac[0, 0] == pytest.approx((tp.tx - tm.tx) / (2 * h), rel=1e-3)
+    assert jac[0, 0] < 0.0   # force opposes creepage

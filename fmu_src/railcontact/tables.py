@@ -53,7 +53,8 @@ from ._validation import check_range
 
 __all__ = [
     "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
-    "TensorSpline", "Table", "CreepTable", "default_table_path", "tables_directory",
+    "TensorSpline", "Table", "CreepTable", "ExactCreepTable", "default_table_path",
+    "tables_directory", "exact_table_coordinates", "exact_table_inverse",
 ]
 
 #: Version of the table file layout this reader understands (global attribute
@@ -820,3 +821,251 @@ class CreepTable:
         return self._solve((creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient),
                            jacobian=True)[4]
+
+
+# --------------------------------------------------------------------------------------------
+# Exact-theory creep table (3-D discretised solver railcontact.reference.rolling3d)
+# --------------------------------------------------------------------------------------------
+
+#: Reference contact on which the normalised exact table is computed (any contact gives the
+#: same normalised forces: checked in tests/test_tables.py). a0 b0 = 36 mm^2.
+EXACT_REFERENCE_CONTACT = dict(normal_load=1.0e5, youngs_modulus=210e9,
+                               friction_coefficient=0.3, area_radius=6.0e-3)
+
+
+def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                            youngs_modulus, poisson_ratio, friction_coefficient,
+                            coefficients=None):
+    r"""Table coordinates of the exact-theory creep table, and the symmetry signs.
+
+    With Kalker's coefficients C_ij(a0/b0, nu), ``w_sat = pi^2 (1 + nu) mu p0 / E`` and
+    ``p0 = 3 N / (2 pi a0 b0)``, the normalised creepages are
+
+        u_x = C11 xi_x / w_sat,   u_y = C22 xi_y / w_sat,   sigma = sqrt(a0 b0) C23 phi / w_sat.
+
+    In these units Kalker's linear theory reads ``T / (mu N) = -(3 pi / 4) v`` with the
+    combined creepage ``v = (u_x, u_y + sigma)``, and the modified strip theory is
+    ``T / (mu N) = -F(|v|) v / |v|``, saturating at ``|v| = 1``. The steady rolling problem with
+    Hertzian pressure depends on the inputs only through a0/b0, nu and (u_x, u_y, sigma) (scale
+    invariance of the half-space equations). Symmetries: T_x is odd and T_y even in u_x;
+    mirroring y maps (u_y, sigma, T_y) to their negatives. So the table covers v_x >= 0,
+    sigma >= 0, with coordinates
+
+        rho = |v|,  theta = atan2(v_y, v_x) in [-pi/2, pi/2],  sigma >= 0,
+
+    and holds the force in the frame of v: ``T / (mu N) = -(f_par e + f_perp e_perp)`` with
+    ``e = (cos theta, sin theta)``, ``e_perp = (-sin theta, cos theta)``. Then f_par is close to
+    the modified strip theory's F(rho) and f_perp small, so the tabulated functions are smooth
+    and nearly independent of theta.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(log_aspect_ratio, rho, theta, sigma, sign_x, sign_y, mu N, w_sat)``; the forces of
+        the reduced problem are multiplied by ``sign_x`` (T_x) and ``sign_y`` (T_y).
+    """
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.asarray(v, dtype=float) for v in (
+        creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+        poisson_ratio, friction_coefficient))
+    g = a0 / b0
+    c11, c22, c23 = coefficients if coefficients is not None else _kalker(g, nu)
+    p0 = 1.5 * n_load / (np.pi * a0 * b0)
+    w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+    u_x = c11 * xi_x / w_sat
+    u_y = c22 * xi_y / w_sat
+    sig = np.sqrt(a0 * b0) * c23 * phi / w_sat
+    sign_x = np.where(u_x < 0.0, -1.0, 1.0)
+    sign_y = np.where(sig < 0.0, -1.0, 1.0)
+    v_x = np.abs(u_x)
+    sig = np.abs(sig)
+    v_y = u_y * sign_y + sig
+    rho = np.hypot(v_x, v_y)
+    theta = np.arctan2(v_y, v_x)
+    return np.log(g), rho, theta, sig, sign_x, sign_y, mu * n_load, w_sat
+
+
+def exact_table_inverse(log_aspect_ratio, rho, theta, sigma, poisson_ratio):
+    """Physical inputs on :data:`EXACT_REFERENCE_CONTACT` for table coordinates.
+
+    Returns
+    -------
+    dict
+        ``creepage_longitudinal``, ``creepage_lateral``, ``spin``, ``normal_load``, ``a0``,
+        ``b0``, ``youngs_modulus``, ``poisson_ratio``, ``friction_coefficient`` (arrays).
+    """
+    ref = EXACT_REFERENCE_CONTACT
+    g = np.exp(np.asarray(log_aspect_ratio, dtype=float))
+    nu = np.broadcast_to(np.asarray(poisson_ratio, dtype=float), g.shape)
+    a0 = ref["area_radius"] * np.sqrt(g)
+    b0 = ref["area_radius"] / np.sqrt(g)
+    c11, c22, c23 = _kalker(g, nu)
+    n_load, e_mod, mu = ref["normal_load"], ref["youngs_modulus"], ref["friction_coefficient"]
+    p0 = 1.5 * n_load / (np.pi * a0 * b0)
+    w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+    v_x = rho * np.cos(theta)
+    v_y = rho * np.sin(theta)
+    return dict(creepage_longitudinal=v_x * w_sat / c11,
+                creepage_lateral=(v_y - sigma) * w_sat / c22,
+                spin=sigma * w_sat / (np.sqrt(a0 * b0) * c23),
+                normal_load=np.full(g.shape, n_load), a0=a0, b0=b0,
+                youngs_modulus=np.full(g.shape, e_mod), poisson_ratio=nu,
+                friction_coefficient=np.full(g.shape, mu))
+
+
+class ExactCreepTable:
+    """Creep forces of Kalker's exact theory (discretised, :mod:`railcontact.reference.rolling3d`)
+    from the shipped table ``creep_exact``; same inputs and conventions as
+    :func:`railcontact.creep_force_3d`.
+
+    The table holds the force over mu N in the frame of the combined creepage (f_par,
+    f_perp), the spin moment M_z/(mu N sqrt(a0 b0)) and the stick area fraction over
+    (ln(a0/b0), rho, theta, sigma) (see :func:`exact_table_coordinates`),
+    computed by the solver at one fixed grid (file attributes ``solver_grid``): the table's
+    recorded accuracy is against that solver, whose own discretisation error is stated in the
+    file (``solver_accuracy``).
+
+    **Out of grid:** a0/b0 outside the table's range, rho or sigma beyond their last nodes
+    (very large creepage or spin) and Poisson's ratio outside the file's
+    ``poisson_ratio_range`` raise ``ValueError`` (use the analytic
+    :func:`railcontact.creep_force_3d` there). theta always lies in the grid. The magnitude of the force is never above mu N: if the
+    interpolated components exceed it (spline ringing near full sliding), they are scaled back
+    to mu N (the file records the largest interpolated magnitude seen on the check points,
+    ``max_force_ratio_on_check_points``).
+    """
+
+    def __init__(self, table):
+        if table.name != "creep_exact":
+            raise TableFileError(f"table file {str(table.path)!r} holds {table.name!r}, not "
+                                 "the exact creep table 'creep_exact'")
+        self.table = table
+        self._spline = table.spline
+        self._idx = [table.variables.index(v) for v in ("force_ratio_parallel",
+                                                         "force_ratio_perpendicular",
+                                                         "spin_moment_ratio",
+                                                         "stick_area_fraction")]
+        self.poisson_ratio_range = tuple(_attr_list(table.attrs["poisson_ratio_range"]))
+        ax = {a["name"]: a for a in table.axes}
+        self._g_range = (float(np.exp(ax["log_aspect_ratio"]["nodes"][0])),
+                         float(np.exp(ax["log_aspect_ratio"]["nodes"][-1])))
+        self._rho_max = float(ax["normalised_creepage"]["nodes"][-1])
+        self._sigma_max = float(ax["normalised_spin"]["nodes"][-1])
+
+    @classmethod
+    def from_file(cls, path=None, directory=None):
+        """Load ``creep_exact.nc`` (default: :func:`default_table_path`)."""
+        if path is None:
+            path = default_table_path("creep_exact", directory)
+        return cls(Table.from_file(path))
+
+    def _solve(self, args):
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_creep_inputs(*args)
+        lo, hi = self.poisson_ratio_range
+        check_range("poisson_ratio", nu, "-", lo, hi,
+                    condition=f"range of table file {str(self.table.path)!r}")
+        shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.broadcast_to(v, shape) for v in (
+            xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
+        contact = (a0 > 0.0) & (b0 > 0.0) & (n_load > 0.0) & (mu > 0.0)
+        safe = lambda v, one=1.0: np.where(contact, v, one)  # noqa: E731
+        g = safe(a0) / safe(b0)
+        check_range("a0/b0", np.where(contact, g, 1.0), "-", *self._g_range,
+                    condition=f"range of table file {str(self.table.path)!r}")
+        s, rho, theta, sig, sx, sy, mu_n, w_sat = exact_table_coordinates(
+            xi_x, xi_y, phi, safe(n_load), safe(a0), safe(b0), e_mod, nu, safe(mu))
+        rho = np.where(contact, rho, 0.0)
+        sig = np.where(contact, sig, 0.0)
+        where = f"range of table file {str(self.table.path)!r}"
+        check_range("normalised_creepage", rho, "1", 0.0, self._rho_max,
+                    condition="|(C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)| / w_sat, " + where)
+        check_range("normalised_spin", sig, "1", 0.0, self._sigma_max,
+                    condition="sqrt(a0 b0) C23 |phi| / w_sat, " + where)
+        pts = np.stack([np.clip(v, lo_, hi_) for v, lo_, hi_ in zip(
+            (s, rho, theta, sig), self._spline._lower, self._spline._upper)], axis=-1)
+        vals = self._spline.evaluate(pts.reshape(-1, 4), check=False).reshape(shape + (-1,))
+        f_par, f_perp, mz, stick = (vals[..., i] for i in self._idx)
+        mag = np.hypot(f_par, f_perp)
+        over = mag > 1.0
+        scale = np.divide(1.0 - 2.0**-51, mag, out=np.ones(shape), where=over)
+        n_mu = np.where(contact, mu * n_load, 0.0) * scale
+        c, s_ = np.cos(theta), np.sin(theta)
+        tx = -sx * n_mu * (f_par * c - f_perp * s_)
+        ty = -sy * n_mu * (f_par * s_ + f_perp * c)
+        mz = sx * sy * mz * np.where(contact, mu * n_load, 0.0) * np.sqrt(a0 * b0)
+        stick = np.where(contact, np.clip(stick, 0.0, 1.0), 1.0)
+        return tx, ty, mz, stick, rho
+
+    def creep_force_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                       youngs_modulus, poisson_ratio, friction_coefficient):
+        """Creep force on the wheel (``CreepForce3D``: tx, ty [N]); ``|T| <= mu N``."""
+        result = _CreepForce3D or _creep_force_type()
+        args = (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                youngs_modulus, poisson_ratio, friction_coefficient)
+        if _fast_scalars_ok(*args):
+            out = self._scalar(*args)
+            if out is not None:
+                return result(*out)
+        tx, ty = self._solve(args)[:2]
+        return result(tx[()], ty[()])
+
+    def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+        """Scalar fast path; None if an input is out of the table's range (the vectorised
+        path then raises the message)."""
+        if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
+            return 0.0, 0.0
+        g = a0 / b0
+        lo, hi = self.poisson_ratio_range
+        if not (self._g_range[0] <= g <= self._g_range[1] and lo <= nu <= hi):
+            return None
+        c11, c22, c23 = _kalker_cached(g, nu)
+        w_sat = math.pi**2 * (1.0 + nu) * mu * 1.5 * n_load / (math.pi * a0 * b0 * e_mod)
+        u_x = c11 * xi_x / w_sat
+        sig = math.sqrt(a0 * b0) * c23 * phi / w_sat
+        sx = -1.0 if u_x < 0.0 else 1.0
+        sy = -1.0 if sig < 0.0 else 1.0
+        v_x = abs(u_x)
+        sig = abs(sig)
+        v_y = c22 * xi_y / w_sat * sy + sig
+        rho = math.hypot(v_x, v_y)
+        if rho > self._rho_max or sig > self._sigma_max:
+            return None
+        theta = math.atan2(v_y, v_x)
+        s = min(max(math.log(g), self._spline._lower[0]), self._spline._upper[0])
+        vals = self._spline.evaluate_point((s, rho, theta, sig))
+        f_par, f_perp = vals[self._idx[0]], vals[self._idx[1]]
+        mag = math.hypot(f_par, f_perp)
+        n_mu = mu * n_load * ((1.0 - 2.0**-51) / mag if mag > 1.0 else 1.0)
+        c, s_ = math.cos(theta), math.sin(theta)
+        return (-sx * n_mu * (f_par * c - f_perp * s_), -sy * n_mu * (f_par * s_ + f_perp * c))
+
+    def creep_solution_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load,
+                          a0, b0, youngs_modulus, poisson_ratio, friction_coefficient):
+        """``(tx, ty, spin_moment, stick_area_fraction, normalised_creepage)``
+        [N, N, N m, -, -]; the spin moment is about the ellipse centre, on the wheel."""
+        out = self._solve((creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                           youngs_modulus, poisson_ratio, friction_coefficient))
+        return tuple(v[()] for v in out)
+
+    def creep_force_jacobian_3d(self, creepage_longitudinal, creepage_lateral, spin,
+                                normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                friction_coefficient, relative_step=1e-5):
+        """d(tx, ty)/d(xi_x, xi_y, phi), shape (..., 2, 3), by central differences of the C2
+        interpolant (step ``relative_step`` times the saturation creepage w_sat/C_ii; the
+        truncation error is O(step^2) of the spline's third derivative)."""
+        args = [np.asarray(v, dtype=float) for v in (
+            creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+            youngs_modulus, poisson_ratio, friction_coefficient)]
+        shape = np.broadcast(*args).shape
+        *_, w_sat = exact_table_coordinates(*args)
+        c11, c22, c23 = _kalker(args[4] / args[5], args[7])
+        steps = (relative_step * w_sat / c11, relative_step * w_sat / c22,
+                 relative_step * w_sat / (np.sqrt(args[4] * args[5]) * c23))
+        jac = np.empty(shape + (2, 3))
+        for j, h in enumerate(steps):
+            plus, minus = list(args), list(args)
+            plus[j] = args[j] + h
+            minus[j] = args[j] - h
+            tp = self._solve(tuple(plus))
+            tm = self._solve(tuple(minus))
+            jac[..., 0, j] = (tp[0] - tm[0]) / (2 * h)
+            jac[..., 1, j] = (tp[1] - tm[1]) / (2 * h)
+        return jac
