@@ -22,6 +22,12 @@ Two adjacent patches (Sec. 6.4, 6.5.2)
     displacement between two surface points *is* finite in 2-D, only the absolute approach is
     not), which is what the discretised reference solver does.
 
+Limits (hard cases, tested): a single coherent patch on the concave flank of a gap does not
+exist beyond a fold load (``ValueError`` naming ``normal_load``); the two-patch solver then starts
+from a smaller load and continues in the load, and refuses once the reference solver would merge
+the patches. Taylor expansion converges only geometrically in (target half-width)/(distance to
+the other patch), Chebyshev collocation faster; with the inner gap 0.73 a they differ by 1.6e-4.
+
 Conventions: package convention (see :mod:`railcontact`). The leading edge is at ``+x``, so
 stick zones touch the *right* edge of each patch, and the force on the wheel opposes the creepage.
 The thesis draws the leading edge at ``-x``; its (6.33)-(6.40) are the mirror image
