@@ -280,8 +280,10 @@ def test_bad_parameter_gives_fmi_error_naming_it(fmu_path, start_values, name):
 
 
 @pytest.mark.parametrize("name, value", [("creepage_longitudinal", np.nan),
-                                         ("normal_force", -5.0), ("spin", np.inf),
-                                         ("rolling_speed", -1.0)])
+                                         ("creepage_lateral", -np.inf),
+                                         ("normal_force", -5.0), ("normal_force", np.nan),
+                                         ("spin", np.inf), ("rolling_speed", -1.0),
+                                         ("rail_position", np.nan)])
 def test_invalid_input_gives_fmi_error_not_nan(fmu_path, name, value):
     scene = load_scene(MAIN_SCENE)
     inputs = scene.input_signals()
@@ -362,9 +364,10 @@ def test_state_save_restore_is_bit_identical(fmu_path, tmp_path, scene_path):
     assert not np.array_equal(first[0], first[-1])
 
 
-def test_libcosim_agrees_with_fmpy(fmu_path, tmp_path):
+@pytest.mark.parametrize("scene_path", [MAIN_SCENE, CORRUGATION_SCENE],
+                         ids=lambda s: Path(s).stem)
+def test_libcosim_agrees_with_fmpy(fmu_path, tmp_path, scene_path):
     pytest.importorskip("libcosimpy")
-    scene_path = MAIN_SCENE
     out_csv = tmp_path / "cosim.csv"
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "fmu_src"), env.get("PYTHONPATH", "")])
@@ -376,7 +379,7 @@ def test_libcosim_agrees_with_fmpy(fmu_path, tmp_path):
     _, result, _ = simulate(fmu_path, scene_path)
     assert len(cosim) == len(result) - 1
     np.testing.assert_allclose(cosim["time"], result["time"][1:], rtol=0, atol=1e-12)
-    for name in OUTPUTS:
+    for name in LINE_OUTPUTS:
         np.testing.assert_allclose(cosim[name], result[name][1:], rtol=1e-14, atol=0,
                                    err_msg=name)
 
@@ -400,3 +403,58 @@ def test_run_command_reports_bad_scene(tmp_path, fmu_path):
                            str(fmu_path)], capture_output=True, text=True, cwd=ROOT)
     assert proc.returncode == 2
     assert "material.poisson_ratio must be in [0, 0.5)" in proc.stderr
+
+
+def _long_run(fmu_path, tmp_path, n_steps):
+    """Table scene, inputs sweeping the hard regions; returns (RSS samples [MB], bad count)."""
+    import math
+    import resource
+    unzipdir = extract(str(fmu_path), str(tmp_path / "long"))
+    scene_path = str(ROOT / "examples" / "scenes" / "creep_only_table.toml")
+    fmu, vr = _instantiate(fmu_path, scene_path, unzipdir)
+    ins = [vr[n] for n in INPUTS]
+    outs = [vr[n] for n in LINE_OUTPUTS]
+    cycle = 10007
+    k = np.arange(cycle)
+    sweep = np.column_stack([
+        np.maximum(0.0, 1e5 * np.sin(2 * np.pi * k / cycle)),   # through N = 0 (no contact)
+        0.05 * np.sin(2 * np.pi * 3 * k / cycle),               # far past saturation
+        0.01 * np.cos(2 * np.pi * 5 * k / cycle),
+        5.0 * np.sin(2 * np.pi * 7 * k / cycle),                # spin pole inside the patch
+        30.0 + 0.0 * k, 1e-3 * k]).tolist()
+
+    def rss():
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[1]) * resource.getpagesize() / 2**20
+
+    samples, bad, t = {}, 0, 0.0
+    try:
+        for i in range(n_steps):
+            fmu.setReal(ins, sweep[i % cycle])
+            fmu.doStep(t, 1e-4)
+            t += 1e-4
+            if i % 997 == 0:
+                values = fmu.getReal(outs)
+                bad += sum(not math.isfinite(v) for v in values)
+                mu_n = 0.3 * sweep[i % cycle][0]
+                bad += math.hypot(values[0], values[1]) > mu_n * (1 + 1e-12)
+            if (i + 1) % (n_steps // 10) == 0:
+                samples[i + 1] = rss()
+    finally:
+        fmu.terminate()
+        fmu.freeInstance()
+    return samples, bad
+
+
+def test_long_run_is_finite_bounded_and_flat_in_memory(fmu_path, tmp_path):
+    samples, bad = _long_run(fmu_path, tmp_path, 30000)
+    assert bad == 0
+    values = list(samples.values())
+    assert values[-1] - values[1] < 5.0, samples      # MB, after warm-up
+
+
+@pytest.mark.slow
+def test_long_run_1e6_steps(fmu_path, tmp_path):
+    samples, bad = _long_run(fmu_path, tmp_path, 10**6)
+    assert bad == 0
+    assert samples[10**6] - samples[10**5] < 5.0, samples
