@@ -55,8 +55,9 @@ def _amp_phase(ax_a, ax_p, c, label, **kw):
 
 def fig_4_3_4_4(out):
     cd, ca = cg.normal_response(RATIOS)
-    for name, c, title in (("fig4_3.png", cd, "Fig. 4.3: amplitude of Delta / (k R |Z|) = |J0(k a0)|"),
-                           ("fig4_4.png", ca, "Fig. 4.4: amplitude of a / (k R |Z|) = |J1(k a0)|")):
+    for name, c, title in (
+            ("fig4_3.png", cd, "Fig. 4.3: amplitude of Delta / (k R |Z|) = |J0(k a0)|"),
+            ("fig4_4.png", ca, "Fig. 4.4: amplitude of a / (k R |Z|) = |J1(k a0)|")):
         fig, ax = plt.subplots(figsize=(6, 3.5))
         ax.plot(RATIOS, np.abs(c))
         ax.set_xlabel("a0 / L")

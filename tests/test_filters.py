@@ -63,7 +63,8 @@ def test_4_120_half_width_error():
 def test_symmetry_4_121_4_122():
     q = np.linspace(0.01, 0.4, 20)
     for r in (0.1, 0.3, 0.45):
-        assert np.allclose(np.abs(fl.filter_solution(q, r)[1]), np.abs(fl.filter_solution(q, 1 - r)[1]))
+        assert np.allclose(np.abs(fl.filter_solution(q, r)[1]),
+                           np.abs(fl.filter_solution(q, 1 - r)[1]))
     assert np.allclose(fl.filter_solution(q, 0.5)[1], 0)
 
 

@@ -17,7 +17,7 @@ from railcontact import wear
 # --------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("r", [0.0, 0.2, 0.5, 0.9])
 def test_wear_shape_function_by_quadrature(r):
-    """int_slip q s dx for Carter (stick at the leading edge [a-2a*, a]) = (pi/2) a^3 f(r) mu^2/R."""
+    """int_slip q s dx for Carter (stick zone [a-2a*, a]) = (pi/2) a^3 f(r) mu^2/R."""
     a, ast = 1.0, r
 
     def integrand(x):   # sqrt(a^2 - x^2) * sqrt(x*^2 - a*^2), x* = x - (a - a*)
@@ -250,3 +250,17 @@ def test_linear_response_bundle_matches_exact():
     assert grid.wear.shape == (5, 4) and np.all(np.isfinite(grid.growth_factor))
     with pytest.raises(ValueError, match="wear_number"):
         wear.linear_response(0.1, 0.5, wear_number=-1)
+
+
+@pytest.mark.slow
+def test_transient_rolling_also_levels():
+    """Beyond the quasi-static model: time-stepped non-steady rolling (du/dt of (2.16)) summed
+    at material points also gives W1 > 0 where the thesis' model amplifies (study values in
+    docs/wear_finding.md; datum 5 a0, 80 elements)."""
+    out = wear.wear_first_harmonic_transient(0.1, 0.5, 0.05, phase=0.4, n_elements=80,
+                                             reference_length_over_a0=5.0)
+    assert out["mean"] == pytest.approx(wear.wear_shape_function(0.5), rel=0.05)
+    assert out["material_point"].real > 0
+    assert wear.wear_coefficients(0.1, 0.5, "nielsen1998").real < 0
+    assert out["material_point"].real == pytest.approx(
+        wear.wear_coefficients(0.1, 0.5).real, rel=0.6)

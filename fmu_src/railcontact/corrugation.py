@@ -151,7 +151,8 @@ def contact_point_shift_coefficient():
     a0) Delta_c`` (4.42).
 
     # erratum: (4.40) as printed has cos/sin swapped on the right-hand side; the tangency
-    # condition is Delta_c/sqrt(R^2 - Delta_c^2) = dZ2/dX = -k sum [Z_A sin - Z_B cos](k(X+Delta_c)),
+    # condition is Delta_c/sqrt(R^2 - Delta_c^2) = dZ2/dX
+    #   = -k sum [Z_A sin - Z_B cos](k(X + Delta_c)),
     # whose first-order solution is the printed (4.41); verified by finite differences in the tests.
 
     Returns

@@ -467,7 +467,8 @@ def wear_first_harmonic_reference(a0_over_wavelength, stick_ratio, relative_ampl
     hw = domain_half_width * a0
     for xcv in xc:
         def gap(xb, xcv=xcv):
-            return xb * xb / (2 * big_r) - (za * np.cos(k * (xcv + xb)) + zb * np.sin(k * (xcv + xb)))
+            arg = k * (xcv + xb)
+            return xb * xb / (2 * big_r) - (za * np.cos(arg) + zb * np.sin(arg))
         nsol = solve_normal_2d(gap, n_load, e_mod, nu, -hw, hw, n_elements)
         rsol = solve_rolling_2d(nsol.x, nsol.pressure, e_mod, nu, creepage=-xi, friction=mu)
         dens = np.abs(rsol.traction * rsol.slip)
@@ -577,7 +578,7 @@ def wear_first_harmonic_transient(a0_over_wavelength, stick_ratio, relative_ampl
 LinearResponse = namedtuple("LinearResponse", [
     "patch_shift", "half_width", "stick_half_width", "tangential_force", "tau", "tau_star",
     "wear", "w1", "w2", "growth_factor"])
-LinearResponse.__doc__ = """Result of :func:`linear_response` (all arrays broadcast over the inputs).
+LinearResponse.__doc__ = """Result of :func:`linear_response` (arrays broadcast over the inputs).
 
 Complex coefficients ``c`` with ``Q_A + i Q_B = c (Z_A + i Z_B)`` (amplitude ``|c| |Z|``, phase
 ``arg c`` in the package orientation, rolling +X; the thesis' phase is ``-arg c``):
