@@ -1,0 +1,1038 @@
+#!/usr/bin/env python
+r"""What accuracy costs in time: every way railcontact computes the same quantity, measured in one run.
+
+    python benchmarks/accuracy_vs_time.py            # default run (< 10 min on 2 cores)
+    python benchmarks/accuracy_vs_time.py --quick    # < 1 min, a few points per family (CI)
+    python benchmarks/accuracy_vs_time.py --out DIR  # write DIR/accuracy_vs_time.md, DIR/figures/
+
+Writes ``docs/accuracy_vs_time.md`` (Markdown tables, the answers to issue 7's questions) and
+``docs/figures/accuracy_vs_time.png`` (log-log error against time per evaluation, one Pareto
+frontier per model family, the peers' published figures as reference marks). Nothing is
+asserted: the script measures and reports.
+
+Families, quantities and error normalisations (each error is the maximum over a fixed set of
+cases, stated in the output):
+
+* **2-D Hertz / Carter** -- tangential force ``T/(mu N)`` at four creepages; reference: Carter's
+  closed form (2.53), exact for this problem. Methods: the discretised half-space solver
+  (``railcontact.reference.halfspace2d``) at increasing element counts, the polynomial approach
+  (Ch. 3), Carter.
+* **2-D corrugated rail** (non-Hertzian gap, one rail position) -- ``T/(mu N)``; reference: the
+  exact nonlinear solution of Ch. 4.2 (``corrugation.corrugated_contact(method="exact")``,
+  the polynomial approach with the full Bessel series). Methods: half-space solver at increasing
+  element counts, polynomial approach with the gap's Taylor series truncated at degree N,
+  linearised closed forms, Carter ignoring the corrugation.
+* **3-D creep forces** -- ``|T - T_ref| / (mu N)`` (vector difference) over the CONTACT cases
+  (tractcurv series 1, a/b = 0.5, and the 7 cases at a/b = 1 of CONTACT's grid-convergence
+  study). Two references: CONTACT's published values (tractcurv at 48x44; the grid-convergence
+  cases at 240x60), and the project's most accurate method, the 3-D exact theory
+  (``reference.rolling3d``) Richardson-extrapolated from the finest grid pair. Methods: linear,
+  SHE, strip, modified strip, the modified-strip table at three resolutions, the exact-theory
+  table (if built), the exact theory at increasing grids, with and without Richardson.
+* **Corrugation and wear** (Ch. 4) -- normalised wear coefficient ``w`` (first harmonic),
+  ``|w - w_ref| / |w_ref|``; reference: the exact nonlinear wear integral extrapolated to zero
+  amplitude (Richardson in amplitude^2); the direct wear integral with the half-space solver
+  (the issue's reference) is measured too and its own convergence reported. Plus the series
+  degree study ((4.28) estimate against the true error) and the amplitude / a0/L study of the
+  linearised closed forms.
+* **Friction** (Ch. 5) -- ``T/(mu_0 N)`` of a velocity-dependent law; reference: the iteration
+  at degree 512, tol 1e-10. Methods: the iteration at several degrees and tolerances; the
+  half-space solver with the same law.
+* **Non-steady** (Ch. 7) and **roughness** (Ch. 6) -- closed forms, timed (no independent
+  reference in this run; see the document).
+* **FMU** -- microseconds per ``doStep`` for each bundled scene (fmpy, same run), analytic
+  against tables; error of the table scene against the analytic scene on the same inputs,
+  ``max |F_table - F_analytic| / (mu N)``.
+
+Absolute times depend on the machine load (printed); ratios measured in the same run hold.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+import shutil
+import sys
+import tempfile
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")    # many small dense solves: 1 thread is faster
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "fmu_src"), str(ROOT / "benchmarks"), str(ROOT)]
+
+from _timing import median_time, per_call  # noqa: E402
+
+E, NU = 2.1e11, 0.28
+
+
+@dataclass
+class Row:
+    family: str
+    method: str
+    knob: str
+    error: float                      # against the family's project reference
+    t_single: float                   # s per evaluation, one call
+    t_batch: float = math.nan         # s per evaluation, in a batch
+    error_peer: float = math.nan      # against the peer's (CONTACT) reference, where one exists
+    note: str = ""
+
+
+@dataclass
+class Family:
+    name: str
+    quantity: str
+    reference: str
+    rows: list = field(default_factory=list)
+    peer_reference: str = ""
+    notes: list = field(default_factory=list)
+    extra: dict = field(default_factory=dict)
+
+
+def _log(msg):
+    print(msg, flush=True)
+
+
+def _vec_err(tx, ty, rx, ry, scale):
+    return float(np.max(np.hypot(np.asarray(tx) - rx, np.asarray(ty) - ry) / scale))
+
+
+# =============================================================================================
+# 2-D Hertz / Carter
+# =============================================================================================
+def family_2d_hertz(quick):
+    from railcontact import carter_creep_force, hertz_2d
+    from railcontact import polynomial as poly
+    from railcontact.reference.halfspace2d import solve_normal_2d, solve_rolling_2d
+
+    fam = Family("2-D Hertz/Carter", "T/(mu N) at xi/xi_c = 0.1, 0.37, 0.7, 0.95",
+                 "Carter's closed form (2.53), exact for this problem; error max |T - T_C|/(mu N)")
+    big_r, n_load, mu = 0.5, 1.0e6, 0.3
+    a0 = float(hertz_2d(n_load, big_r, E, NU).a0)
+    chis = np.array([0.1, 0.37, 0.7, 0.95])
+    xis = -chis * mu * a0 / big_r
+    t_exact = mu * n_load * (1 - (1 - chis) ** 2)          # force on the wheel, xi < 0 -> T > 0
+
+    def carter_all():
+        return carter_creep_force(xis, n_load, big_r, E, NU, mu)
+
+    err = np.max(np.abs(carter_all() - t_exact)) / (mu * n_load)
+    t1 = per_call(lambda: carter_creep_force(xis[1], n_load, big_r, E, NU, mu))
+    tb = per_call(carter_all) / chis.size
+    fam.rows.append(Row(fam.name, "Carter closed form", "-", err, t1, tb))
+
+    gap = [0.0, 0.0, 1.0 / (2 * big_r)]
+
+    def poly_one(xi):
+        nc = poly.solve_normal_polynomial(gap, n_load, E, NU)
+        return poly.solve_tangential_polynomial(nc, mu, creepage=xi).tangential_force
+
+    vals = np.array([poly_one(x) for x in xis])
+    err = np.max(np.abs(vals - t_exact)) / (mu * n_load)
+    t1 = per_call(lambda: poly_one(xis[1]), repeat=3)
+    fam.rows.append(Row(fam.name, "polynomial approach (Ch. 3)", "degree 2 (exact gap)",
+                        err, t1, math.nan))
+
+    sizes = [25, 50, 100] if quick else [25, 50, 100, 200, 400, 800, 1600]
+    for n in sizes:
+        def solve_all(n=n):
+            r = solve_normal_2d(lambda x: x * x / (2 * big_r), n_load, E, NU,
+                                -1.23 * a0, 1.31 * a0, n)
+            return [solve_rolling_2d(r.x, r.pressure, E, NU, creepage=x, friction=mu)
+                    .tangential_force for x in xis]
+
+        def solve_one(n=n):
+            r = solve_normal_2d(lambda x: x * x / (2 * big_r), n_load, E, NU,
+                                -1.23 * a0, 1.31 * a0, n)
+            return solve_rolling_2d(r.x, r.pressure, E, NU, creepage=xis[1], friction=mu)
+
+        t0 = time.perf_counter()
+        vals = np.array(solve_all())
+        tb = (time.perf_counter() - t0) / chis.size
+        err = np.max(np.abs(vals - t_exact)) / (mu * n_load)
+        t1 = median_time(solve_one, repeat=3, warmup=0, budget=3.0)
+        fam.rows.append(Row(fam.name, "half-space solver (reference 2-D)", f"{n} elements",
+                            err, t1, tb, note="normal + rolling solve per evaluation"))
+    return fam
+
+
+# =============================================================================================
+# 2-D non-Hertzian: a cylinder on a corrugated rail at one position
+# =============================================================================================
+def family_2d_corrugated(quick):
+    from math import factorial
+
+    from railcontact import carter_creep_force, hertz_2d
+    from railcontact import polynomial as poly
+    from railcontact.corrugation import corrugated_contact
+    from railcontact.reference.halfspace2d import solve_normal_2d, solve_rolling_2d
+
+    big_r, n_load, mu = 0.5, 1.0e6, 0.3
+    a0 = float(hertz_2d(n_load, big_r, E, NU).a0)
+    lam = 0.02
+    k = 2 * np.pi / lam
+    amp = 0.3 / (k * k * big_r)                 # k^2 R |Z| = 0.3 (condition (4.2): < 1)
+    za, zb = amp, 0.0
+    xpos = lam / 8
+    chi = 0.5
+    xi = chi * mu * a0 / big_r
+    fam = Family("2-D corrugated rail", f"T/(mu N), one rail position (a0/L = {a0 / lam:.3f}, "
+                 f"k^2 R Z = 0.3, xi/xi_c = {chi})",
+                 "exact nonlinear solution of Ch. 4.2 (corrugated_contact, method='exact'); "
+                 "error |T - T_exact|/(mu N)")
+    scale = mu * n_load
+
+    def exact():
+        return corrugated_contact(xpos, n_load, big_r, E, NU, mu, xi, [za], [zb], [lam],
+                                  method="exact").tangential_force
+
+    t_ref = float(exact())
+    t1 = per_call(exact, repeat=3)
+    fam.rows.append(Row(fam.name, "exact nonlinear (Ch. 4.2)", "-", 0.0, t1,
+                        note="reference"))
+
+    def linear():
+        return corrugated_contact(xpos, n_load, big_r, E, NU, mu, xi, [za], [zb], [lam],
+                                  method="linear").tangential_force
+
+    err = abs(float(linear()) - t_ref) / scale
+    fam.rows.append(Row(fam.name, "linearised closed forms (Ch. 4.2)", "-", err,
+                        per_call(linear, repeat=3)))
+
+    def carter():
+        return abs(carter_creep_force(xi, n_load, big_r, E, NU, mu))
+
+    fam.rows.append(Row(fam.name, "Carter (corrugation ignored)", "-",
+                        abs(float(carter()) - t_ref) / scale, per_call(carter, repeat=3)))
+
+    zeta = (za - 1j * zb) * np.exp(1j * k * xpos)
+    degrees = [2, 4, 6] if quick else [2, 3, 4, 5, 6, 8, 10, 12]
+    for deg in degrees:
+        coeffs = np.array([-np.real(zeta * (1j * k) ** n) / factorial(n) for n in range(deg + 1)])
+        coeffs[2] += 1.0 / (2 * big_r)
+        coeffs[0] += za                      # rigid shift only (the datum); keeps Z(0) ~ 0
+
+        def poly_one(coeffs=coeffs):
+            nc = poly.solve_normal_polynomial(coeffs, n_load, E, NU)
+            return abs(poly.solve_tangential_polynomial(nc, mu, creepage=xi).tangential_force)
+
+        try:
+            val = poly_one()
+            fam.rows.append(Row(fam.name, "polynomial approach, Taylor gap (Ch. 3)",
+                                f"degree {deg}", abs(val - t_ref) / scale,
+                                per_call(poly_one, repeat=3)))
+        except ValueError as exc:            # e.g. a truncated gap without a physical solution
+            fam.notes.append(f"polynomial approach at degree {deg}: {exc}")
+
+    hw = 1.6 * a0
+    sizes = [50, 100, 200] if quick else [50, 100, 200, 400, 800, 1600]
+    for n in sizes:
+        def solve_one(n=n):
+            def gap(xb):
+                return xb * xb / (2 * big_r) - (za * np.cos(k * (xpos + xb))
+                                                 + zb * np.sin(k * (xpos + xb)))
+            r = solve_normal_2d(gap, n_load, E, NU, -hw, hw, n)
+            return abs(solve_rolling_2d(r.x, r.pressure, E, NU, creepage=-xi,
+                                        friction=mu).tangential_force)
+
+        t0 = time.perf_counter()
+        val = solve_one()
+        t_first = time.perf_counter() - t0
+        t1 = min(t_first, median_time(solve_one, repeat=2, warmup=0, budget=2.0))
+        fam.rows.append(Row(fam.name, "half-space solver (reference 2-D)", f"{n} elements",
+                            abs(val - t_ref) / scale, t1))
+    return fam
+
+
+# =============================================================================================
+# 3-D creep forces
+# =============================================================================================
+def _contact_cases(quick):
+    """CONTACT cases: dicts of the inputs of creep_force_3d plus CONTACT's (fx, fy)/(mu N)."""
+    data = ROOT / "tests" / "data"
+    cases = []
+    g, nu = 82e9, 0.28
+    e_mod = 2 * g * (1 + nu)
+    rows = list(csv.reader(line for line in open(data / "contact_tractcurv_series1_coulomb.csv")
+                           if not line.startswith("#")))[1:]
+    pick = (0.0008, 0.0016) if quick else (0.0004, 0.0008, 0.0012, 0.0016, 0.002, 0.0024,
+                                            0.0028, 0.0036)
+    for cksi, fx in rows:
+        if any(abs(float(cksi) - p) < 1e-12 for p in pick):
+            cases.append(dict(xi=float(cksi), eta=0.0, phi=0.0, n=106.7e3, a=6.304e-3,
+                              b=12.61e-3, e=e_mod, nu=nu, mu=0.33, fx=float(fx), fy=0.0,
+                              label=f"tractcurv cksi={cksi}"))
+    path = data / "contact_hertz3d_grid_convergence.csv"
+    if path.exists():
+        reader = csv.DictReader(line for line in open(path) if not line.startswith("#"))
+        labels = ("long k1", "comb k1") if quick else None
+        for r in reader:
+            if r["a_over_b"] != "1" or (r["mx"], r["my"]) != ("30", "30"):
+                continue
+            if labels and r["case"] not in labels:
+                continue
+            gm, nuc = float(r["G_Pa"]), float(r["nu"])
+            cases.append(dict(xi=float(r["cksi"]), eta=float(r["ceta"]),
+                              phi=float(r["cphi_per_m"]), n=float(r["Fn_N"]),
+                              a=float(r["a_m"]), b=float(r["b_m"]), e=2 * gm * (1 + nuc),
+                              nu=nuc, mu=float(r["mu"]),
+                              fx=float(r["fx_over_mu_fn"]) - float(r["dfx_vs_240x60"]),
+                              fy=float(r["fy_over_mu_fn"]) - float(r["dfy_vs_240x60"]),
+                              label=f"hertz3d a/b=1 {r['case']}"))
+    return cases
+
+
+def contact_grid_errors():
+    """CONTACT's own discretisation error per grid: max |F(mx,my) - F(240x60)|/(mu N), a/b = 1."""
+    path = ROOT / "tests" / "data" / "contact_hertz3d_grid_convergence.csv"
+    if not path.exists():
+        return {}
+    out = {}
+    for r in csv.DictReader(line for line in open(path) if not line.startswith("#")):
+        if r["a_over_b"] != "1":
+            continue
+        key = (int(r["mx"]), int(r["my"]))
+        e = math.hypot(float(r["dfx_vs_240x60"]), float(r["dfy_vs_240x60"]))
+        out[key] = max(out.get(key, 0.0), e)
+    return out
+
+
+def family_3d(quick, workdir):
+    from railcontact import creep_force_3d
+    from railcontact.creep3d import METHODS
+    from railcontact.reference.rolling3d import solve_rolling_3d
+    from railcontact.tables import CreepTable, ExactCreepTable, tables_directory
+
+    cases = _contact_cases(quick)
+    arr = {k: np.array([c[k] for c in cases]) for k in ("xi", "eta", "phi", "n", "a", "b", "e",
+                                                         "nu", "mu", "fx", "fy")}
+    args = tuple(arr[k] for k in ("xi", "eta", "phi", "n", "a", "b", "e", "nu", "mu"))
+    one = next(i for i, c in enumerate(cases) if c["xi"] > 0.001 and c["eta"] == 0
+               and c["phi"] == 0)
+    args1 = tuple(float(v[one]) for v in args)
+    scale = arr["mu"] * arr["n"]
+    cfx, cfy = arr["fx"] * scale, arr["fy"] * scale
+    n_ref = 16 if quick else 32
+    fam = Family("3-D creep forces", f"(Tx, Ty) on {len(cases)} CONTACT cases "
+                 f"(tractcurv a/b = 0.5 and hertz3d a/b = 1, incl. spin)",
+                 f"exact theory (reference.rolling3d) at {n_ref}x{n_ref} with Richardson "
+                 f"({2 * n_ref}x{2 * n_ref}); error max |T - T_ref|/(mu N)",
+                 peer_reference="CONTACT (tractcurv 48x44 values; hertz3d 240x60 values); "
+                                "error max |T - T_CONTACT|/(mu N)")
+
+    def rolling(n, richardson, i):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return solve_rolling_3d(*(float(v[i]) for v in args), mx=n, my=n,
+                                    richardson=richardson)
+
+    rolling(8, False, one)                     # numba dispatch, first influence matrices
+    _log(f"  3-D reference: rolling3d {n_ref}x{n_ref} + Richardson on {len(cases)} cases ...")
+    t0 = time.perf_counter()
+    ref = [rolling(n_ref, True, i) for i in range(len(cases))]
+    t_ref_batch = (time.perf_counter() - t0) / len(cases)
+    rfx = np.array([r.tx for r in ref])
+    rfy = np.array([r.ty for r in ref])
+    fam.rows.append(Row(fam.name, "exact theory (rolling3d) + Richardson",
+                        f"{n_ref}x{n_ref} -> {2 * n_ref}x{2 * n_ref}", 0.0, t_ref_batch,
+                        t_ref_batch, _vec_err(rfx, rfy, cfx, cfy, scale),
+                        note="project reference (time: one pass over the cases)"))
+
+    def add(method, knob, tx, ty, t1, tb, note=""):
+        fam.rows.append(Row(fam.name, method, knob, _vec_err(tx, ty, rfx, rfy, scale), t1, tb,
+                            _vec_err(tx, ty, cfx, cfy, scale), note))
+
+    for method in METHODS:
+        f = creep_force_3d(*args, method=method)
+        t1 = per_call(lambda: creep_force_3d(*args1, method=method))
+        tb = per_call(lambda: creep_force_3d(*args, method=method)) / len(cases)
+        add(f"closed form: {method}", "-", f.tx, f.ty, t1, tb)
+
+    # tables: the shipped modified-strip table built at three resolutions (same run)
+    try:
+        from tablegen import specs  # noqa: F401
+        from tablegen.build import build_table
+        for res in ("coarse", "default", "fine"):
+            out = Path(workdir) / f"tab_{res}"
+            build_table("creep_modified_strip", res, output_dir=out, scheduler="synchronous",
+                        progress=False, workdir=Path(workdir) / f"w_{res}")
+            tab = CreepTable.from_file(out / "creep_modified_strip.nc")
+            f = tab.creep_force_3d(*args)
+            t1 = per_call(lambda: tab.creep_force_3d(*args1))
+            tb = per_call(lambda: tab.creep_force_3d(*args)) / len(cases)
+            nodes = len(tab.table.axes[0]["nodes"])
+            direct = creep_force_3d(*args, method="modified_strip")
+            own = _vec_err(f.tx, f.ty, direct.tx, direct.ty, scale)
+            fam.extra[f"table_own_{res}"] = own
+            add("table: modified strip (C2 spline)", f"{res} ({nodes} nodes)", f.tx, f.ty, t1,
+                tb, note=f"vs the closed form: {own:.1e}")
+    except Exception as exc:                      # report, do not hide
+        fam.notes.append(f"modified-strip table build/evaluation failed: {exc!r}")
+    exact_path = tables_directory() / "creep_exact.nc"
+    if exact_path.exists():
+        try:
+            tab = ExactCreepTable.from_file()
+            f = tab.creep_force_3d(*args)
+            t1 = per_call(lambda: tab.creep_force_3d(*args1))
+            tb = per_call(lambda: tab.creep_force_3d(*args)) / len(cases)
+            shape = "x".join(str(len(a["nodes"])) for a in tab.table.axes)
+            add("table: exact theory (C2 spline)", f"shipped ({shape})", f.tx, f.ty, t1, tb)
+        except Exception as exc:
+            fam.notes.append(f"exact-theory table: {exc!r}")
+    else:
+        fam.notes.append("exact-theory table (tables/creep_exact.nc) not built in this checkout: "
+                         "`python -m tablegen build --only creep_exact` adds it to the report")
+
+    grids = [8, 12] if quick else [8, 12, 16, 24, 32, 48]
+    for n in grids:
+        t0 = time.perf_counter()
+        res = [rolling(n, False, i) for i in range(len(cases))]
+        tb = (time.perf_counter() - t0) / len(cases)
+        t1 = median_time(lambda: rolling(n, False, one), repeat=3, warmup=0, budget=3.0)
+        add("exact theory (rolling3d)", f"{n}x{n}", [r.tx for r in res], [r.ty for r in res],
+            t1, tb, note="influence matrices cached per grid")
+    rich = [8] if quick else [8, 12, 16, 24]
+    for n in rich:
+        t0 = time.perf_counter()
+        res = [rolling(n, True, i) for i in range(len(cases))]
+        tb = (time.perf_counter() - t0) / len(cases)
+        add("exact theory (rolling3d) + Richardson", f"{n}x{n} -> {2 * n}x{2 * n}",
+            [r.tx for r in res], [r.ty for r in res], tb, tb)
+    return fam
+
+
+# =============================================================================================
+# Ch. 4: corrugation and wear
+# =============================================================================================
+def family_wear(quick):
+    from railcontact import wear
+
+    ratio, r = 0.1, 0.5
+    fam = Family("Corrugation & wear", f"wear coefficient w (first harmonic), a0/L = {ratio}, "
+                 f"r_a0 = {r}",
+                 "exact nonlinear wear integral (wear_first_harmonic_exact, 128 positions x 128 "
+                 "nodes) extrapolated to zero amplitude (eps = 0.02, 0.01; Richardson in "
+                 "eps^2); error |w - w_ref|/|w_ref|")
+
+    def exact(eps, npos=128):
+        return wear.wear_first_harmonic_exact(ratio, r, eps, n_positions=npos,
+                                              n_nodes=npos)["material_point"]
+
+    w_ref = (4 * exact(0.01) - exact(0.02)) / 3
+    scale = abs(w_ref)
+    for nn in ([4, 24] if quick else [2, 4, 8, 12, 24, 64]):
+        w = wear.wear_coefficients(ratio, r, n_nodes=nn)
+        t1 = per_call(lambda: wear.wear_coefficients(ratio, r, n_nodes=nn))
+        rg = np.linspace(0.05, 0.95, 100)
+        tb = per_call(lambda: wear.wear_coefficients(ratio, rg, n_nodes=nn)) / rg.size
+        fam.rows.append(Row(fam.name, "linearised closed form (material point, (4.94))",
+                            f"{nn} quadrature nodes", abs(w - w_ref) / scale, t1, tb))
+    for model in ("patch_coordinate", "time_domain_carter", "nielsen1998"):
+        w = wear.wear_coefficients(ratio, r, model)
+        t1 = per_call(lambda: wear.wear_coefficients(ratio, r, model))
+        fam.rows.append(Row(fam.name, f"closed form, wear model '{model}'", "-",
+                            abs(w - w_ref) / scale, t1,
+                            note="a different model: the error is the model's"))
+    for npos in ([8, 16] if quick else [4, 8, 16, 32, 64]):
+        w = wear.wear_first_harmonic_exact(ratio, r, 0.01, n_positions=npos, n_nodes=npos)
+        t1 = per_call(lambda: wear.wear_first_harmonic_exact(ratio, r, 0.01, n_positions=npos,
+                                                              n_nodes=npos), repeat=3)
+        fam.rows.append(Row(fam.name, "exact nonlinear solve (eps = 0.01)",
+                            f"{npos} positions x {npos} nodes",
+                            abs(w["material_point"] - w_ref) / scale, t1))
+    for ne in ([50] if quick else [50, 100, 200, 400, 800]):
+        t0 = time.perf_counter()
+        w = wear.wear_first_harmonic_reference(ratio, r, 0.01, n_elements=ne)
+        t1 = time.perf_counter() - t0
+        fam.rows.append(Row(fam.name, "direct wear integral, half-space solver (4.74)",
+                            f"{ne} elements x 16 positions",
+                            abs(w["material_point"] - w_ref) / scale, t1,
+                            note="the issue's reference; first order in the element size"))
+    return fam
+
+
+def series_study(quick):
+    """(4.28) estimate against the true truncation error of the pressure series."""
+    from railcontact import hertz_2d
+    from railcontact.corrugation import contact_distributions
+
+    big_r, n_load, mu = 0.5, 1.0e6, 0.3
+    a0 = float(hertz_2d(n_load, big_r, E, NU).a0)
+    out = []
+    for ka in ([4.0] if quick else [1.0, 4.0, 10.0]):
+        lam = 2 * np.pi * a0 / ka
+        k = 2 * np.pi / lam
+        amp = 0.3 / (k * k * big_r)
+        xs = np.linspace(-a0, a0, 201)
+        xi = 0.5 * mu * a0 / big_r
+        args = (xs, lam / 8, n_load, big_r, E, NU, mu, xi, [amp], [0.0], [lam])
+        ref = contact_distributions(*args, degree=int(3 * ka) + 60)
+        pmax = np.max(ref.pressure)
+        for deg in sorted({1, 2, 4, 8, int(ka) + 2, int(2 * ka) + 4, int(3 * ka) + 10}):
+            d = contact_distributions(*args, degree=deg)
+            true = np.max(np.abs(d.pressure - ref.pressure)) / pmax
+            t1 = per_call(lambda: contact_distributions(*args, degree=deg), repeat=3,
+                          budget=1.0)
+            out.append(dict(ka=float(k * ref.pressure.size * 0 + ka), degree=deg,
+                            ratio=d.truncation_ratio, estimate=d.truncation_error,
+                            true=true, t=t1))
+    return out
+
+
+def amplitude_study(quick):
+    """Linearised closed forms against the exact nonlinear solution vs amplitude and a0/L."""
+    from railcontact import hertz_2d, wear
+    from railcontact.corrugation import corrugated_contact
+
+    ratios = [0.1] if quick else [0.02, 0.05, 0.1, 0.2, 0.5]
+    epss = [0.03, 0.3] if quick else [0.01, 0.03, 0.1, 0.3]
+    big_r, n_load, mu = 0.5, 1.0e6, 0.3
+    a0 = float(hertz_2d(n_load, big_r, E, NU).a0)
+    out = []
+    for ratio in ratios:
+        w_lin = wear.wear_coefficients(ratio, 0.5)
+        for eps in epss:
+            if eps * 2 * np.pi * ratio >= 1:
+                continue
+            w_ex = wear.wear_first_harmonic_exact(ratio, 0.5, eps, n_positions=64)
+            lam = a0 / ratio
+            k = 2 * np.pi / lam
+            amp = eps * a0 / (k * big_r)
+            xs = np.linspace(0, lam, 64, endpoint=False)
+            xi = 0.5 * mu * a0 / big_r
+            te = corrugated_contact(xs, n_load, big_r, E, NU, mu, xi, [amp], [0.0], [lam],
+                                    method="exact").tangential_force
+            tl = corrugated_contact(xs, n_load, big_r, E, NU, mu, xi, [amp], [0.0], [lam],
+                                    method="linear").tangential_force
+            out.append(dict(ratio=ratio, eps=eps, kkrz=eps * 2 * np.pi * ratio,
+                            wear=abs(w_lin - w_ex["material_point"])
+                            / abs(w_ex["material_point"]),
+                            force=float(np.max(np.abs(te - tl)) / (mu * n_load)),
+                            force_var=float(np.max(np.abs(te - np.mean(te))) / (mu * n_load))))
+    return out
+
+
+# =============================================================================================
+# Ch. 5-7: friction, roughness, non-steady
+# =============================================================================================
+def family_friction(quick):
+    from railcontact import hertz_2d
+    from railcontact.friction import SmoothFriction, velocity_friction_creep_force_normalised
+    from railcontact.reference.halfspace2d import solve_rolling_2d
+
+    m, kap = 1.4, 10.0
+    chis = np.array([0.1, 0.5, 1.2])
+    fam = Family("Friction (Ch. 5)", f"T/(mu_0 N), smooth law (5.16) mu_k/mu_0 = {m}, "
+                 f"kappa xi_c0 = {kap}, xi/xi_c0 = 0.1, 0.5, 1.2",
+                 "the iteration of Sec. 5.3 at degree 512, tol 1e-10; error max |dT|/(mu_0 N)")
+    ref_deg = 128 if quick else 512
+    ref = velocity_friction_creep_force_normalised(chis, m, kap, degree=ref_deg, tol=1e-10)
+    fam.reference = fam.reference.replace("512", str(ref_deg))
+    knobs = [(16, 1e-4), (32, 1e-10)] if quick else [
+        (16, 1e-3), (16, 1e-10), (32, 1e-10), (64, 1e-3), (64, 1e-6), (64, 1e-10),
+        (128, 1e-10), (256, 1e-10)]
+    for deg, tol in knobs:
+        t0 = time.perf_counter()
+        f = velocity_friction_creep_force_normalised(chis, m, kap, degree=deg, tol=tol)
+        tb = (time.perf_counter() - t0) / chis.size
+        t1 = median_time(lambda: velocity_friction_creep_force_normalised(
+            0.5, m, kap, degree=deg, tol=tol), repeat=3, warmup=0, budget=2.0)
+        fam.rows.append(Row(fam.name, "iteration (Sec. 5.3)", f"degree {deg}, tol {tol:g}",
+                            float(np.max(np.abs(f - ref))), t1, tb))
+    mu0, big_r, n_load = 0.3, 0.5, 1.0e6
+    hz = hertz_2d(n_load, big_r, E, NU)
+    a0, p0 = float(hz.a0), float(hz.p0)
+    xic = mu0 * a0 / big_r
+    law = SmoothFriction(mu0, m * mu0, kap / xic)
+    for n in ([100] if quick else [100, 200, 400, 800]):
+        dx = 2 * a0 / n
+        x = np.arange(-a0 + dx / 2, a0, dx)
+        p = p0 * np.sqrt(np.clip(1 - (x / a0) ** 2, 0, None))
+
+        def one(chi, x=x, p=p):
+            r = solve_rolling_2d(x, p, E, NU, creepage=chi * xic, friction=law)
+            return r.tangential_force / (mu0 * r.normal_load)
+
+        t0 = time.perf_counter()
+        f = np.array([one(c) for c in chis])
+        tb = (time.perf_counter() - t0) / chis.size
+        t1 = min(tb * 3, median_time(lambda: one(0.5), repeat=2, warmup=0, budget=2.0))
+        fam.rows.append(Row(fam.name, "half-space solver, same law", f"{n} elements",
+                            float(np.max(np.abs(f - ref))), t1, tb))
+    return fam
+
+
+def family_other(quick):
+    """Non-steady and roughness closed forms: timed; error only where a limit is exact."""
+    fam = Family("Non-steady & roughness", "closed forms of Ch. 6-7",
+                 "exact limits where available (see rows); otherwise timing only")
+    try:
+        from railcontact.nonsteady import nonsteady_transfer_function_normalised as h
+        # Carter's quasi-static limit: H -> 1 as a0/L -> 0 (exact)
+        for model in ("carter", "johnson"):
+            err = abs(complex(h(1e-6, 0.5, model=model)) - 1.0)
+            t1 = per_call(lambda: h(0.1, 0.5, model=model))
+            grid = np.linspace(0.001, 1.0, 1000)
+            tb = per_call(lambda: h(grid, 0.5, model=model)) / grid.size
+            fam.rows.append(Row(fam.name, f"non-steady transfer function ({model})",
+                                "-", err, t1, tb,
+                                note="error: abs(H - 1) at a0/L = 1e-6 (Carter's limit)"))
+    except Exception as exc:
+        fam.notes.append(f"non-steady: {exc!r}")
+    try:
+        from railcontact import roughness as rg
+        from railcontact import polynomial as poly
+        n_load, mu, curv = 1.0e6, 0.3, 2.0       # Hertz limit: skewness = flatness = 0
+        c = rg.asperity_normal_contact(n_load, curv, 0.0, 0.0, E, NU)
+        ref = poly.solve_normal_polynomial([0, 0, curv / 2], n_load, E, NU)
+        err = abs(c.half_width / ref.half_width - 1)
+        t1 = per_call(lambda: rg.asperity_normal_contact(n_load, curv, 0.0, 0.0, E, NU))
+        fam.rows.append(Row(fam.name, "one asperity, normal (Table 6.1)", "-", err, t1,
+                            note="error: relative half-width vs Hertz at zero skew/flatness"))
+    except Exception as exc:
+        fam.notes.append(f"roughness: {exc!r}")
+    return fam
+
+
+# =============================================================================================
+# FMU
+# =============================================================================================
+def family_fmu(quick, workdir):
+    import bench_fmu
+
+    fam = Family("FMU (per step)", "microseconds per fmi2DoStep, inputs changing every step",
+                 "creep_only_table against creep_only_analytic on the same inputs; "
+                 "error max |F_table - F_analytic|/(mu N)")
+    import build_fmu
+    fmu = ROOT / f"{build_fmu.MODEL_NAME}.fmu"       # the checkout's FMU, if current
+    if not (fmu.is_file() and build_fmu.fmu_digest(fmu) == build_fmu.source_hash()):
+        fmu = build_fmu.build(Path(workdir) / "fmu")
+    scenes = sorted((ROOT / "examples" / "scenes").glob("*.toml"))
+    if quick:
+        scenes = [s for s in scenes if s.stem in ("creep_only_table", "creep_only_analytic")]
+    n_fast = 2000 if quick else 20000
+    n_slow = 200 if quick else 2000
+    forces = {}
+    for i, scene in enumerate(scenes):
+        inst = bench_fmu.Instance(fmu, Path(workdir) / f"x{i}", scene_file=scene)
+        n = n_fast if "table" in scene.stem else n_slow
+        bench_fmu.time_steps(inst, min(n, 200))
+        step, io = bench_fmu.time_steps(inst, n)
+        if scene.stem in ("creep_only_table", "creep_only_analytic"):
+            from fmpy import read_model_description
+            md = read_model_description(str(fmu))
+            vr = {v.name: v.valueReference for v in md.modelVariables}
+            rows = bench_fmu._signals(2000)
+            out = []
+            t = 0.0
+            for row in rows:
+                inst.fmu.setReal(inst.inputs, row)
+                inst.fmu.doStep(t, 1e-3)
+                t += 1e-3
+                out.append(inst.fmu.getReal([vr["Fx"], vr["Fy"]]))
+            forces[scene.stem] = (np.array(out), np.array(rows)[:, 0])
+        inst.close()
+        fam.rows.append(Row(fam.name, f"scene {scene.stem}", f"{n} steps", math.nan,
+                            step * 1e-6, io * 1e-6, note="t_batch column: setReal+doStep+getReal"))
+    if len(forces) == 2:
+        (fa, n_a), (ft, _) = forces["creep_only_analytic"], forces["creep_only_table"]
+        err = float(np.max(np.hypot(*(ft - fa).T) / (0.3 * np.maximum(n_a, 1.0))))
+        for row in fam.rows:
+            if row.method == "scene creep_only_table":
+                row.error = err
+            if row.method == "scene creep_only_analytic":
+                row.error = 0.0
+                row.note += "; reference"
+    return fam
+
+
+# =============================================================================================
+# output
+# =============================================================================================
+PEERS = dict(
+    contact_11=(1.3e-3, 1.7e-3, 11), contact_25=(10e-3, 10e-3, 25), contact_48=(84e-3, 116e-3, 48),
+)
+
+
+def pareto(points):
+    """Indices of the points not dominated in (time, error) (both to be minimised)."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    best, out = math.inf, []
+    for i in order:
+        if points[i][1] < best:
+            out.append(i)
+            best = points[i][1]
+    return out
+
+
+def _fmt(v, unit=""):
+    if v is None or not np.isfinite(v):
+        return "n/a"
+    return f"{v:.2e}{unit}"
+
+
+def _fmt_t(s):
+    if s is None or not np.isfinite(s):
+        return "n/a"
+    us = s * 1e6
+    if us < 1000:
+        return f"{us:.3g} us"
+    if us < 1e6:
+        return f"{us / 1e3:.3g} ms"
+    return f"{s:.3g} s"
+
+
+def peer_marks(contact_errors):
+    """CONTACT's figures of the issue, with errors from CONTACT's own grid convergence."""
+    e30 = contact_errors.get((30, 30), math.nan)
+    marks = []
+    for key, (t_lo, t_hi, mx) in PEERS.items():
+        marks.append(dict(label=f"CONTACT {mx}x{mx if mx != 48 else 44}", t_lo=t_lo, t_hi=t_hi,
+                          err=e30 * 30 / mx))
+    return marks
+
+
+def plot(families, contact_errors, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(16, 7))
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    floor = 1e-16
+    ax = axes[0]
+    for fi, fam in enumerate(families):
+        pts = [(r.t_single, max(r.error, floor), r) for r in fam.rows
+               if np.isfinite(r.t_single) and np.isfinite(r.error)
+               and not (r.error == 0.0 and "reference" in r.note)]
+        if not pts:
+            continue
+        c = colors[fi % len(colors)]
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=c, s=18, alpha=0.6)
+        front = [pts[i] for i in pareto([(p[0], p[1]) for p in pts])]
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color=c, lw=1.8,
+                label=fam.name)
+        ax.scatter([p[0] for p in front], [p[1] for p in front], color=c, s=40,
+                   edgecolor="k", zorder=3)
+        for p in front:
+            ax.annotate(f"{p[2].method[:28]} {p[2].knob[:18]}", (p[0], p[1]), fontsize=6,
+                        xytext=(3, 3), textcoords="offset points", color=c)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("time per evaluation, single call [s]")
+    ax.set_ylabel("max error against the family's project reference (see table) [-]")
+    ax.set_title("All families: Pareto frontiers (errors at 1e-16 are exact to round-off)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower left")
+
+    ax = axes[1]
+    fam3 = next((f for f in families if f.name == "3-D creep forces"), None)
+    if fam3 is not None:
+        groups = {}
+        for r in fam3.rows:
+            if np.isfinite(r.error_peer):
+                groups.setdefault(r.method.split(":")[0].split(" (")[0], []).append(r)
+        for gi, (name, rows) in enumerate(groups.items()):
+            ax.scatter([r.t_single for r in rows], [max(r.error_peer, floor) for r in rows],
+                       color=colors[gi % len(colors)], s=30, label=name)
+            for r in rows:
+                lab = r.method.replace("closed form: ", "") if "closed" in r.method else r.knob
+                ax.annotate(lab[:22], (r.t_single, max(r.error_peer, floor)), fontsize=6,
+                            xytext=(3, 2), textcoords="offset points")
+        pts = [(r.t_single, r.error_peer) for r in fam3.rows if np.isfinite(r.error_peer)]
+        front = [pts[i] for i in pareto(pts)]
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k", lw=1.5,
+                label="Pareto frontier (ours)")
+        she = next((r for r in fam3.rows if r.method == "closed form: she"), None)
+        if she is not None:
+            ax.axhline(she.error_peer, color="tab:red", ls=":", lw=1)
+            ax.text(2e-7, she.error_peer * 1.1, "SHE's error vs CONTACT", fontsize=7,
+                    color="tab:red")
+    for m in peer_marks(contact_errors):
+        if not np.isfinite(m["err"]):
+            continue
+        ax.plot([m["t_lo"], m["t_hi"]], [m["err"]] * 2, color="tab:purple", lw=4, alpha=0.7)
+        ax.scatter([math.sqrt(m["t_lo"] * m["t_hi"])], [m["err"]], marker="s",
+                   color="tab:purple", zorder=4)
+        ax.annotate(m["label"], (m["t_hi"], m["err"]), fontsize=7, color="tab:purple",
+                    xytext=(4, 0), textcoords="offset points")
+    e30 = contact_errors.get((30, 30), math.nan)
+    if np.isfinite(e30):
+        ax.plot([1.9e-3, 134e-3], [e30 * 30 / 11, e30 * 30 / 35], color="tab:purple", ls="--",
+                lw=1)
+        ax.annotate("CONTACT 2016 test, 11^2..35^2", (134e-3, e30 * 30 / 35), fontsize=7,
+                    color="tab:purple", xytext=(4, -8), textcoords="offset points")
+    ax.axvline(1e-3, color="tab:brown", ls="--", lw=1)
+    ax.text(1e-3, 2e-1, " FASTSIM < 1 ms\n (error not stated)", fontsize=7, color="tab:brown")
+    t_usetab = 10e-3 / 15000
+    ax.axvline(t_usetab, color="tab:olive", ls="--", lw=1)
+    ax.text(t_usetab, 5e-2, " USETAB: CONTACT 25x25 / 15000", fontsize=7, color="tab:olive")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("time per evaluation, single call [s]")
+    ax.set_ylabel("max |T - T_CONTACT| / (mu N) [-]")
+    ax.set_title("3-D creep forces against CONTACT, with the peers' figures")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _find(fam, method_start, knob_start=""):
+    for r in fam.rows if fam else []:
+        if r.method.startswith(method_start) and r.knob.startswith(knob_start):
+            return r
+    return None
+
+
+def answers(fams, series, amp, contact_errors):
+    """The four questions of issue 7, answered with this run's numbers."""
+    f = {fam.name: fam for fam in fams}
+    f3, f2, fw = f.get("3-D creep forces"), f.get("2-D Hertz/Carter"), f.get("Corrugation & wear")
+    fc, ff = f.get("2-D corrugated rail"), f.get("FMU (per step)")
+    lines = ["## Answers (this run)", ""]
+    # 1. error budget
+    lines.append("**1. Which method for a given error budget** (3-D creep forces, error against "
+                 "the project's exact theory; cheapest method meeting the budget, single call):")
+    lines.append("")
+    lines.append("| error budget [mu N] | cheapest method | its error | time per call |")
+    lines.append("|---|---|---|---|")
+    if f3:
+        for budget in (1e-1, 3e-2, 1e-2, 3e-3, 1e-3):
+            ok = [r for r in f3.rows if np.isfinite(r.error) and r.error <= budget]
+            if ok:
+                r = min(ok, key=lambda r: r.t_single)
+                lines.append(f"| {budget:g} | {r.method} {r.knob if r.knob != '-' else ''} | "
+                             f"{r.error:.2e} | {_fmt_t(r.t_single)} |")
+            else:
+                lines.append(f"| {budget:g} | none measured | | |")
+    lines.append("")
+    lines.append("In 2-D (Carter case) the closed form is exact and fastest; on a non-Hertzian "
+                 "(corrugated) gap the polynomial approach reaches round-off at low degree, "
+                 "while the discretised solver converges only to first order in the element "
+                 "size (tables below).")
+    lines.append("")
+    # 2. tables vs direct
+    lines.append("**2. How fast the tables are** (single call, same run):")
+    lines.append("")
+    tab = _find(f3, "table: modified strip", "default")
+    direct = _find(f3, "closed form: modified_strip")
+    r3 = [r for r in (f3.rows if f3 else []) if r.method == "exact theory (rolling3d)"]
+    if tab and direct:
+        lines.append(f"* modified-strip table (default resolution) {_fmt_t(tab.t_single)} vs the "
+                     f"direct closed form {_fmt_t(direct.t_single)}: "
+                     f"{direct.t_single / tab.t_single:.1f}x; in a batch "
+                     f"{_fmt_t(tab.t_batch)} vs {_fmt_t(direct.t_batch)} per point "
+                     f"({direct.t_batch / tab.t_batch:.2f}x).")
+        for r in r3:
+            if r.knob in ("24x24", "48x48", "12x12"):
+                lines.append(f"* vs the 3-D exact theory at {r.knob} ({_fmt_t(r.t_single)}): "
+                             f"{r.t_single / tab.t_single:,.0f}x faster, at an error of "
+                             f"{tab.error:.2e} (table, vs exact theory) against {r.error:.2e} "
+                             f"(that grid).")
+    ex = _find(f3, "table: exact theory")
+    if ex and r3:
+        lines.append(f"* exact-theory table: {_fmt_t(ex.t_single)} per call, error "
+                     f"{ex.error:.2e}.")
+    hs = [r for r in (f2.rows if f2 else []) if r.method.startswith("half-space")]
+    if tab and hs:
+        lines.append(f"* vs the 2-D reference solver: {hs[0].knob} {_fmt_t(hs[0].t_single)} "
+                     f"... {hs[-1].knob} {_fmt_t(hs[-1].t_single)}, i.e. "
+                     f"{hs[0].t_single / tab.t_single:,.0f}x to "
+                     f"{hs[-1].t_single / tab.t_single:,.0f}x the table's time.")
+    if ff:
+        st = _find(ff, "scene creep_only_table")
+        an = _find(ff, "scene creep_only_analytic")
+        if st and an:
+            lines.append(f"* in the FMU: {st.t_single * 1e6:.1f} us per doStep from the table vs "
+                         f"{an.t_single * 1e6:.1f} us analytic ({an.t_single / st.t_single:.1f}x);"
+                         f" table error vs analytic {_fmt(st.error)} of mu N.")
+    lines.append("")
+    # 3. linearised closed forms
+    lines.append("**3. What the linearised closed forms give up** (Ch. 4, against the exact "
+                 "nonlinear solution; relative wear-coefficient error and tangential-force "
+                 "error in mu N over one wave, r_a0 = 0.5):")
+    lines.append("")
+    lines.append("| a0/L | eps = k R Z / a0 | k^2 R Z | wear error (rel.) | force error [mu N] | "
+                 "force variation [mu N] |")
+    lines.append("|---|---|---|---|---|---|")
+    for a in amp:
+        lines.append(f"| {a['ratio']:g} | {a['eps']:g} | {a['kkrz']:.3f} | {a['wear']:.2e} | "
+                     f"{a['force']:.2e} | {a['force_var']:.2e} |")
+    lines.append("")
+    lines.append("The error grows like the square of the amplitude (the first harmonic has no "
+                 "O(eps) correction) and with k^2 R |Z| = eps * 2 pi a0/L, the distance to "
+                 "contact loss (4.2). Error of the linear corrugated-rail force at one position "
+                 + (f"(2-D corrugated family): {_find(fc, 'linearised').error:.2e} mu N at "
+                    "k^2 R |Z| = 0.3." if fc and _find(fc, "linearised") else "."))
+    lines.append("")
+    # 4. where tables win
+    lines.append("**4. Where the tables are the best choice and where not:**")
+    lines.append("")
+    if tab and direct:
+        own = f3.extra.get("table_own_default", math.nan)
+        lines.append(f"* The modified-strip table is a C2 spline of a closed form: its own error "
+                     f"(vs the closed form) is {own:.1e} of mu N at default resolution, "
+                     f"negligible against the theory's error vs the exact theory "
+                     f"({direct.error:.2e}). It pays off for single (scalar) calls, "
+                     f"as in an FMU step ({direct.t_single / tab.t_single:.1f}x); in "
+                     "large numpy batches the closed form is as fast or faster.")
+    if ex:
+        lines.append(f"* The exact-theory table brings the exact theory's accuracy ("
+                     f"{ex.error:.2e}) at table speed: the best choice whenever the "
+                     "budget is below the strip theories' error.")
+    else:
+        lines.append("* The exact-theory table (not built here) is where tables matter most: "
+                     "the exact theory costs milliseconds to seconds per call.")
+    lines.append("* Not for Ch. 4 wear and corrugation: no tables exist, and the closed forms "
+                 "cost microseconds already; not for non-Hertzian 2-D contact, where the "
+                 "polynomial approach is both exact and fast.")
+    lines.append("")
+    return lines
+
+
+def write_markdown(fams, series, amp, contact_errors, path, meta):
+    lines = ["# Accuracy versus time", "",
+             "Generated by `python benchmarks/accuracy_vs_time.py` "
+             f"({meta['mode']} run, {meta['date']}, {meta['seconds']:.0f} s, load average "
+             f"{meta['load']}). Regenerate with the same command; `--quick` for a fast check, "
+             "`--out DIR` to write elsewhere.", "",
+             "**Timings**: median of repeats, wall clock, on a shared 2-core machine under "
+             "load from other processes: absolute times are noisy (easily 2-5x); the *ratios* "
+             "between rows, measured in the same run, are what counts. `single` = one scalar "
+             "call (as an FMU step makes it), `batch` = per point of a vectorised call "
+             "(or a loop over the cases for the iterative solvers).", "",
+             "![error vs time](figures/accuracy_vs_time.png)", ""]
+    lines += answers(fams, series, amp, contact_errors)
+    for fam in fams:
+        lines += [f"## {fam.name}", "", f"* quantity: {fam.quantity}",
+                  f"* reference: {fam.reference}"]
+        if fam.peer_reference:
+            lines.append(f"* peer reference: {fam.peer_reference}")
+        lines += [""]
+        peer = bool(fam.peer_reference)
+        head = "| method | knob | error | " + ("error vs CONTACT | " if peer else "") + \
+               "single call | batch / point | note |"
+        lines += [head, "|" + "---|" * (6 + peer)]
+        front = set(pareto([(r.t_single if np.isfinite(r.t_single) else math.inf,
+                             r.error if np.isfinite(r.error) else math.inf)
+                            for r in fam.rows]))
+        for i, r in enumerate(fam.rows):
+            star = " **(P)**" if i in front and np.isfinite(r.error) else ""
+            lines.append(f"| {r.method}{star} | {r.knob} | {_fmt(r.error)} | "
+                         + (f"{_fmt(r.error_peer)} | " if peer else "")
+                         + f"{_fmt_t(r.t_single)} | {_fmt_t(r.t_batch)} | {r.note} |")
+        for n in fam.notes:
+            lines.append(f"\n* note: {n}")
+        lines.append("")
+    lines.append("(P) = on the family's Pareto frontier (no other row is both faster and more "
+                 "accurate).")
+    lines.append("")
+    lines += ["## Series degree: the estimate (4.28) against the true error", "",
+              "Pressure of the corrugated contact (`corrugation.contact_distributions`), "
+              "truncated at `degree`, against degree 3 ka + 60; true error max |dp| / p_max. "
+              "`ratio` is the thesis' (4.28) ka/(degree+1), `estimate` the neglected-Bessel "
+              "bound returned as `truncation_error`.", "",
+              "| k a | degree | (4.28) ratio | estimate | true error | time per call |",
+              "|---|---|---|---|---|---|"]
+    for s in series:
+        lines.append(f"| {s['ka']:g} | {s['degree']} | {s['ratio']:.3g} | {s['estimate']:.2e} | "
+                     f"{s['true']:.2e} | {_fmt_t(s['t'])} |")
+    lines.append("")
+    lines += ["## Peers' figures (reference marks in the plot)", "",
+              "| peer | time per evaluation | error [mu N] |", "|---|---|---|"]
+    for m in peer_marks(contact_errors):
+        lines.append(f"| {m['label']} (Python interface, Hertzian case) | "
+                     f"{_fmt_t(m['t_lo'])} - {_fmt_t(m['t_hi'])} | {_fmt(m['err'])} "
+                     "(first-order estimate from CONTACT's own 30x30 vs 240x60 difference) |")
+    lines.append("| CONTACT 2016 performance test, 11^2 .. 35^2 | 1.9 ms - 134 ms | as above |")
+    lines.append("| FASTSIM | < 1 ms | not stated |")
+    lines.append("| USETAB | '15,000 x faster than CONTACT' (~0.7 us vs 10 ms) | not stated |")
+    f3 = next((f for f in fams if f.name == "3-D creep forces"), None)
+    she = _find(f3, "closed form: she")
+    if she:
+        lines.append(f"| SHE (ours, same formula) | {_fmt_t(she.t_single)} | "
+                     f"{_fmt(she.error_peer)} vs CONTACT's curves |")
+    if contact_errors:
+        lines += ["", "CONTACT's own discretisation error, max |F(grid) - F(240x60)| / (mu N) "
+                  "over the 7 cases at a/b = 1: " + ", ".join(
+                      f"{k[0]}x{k[1]}: {v:.1e}" for k, v in sorted(contact_errors.items())
+                      if k != (240, 60)) + "."]
+    lines.append("")
+    lines += ["## Accuracy knobs and error estimates (for the lead)", "",
+              "* exposed in the Python API: `solve_rolling_3d(mx, my, tolerance, richardson)`, "
+              "`solve_normal_2d(..., n)`, `contact_distributions(degree, tolerance)` with the "
+              "(4.28) estimate as output, `series_degree`, `wear_coefficients(n_nodes, degree)`, "
+              "`wear_first_harmonic_exact(n_positions, n_nodes, degree)`, friction "
+              "`degree`, `tol`, tables via `python -m tablegen build --resolution`.",
+              "* not (yet) exposed: `corrugated_contact` has no `degree` knob (exact Bessel "
+              "closed forms: none needed for a, Delta, a*, T); the polynomial approach's "
+              "truncation is the user's (degree of the gap coefficients).", ""]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="a few points per family (< 1 min)")
+    parser.add_argument("--out", default=str(ROOT / "docs"),
+                        help="output directory (default: the checkout's docs/)")
+    parser.add_argument("--skip", nargs="*", default=[],
+                        help="families to skip: 2d corrugated 3d wear friction other fmu")
+    args = parser.parse_args(argv)
+    out = Path(args.out)
+    t_start = time.perf_counter()
+    load = os.getloadavg()
+    _log(f"load average {load[0]:.1f} {load[1]:.1f} {load[2]:.1f}; "
+         f"{'quick' if args.quick else 'default'} run")
+    work = Path(tempfile.mkdtemp(prefix="accuracy_vs_time_"))
+    fams, series, amp = [], [], []
+    steps = [("2d", family_2d_hertz), ("corrugated", family_2d_corrugated),
+             ("3d", lambda q: family_3d(q, work)), ("wear", family_wear),
+             ("friction", family_friction), ("other", family_other),
+             ("fmu", lambda q: family_fmu(q, work))]
+    try:
+        for key, fn in steps:
+            if key in args.skip:
+                continue
+            t0 = time.perf_counter()
+            _log(f"{key} ...")
+            fam = fn(args.quick)
+            fams.append(fam)
+            _log(f"{key}: {len(fam.rows)} rows in {time.perf_counter() - t0:.1f} s")
+            for r in fam.rows:
+                _log(f"   {r.method:48s} {r.knob:26s} err {_fmt(r.error):>9s} "
+                     f"peer {_fmt(r.error_peer):>9s} single {_fmt_t(r.t_single):>10s} "
+                     f"batch {_fmt_t(r.t_batch):>10s}")
+            for n in fam.notes:
+                _log(f"   note: {n}")
+            if key == "wear":
+                t0 = time.perf_counter()
+                series = series_study(args.quick)
+                amp = amplitude_study(args.quick)
+                _log(f"series and amplitude studies in {time.perf_counter() - t0:.1f} s")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    contact_errors = contact_grid_errors()
+    meta = dict(mode="quick" if args.quick else "default",
+                date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+                seconds=time.perf_counter() - t_start,
+                load=f"{load[0]:.1f}")
+    write_markdown(fams, series, amp, contact_errors, out / "accuracy_vs_time.md", meta)
+    plot(fams, contact_errors, out / "figures" / "accuracy_vs_time.png")
+    _log(f"wrote {out / 'accuracy_vs_time.md'} and {out / 'figures' / 'accuracy_vs_time.png'} "
+         f"in {time.perf_counter() - t_start:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
