@@ -16,6 +16,9 @@ Hypothesis profiles (select with the environment variable ``HYPOTHESIS_PROFILE``
     derandomized, for a fuzzing run::
 
         HYPOTHESIS_PROFILE=long python -m pytest tests/test_properties.py -p no:cacheprovider
+
+    (hours on a loaded 2-core machine: 10-50 ms per example). ``HYPOTHESIS_MAX_EXAMPLES=N``
+    overrides the profile's number of examples.
 """
 
 import os
@@ -43,6 +46,10 @@ settings.register_profile(
     "long", max_examples=100_000, derandomize=False, deadline=None, database=None,
     print_blob=True, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+if os.environ.get("HYPOTHESIS_MAX_EXAMPLES"):   # e.g. a shorter "long" run: 10^4 examples
+    settings.register_profile("_override", settings.default,
+                              max_examples=int(float(os.environ["HYPOTHESIS_MAX_EXAMPLES"])))
+    settings.load_profile("_override")
 
 
 @pytest.fixture(scope="session")

@@ -43,6 +43,14 @@ from railcontact.wear import wear_coefficients
 
 E, NU = 210e9, 0.28
 _BASE = settings.default.max_examples
+EPS = float(np.finfo(float).eps)
+
+
+def within_coulomb(tx, ty, mu_n):
+    """|T| <= mu N by the correctly rounded hypot, allowing 4 ulp: exceeding fl(mu N) by less
+    than an ulp is a known rounding case, pinned exactly by the strict xfail
+    tests/test_hard_cases.py::test_coulomb_bound_holds_in_exact_arithmetic."""
+    return math.hypot(tx, ty) <= mu_n * (1.0 + 4.0 * EPS)
 
 
 def budget(fraction, minimum=5):
@@ -86,7 +94,7 @@ def test_creep3d_finite_bounded_odd_monotone_vectorised(xi_x, xi_y, phi, ratio, 
     mag = math.hypot(t.tx, t.ty)
     assert math.isfinite(t.tx) and math.isfinite(t.ty)
     if method != "linear":
-        assert mag <= mu * load
+        assert within_coulomb(t.tx, t.ty, mu * load)
     neg = creep_force_3d(-xi_x, -xi_y, -phi, *rest, method=method)
     assert neg.tx == -t.tx and neg.ty == -t.ty
     # monotone along the ray (xi_x, xi_y, phi) -> s (xi_x, xi_y, phi), s > 1
@@ -149,7 +157,7 @@ def test_hertz_finite_monotone_in_load_and_vectorised(load, cx, cy, nu, scale):
     assert all(float(m) >= float(v) for m, v in zip(more, h))
     vec = hertz_3d(np.array([load, scale * load]), cx, cy, E, nu)
     assert all(float(v[0]) == float(s) for v, s in zip(vec, h))
-    if load > 0:   # Hertz round trip: p0 = 3 N / (2 pi a0 b0)
+    if float(h[0] * h[1]) > 0:   # Hertz: p0 = 3 N / (2 pi a0 b0) (a0 b0 underflows near 1e-300 N)
         assert float(h[2]) == pytest.approx(1.5 * load / (math.pi * float(h[0] * h[1])),
                                             rel=1e-12)
     h2 = hertz_2d(load, 1.0 / cx, E, nu)
@@ -230,7 +238,9 @@ def test_corrugated_contact_finite_bounded(ratio, curv, phase, frac, position):
     a = float(res.half_width)
     assert math.isfinite(a) and a > 0.0 and math.isfinite(float(res.patch_shift))
     assert 0.0 <= float(res.stick_half_width) <= a * (1 + 1e-12)
-    assert 0.0 <= float(res.tangential_force) <= mu * load * (1 + 1e-12)
+    # >= -1e-15 mu N: at zero creepage T is a difference of O(mu N) terms (a strict xfail in
+    # tests/test_hard_cases.py pins the exact zero)
+    assert -1e-15 * mu * load <= float(res.tangential_force) <= mu * load * (1 + 1e-12)
 
 
 @given(ratio=st.floats(np.log(1e-4), np.log(5.0)).map(np.exp), r=st.floats(0.0, 1.0),
@@ -322,7 +332,7 @@ def test_table_finite_bounded_odd_monotone_vectorised(creep_table, xi_x, xi_y, p
     rest = (load, a0, b0, E, nu, mu)
     t = creep_table.creep_force_3d(xi_x, xi_y, phi, *rest)
     mag = math.hypot(t.tx, t.ty)
-    assert math.isfinite(t.tx) and math.isfinite(t.ty) and mag <= mu * load
+    assert math.isfinite(t.tx) and math.isfinite(t.ty) and within_coulomb(t.tx, t.ty, mu * load)
     neg = creep_table.creep_force_3d(-xi_x, -xi_y, -phi, *rest)
     assert neg.tx == -t.tx and neg.ty == -t.ty
     far = creep_table.creep_force_3d(scale * xi_x, scale * xi_y, scale * phi, *rest)
@@ -473,7 +483,7 @@ def test_fmu_outputs_finite_bounded_odd_and_equal_to_solver(fmu_setup, row, stem
     assert np.all(np.isfinite(out))
     fx, fy = out[0], out[1]
     mu_n = scene.friction_coefficient * row[0]
-    assert math.hypot(fx, fy) <= mu_n
+    assert within_coulomb(fx, fy, mu_n)
     tx, ty, a0, b0 = _direct(scene, row, scene.effects["creep"]["source"])
     assert fx == pytest.approx(tx, rel=1e-12, abs=1e-12 * mu_n + 1e-300)
     assert fy == pytest.approx(ty, rel=1e-12, abs=1e-12 * mu_n + 1e-300)
