@@ -402,3 +402,29 @@ def test_normal_contact_from_coefficients_hertz_and_admissible():
     t = P.solve_tangential_polynomial(nc, 0.3, creepage=-0.4 * 0.3 * a0 / R)
     assert t.stick_ratio == pytest.approx(0.6, rel=1e-12) and t.is_admissible
     assert t.stick_centre == pytest.approx(1e-3 + 0.4 * a0, rel=1e-12)
+
+
+@pytest.mark.parametrize("frac", [1e-3, 0.99e-4, 1.01e-4, 1e-10, 1e-14, 1e-20, 1e-300])
+def test_tiny_creepage_relative_accuracy(frac):
+    """Hard case: |xi| << xi_c. N + force2 cancels as a* -> a; below 1e-4 xi_c the state comes
+    from the exact Taylor series about full stick (FFT of the polynomials in a*/a). Carter:
+    T = mu N (2 f - f^2) for xi = -f xi_c, to 1e-12 relative down to 1e-300."""
+    nc = P.solve_normal_polynomial([0.0, 0.0, 1.0], 2e5, E, NU)
+    xi_c = -float(P.tangential_state_polynomial(nc, 0.3, 0.0)[0])
+    t = P.solve_tangential_polynomial(nc, 0.3, creepage=-frac * xi_c)
+    assert t.tangential_force == pytest.approx(0.3 * 2e5 * (2 * frac - frac * frac), rel=1e-12)
+    back = P.solve_tangential_polynomial(nc, 0.3, tangential_force=t.tangential_force)
+    assert back.creepage == pytest.approx(-frac * xi_c, rel=1e-12)
+
+
+def test_initial_slope_is_a_over_k_for_any_pressure(quartic):
+    """Generalises (6.41): dT/dxi -> -a / K = -(pi E / (4 (1-nu^2))) a at full stick for any
+    polynomial-form pressure (the full-stick problem does not involve p). Checked on the
+    4th-order profile with the series and with a finite difference of the closed path."""
+    _, nc = quartic
+    xi = -1e-9
+    t = P.solve_tangential_polynomial(nc, 0.3, creepage=xi)
+    assert t.tangential_force / xi == pytest.approx(-nc.half_width / K, rel=1e-6)
+    xs, ts = P.tangential_state_polynomial(nc, 0.3, np.array([1 - 2e-4, 1 - 1e-4]))
+    slope = 2 * ts[1] / xs[1] - ts[0] / xs[0]  # Richardson on the chord from (0, 0)
+    assert slope == pytest.approx(-nc.half_width / K, rel=1e-6)

@@ -445,3 +445,14 @@ def test_general_case_beyond_fold_raises():
         Rg.asperity_normal_contact(2e5, *lam, E, NU)
     with pytest.raises(ValueError, match="gap_coefficients"):
         general(*lam, load=2e5)
+
+
+@pytest.mark.parametrize("frac", [1e-6, 1e-14, 1e-200])
+def test_asperity_tiny_creepage_uses_initial_slope(frac):
+    """Hard case: tiny creepage on an asperity: T = -(pi E/(8(1-nu^2))) 2a xi to 1e-9 relative
+    (the closed forms (6.38)-(6.39) would cancel; the full-stick series is used)."""
+    c = Rg.asperity_normal_contact(N, *CASES["l4, l3 != 0, l2 > 0"], E, NU)
+    xi = -frac * Rg.asperity_critical_creepage(c, MU)
+    t = Rg.asperity_tangential_contact(c, MU, creepage=xi)
+    assert t.tangential_force == pytest.approx(Rg.asperity_initial_slope(c) * xi,
+                                               rel=max(1e-9, 10 * frac))

@@ -226,7 +226,7 @@ def _toeplitz_even(coef, size):
     off = j - i
     k = off // 2
     mask = (off >= 0) & (off % 2 == 0)
-    out = np.zeros((size, size))
+    out = np.zeros((size, size), dtype=np.result_type(coef, float))
     out[mask] = coef[k[mask]]
     return out
 
@@ -758,6 +758,74 @@ def _stick_solution(b, r):
     return float(gamma[0] + t), e, float(force2)
 
 
+def _stick_scalars(b, r):
+    """(xi_factor, force2) of :func:`_stick_solution` for real or complex r != 0 (polynomials
+    in r; used for their Taylor series about full stick)."""
+    n = b.size - 1
+    beta = _unit_matrices(n)[0] @ b[1:]
+    delta = 1.0 - r
+    binom, power, upper = _binomials(n - 1)
+    gamma = np.where(upper, binom * delta ** power, 0.0) @ beta
+    rhs = np.concatenate(([0.0], -gamma[1:]))
+    c = np.asarray(_moment_ratios((n + 1) // 2))
+    k = np.arange(c.size, dtype=float)
+    u = _toeplitz_even(c * r ** (2.0 * k) / (np.pi * (2.0 * k - 1.0)), n) @ rhs
+    rn = r ** np.arange(1, n + 1)
+    t = np.pi * (u[0] + (u[2::2] * rn[2::2] / r).sum())
+    e = np.concatenate(([0.0], u)).astype(u.dtype)
+    e[1] -= t / np.pi
+    e[0] = -(e[2::2] * rn[1::2]).sum()
+    c2 = np.asarray(_moment_ratios(n // 2 + 1))
+    force2 = np.pi * (c2 * r ** (2 * np.arange(c2.size)) @ e[0::2])
+    return gamma[0] + t, force2
+
+
+@lru_cache(maxsize=32)
+def _full_stick_series_cached(key):
+    b = np.frombuffer(key, dtype=float)
+    n = b.size - 1
+    m = 8 * n + 32
+    rho = 0.25
+    eps = rho * np.exp(2j * np.pi * np.arange(m) / m)
+    vals = np.array([_stick_scalars(b, 1.0 - e) for e in eps])
+    load = _force_from_normalised(b)
+    vals[:, 1] += load
+    coef = (np.fft.fft(vals, axis=0) / m).real / rho ** np.arange(m)[:, None]
+    coef[0] = 0.0  # xi and T vanish at full stick (exactly)
+    out = coef[:16].copy()
+    out.setflags(write=False)
+    return out
+
+
+def _full_stick_series(b):
+    """Taylor coefficients in eps = 1 - a*/a of (xi_factor, N + force2) about full stick.
+
+    Both are polynomials in a*/a, so the Cauchy integral (FFT on |eps| = 1/4) gives their
+    coefficients without the cancellation of ``N + force2`` as eps -> 0."""
+    return _full_stick_series_cached(np.ascontiguousarray(b, dtype=float).tobytes())
+
+
+_SERIES_LIMIT = 1e-4
+"""Below this ``|xi|/xi_c`` (or ``|T|/(mu N)``) the creep state is taken from the full-stick
+Taylor series (relative accuracy ~1e-14 down to subnormal creepages)."""
+
+
+def _series_state(b, target, which):
+    """eps with series_which(eps) = target (Newton), and both series at eps."""
+    coef = _full_stick_series(b)
+    col = coef[:, which]
+    eps = target / col[1]
+    for _ in range(30):
+        val = np.polynomial.polynomial.polyval(eps, col) - target
+        der = np.polynomial.polynomial.polyval(eps, np.polynomial.polynomial.polyder(col))
+        step = val / der
+        eps -= step
+        if abs(step) <= 1e-16 * abs(eps):
+            break
+    return (eps, np.polynomial.polynomial.polyval(eps, coef[:, 0]),
+            np.polynomial.polynomial.polyval(eps, coef[:, 1]))
+
+
 @dataclass(frozen=True)
 class PolynomialTangentialContact:
     r"""Steady-rolling traction on a polynomial-form pressure (result of
@@ -937,11 +1005,17 @@ def solve_tangential_polynomial(normal_contact, friction_coefficient, creepage=N
         xi = float(check_range("creepage", creepage, "-"))
         sgn = np.sign(xi)
         target = abs(xi)
+        xi_c = xi_of(0.0) if mu > 0.0 else 0.0
         if mu == 0.0 or target == 0.0:
             r = 1.0
+            force = 0.0
+        elif target < _SERIES_LIMIT * xi_c:
+            eps, _, f = _series_state(b, target * nc.half_width / (kern * mu), 0)
+            r = 1.0 - eps
+            force = -sgn * mu * f
         else:
-            r = 0.0 if target >= xi_of(0.0) else _stick_ratio_for(b, target, xi_of)
-        force = -sgn * t_of(r) if target > 0 else 0.0
+            r = 0.0 if target >= xi_c else _stick_ratio_for(b, target, xi_of)
+            force = -sgn * t_of(r)
     else:
         force = float(check_range("tangential_force", tangential_force, "N/m",
                                   -mu * nc.normal_load, mu * nc.normal_load,
@@ -950,6 +1024,10 @@ def solve_tangential_polynomial(normal_contact, friction_coefficient, creepage=N
         target = abs(force)
         if target == 0.0:
             r, xi = 1.0, 0.0
+        elif target < _SERIES_LIMIT * mu * nc.normal_load:
+            eps, x, _ = _series_state(b, target / mu, 1)
+            r = 1.0 - eps
+            xi = sgn * kern * mu * x / nc.half_width
         else:
             r = _stick_ratio_for(b, target, t_of)
             xi = sgn * xi_of(r)

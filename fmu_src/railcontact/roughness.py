@@ -537,6 +537,17 @@ def asperity_tangential_contact(contact, friction_coefficient, creepage=None,
     def t_mag(r):
         return float(asperity_tangential_state(c, mu, r)[1])
 
+    tiny = _poly._SERIES_LIMIT
+    if creepage is not None and mu > 0 and 0 < abs(float(check_range(
+            "creepage", creepage, "-"))) < tiny * asperity_critical_creepage(c, mu):
+        # (6.38)-(6.39) cancel as a* -> a: use the full-stick series of the Ch. 3 solver
+        t = _poly.solve_tangential_polynomial(c.normal_contact, mu, creepage=creepage)
+        return AsperityTangentialContact(c, mu, t.creepage, t.tangential_force, t.stick_ratio)
+    if tangential_force is not None and mu > 0 and 0 < abs(float(check_range(
+            "tangential_force", tangential_force, "N/m"))) < tiny * mu * c.normal_load:
+        t = _poly.solve_tangential_polynomial(c.normal_contact, mu,
+                                              tangential_force=tangential_force)
+        return AsperityTangentialContact(c, mu, t.creepage, t.tangential_force, t.stick_ratio)
     if creepage is not None:
         xi = float(check_range("creepage", creepage, "-"))
         target, sgn = abs(xi), np.sign(xi)
