@@ -41,6 +41,9 @@ OUTPUTS = {
                 "creepage; |(Fx, Fy)| <= mu N)", "Fx"),
     "Fy": ("N", "Lateral tangential contact force on the wheel (0 for a line contact: "
                 "Carter's theory is 2-D)", "Fy"),
+    "Mz": ("N.m", "Spin moment on the wheel about the contact centre: Kalker's exact theory "
+                  "(creep_method = 'exact', table) only; 0 for the other methods, which give "
+                  "none", "Mz"),
     "a0": ("m", "Hertz semi-axis in the rolling direction (line contact: Hertz half-width)",
            "a0"),
     "b0": ("m", "Hertz lateral semi-axis (line contact: half the contact width)", "b0"),
@@ -84,7 +87,7 @@ BOOLEAN_OUTPUTS = {
 
 #: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
-         "corrugation_growth_rate"}
+         "corrugation_growth_rate", "Mz"}
 
 #: SI units used by the variables: name -> exponents of kg, m, s.
 UNITS = {

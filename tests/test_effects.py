@@ -332,3 +332,48 @@ def test_slave_state_restore_is_bit_identical_property(scene, rows, split):
     second = run(rows[split:])
     assert first == second
     assert all(math.isfinite(v) for row in first for v in row)
+
+
+# --------------------------------------------------------------------------------------------
+# Kalker's exact theory from the table creep_exact (skipped until tablegen has built it)
+# --------------------------------------------------------------------------------------------
+EXACT = "[effects.creep]\nmethod = 'exact'\nsource = 'table'\n"
+
+
+def test_exact_without_its_table_is_unavailable(tmp_path):
+    with pytest.raises(EffectUnavailable, match="creep_exact.*not available in this build"):
+        build_pipeline(parse_scene(EXACT), tables_dir=tmp_path)
+
+
+def _have_exact():
+    from railcontact.tables import tables_directory
+    return (tables_directory() / "creep_exact.nc").exists()
+
+
+@pytest.mark.skipif(not _have_exact(), reason="tables/creep_exact.nc not built")
+def test_exact_table_effect_matches_the_reader_and_gives_mz():
+    from railcontact.tables import ExactCreepTable
+    table = ExactCreepTable.from_file()
+    pipe = build_pipeline(parse_scene(EXACT))
+    for xi, eta, phi in ((1e-3, 0.0, 0.0), (-5e-4, 3e-4, 0.3), (2e-4, -1e-4, -0.8)):
+        c = _contact(normal_force=7e4, creepage_longitudinal=xi, creepage_lateral=eta,
+                     spin=phi, friction_coefficient=0.3)
+        pipe.step(c)
+        pipe.auxiliary(c)
+        tx, ty, mz, stick, rho = table.creep_solution_3d(xi, eta, phi, 7e4, c.a0, c.b0, E, NU,
+                                                         0.3)
+        assert (c.Fx, c.Fy) == pytest.approx((float(tx), float(ty)), rel=1e-12, abs=1e-9)
+        assert c.Mz == pytest.approx(float(mz), rel=1e-12, abs=1e-12)
+        assert c.stick_area_fraction == pytest.approx(float(stick), rel=1e-12)
+
+
+@pytest.mark.skipif(not _have_exact(), reason="tables/creep_exact.nc not built")
+def test_exact_table_out_of_range_falls_back_with_one_warning():
+    warnings = []
+    pipe = build_pipeline(parse_scene(EXACT), warn=lambda key, msg: warnings.append(key))
+    c = _contact(normal_force=7e4, creepage_longitudinal=0.5, friction_coefficient=0.3)
+    pipe.step(c)
+    pipe.step(c)
+    ref = creep3d.creep_force_3d(0.5, 0.0, 0.0, 7e4, c.a0, c.b0, E, NU, 0.3, "modified_strip")
+    assert (c.Fx, c.Fy) == (ref.tx, ref.ty)
+    assert warnings.count("creep-exact-range") >= 1

@@ -32,13 +32,14 @@ from railcontact.friction import normalised_inputs, step_law_creep_force_normali
 from railcontact.hertz import hertz_2d, hertz_3d  # noqa: E402
 from railcontact.wear import mean_wear, wear_coefficients  # noqa: E402
 from railcontact.scene import INPUTS, load_scene  # noqa: E402
-from railcontact.tables import CreepTable  # noqa: E402
+from railcontact.tables import CreepTable, ExactCreepTable, tables_directory  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))
 MAIN_SCENE = str(ROOT / "examples" / "scenes" / "creep_only_analytic.toml")
 CORRUGATION_SCENE = str(ROOT / "examples" / "scenes" / "corrugation_wear.toml")
-OUTPUTS = ["Fx", "Fy", "a0", "b0", "p0", "stick_area_fraction", "stick_width_ratio", "r_a0"]
+OUTPUTS = ["Fx", "Fy", "a0", "b0", "p0", "stick_area_fraction", "stick_width_ratio", "r_a0",
+           "Mz"]
 
 
 @pytest.fixture(scope="session")
@@ -129,8 +130,8 @@ def reference_line(scene, held):
                     za_n, zb_n = evolve_harmonics(za, zb, w.real, w.imag, [sec - section])
                     za, zb, section = list(za_n[0]), list(zb_n[0]), sec
                     amp = float(np.hypot(za[0], zb[0]))
-        rows.append((fx, 0.0, a0, width / 2, p0, r, 1.0 if r > 0 else 0.0, r, a, shift, depth,
-                     amp, growth))
+        rows.append((fx, 0.0, a0, width / 2, p0, r, 1.0 if r > 0 else 0.0, r, 0.0, a, shift,
+                     depth, amp, growth))
     return np.array(rows)
 
 
@@ -167,19 +168,25 @@ def reference_result(scene, inputs=None, source=None):
     args = (held["creepage_longitudinal"], held["creepage_lateral"], spin, n_load, a0, b0,
             scene.youngs_modulus, scene.poisson_ratio, scene.friction_coefficient)
     contact = n_load > 0
-    if source == "table" or (source is None and opts["source"] == "table"):
+    mz = np.zeros(n_load.shape)
+    if opts["method"] == "exact" and source != "analytic":
+        table = ExactCreepTable.from_file(ROOT / "tables" / f"{opts['table']}.nc")
+        tx, ty, mz, stick, z = table.creep_solution_3d(*args)
+        width = np.sqrt(1.0 - np.minimum(z, 1.0) ** 2)
+    elif source == "table" or (source is None and opts["source"] == "table"):
         table = CreepTable.from_file(ROOT / "tables" / f"{opts['table']}.nc")
         tx, ty, stick, z = table.creep_solution_3d(*args)
         width = np.sqrt(1.0 - np.minimum(z, 1.0) ** 2)
     else:
-        sol = creep_solution_3d(*args, opts["method"])
+        sol = creep_solution_3d(*args, "modified_strip" if opts["method"] == "exact"
+                                else opts["method"])
         tx, ty, stick, width, z = (sol.tx, sol.ty, sol.stick_area_fraction,
                                    sol.stick_width_ratio, sol.normalised_creepage)
     r_a0 = np.ones(n_load.shape) if opts["method"] == "linear" else 1.0 - np.minimum(z, 1.0)
     cols = {"Fx": tx, "Fy": ty, "a0": a0, "b0": b0, "p0": p0,
             "stick_area_fraction": np.where(contact, stick, 1.0),
             "stick_width_ratio": np.where(contact, width, 1.0),
-            "r_a0": np.where(contact, r_a0, 1.0)}
+            "r_a0": np.where(contact, r_a0, 1.0), "Mz": np.where(contact, mz, 0.0)}
     out = np.zeros(len(inputs), dtype=[("time", float)] + [(k, float) for k in OUTPUTS])
     out["time"] = inputs["time"]
     for k in OUTPUTS:
@@ -222,8 +229,16 @@ def test_bundled_names_cannot_collide(fmu_path):
     assert "resources/requirements.txt" in names
 
 
+def _needs_missing_table(scene_path):
+    opts = load_scene(scene_path).effects.get("creep", {})
+    return (opts.get("source") == "table"
+            and not (tables_directory() / f"{opts['table']}.nc").exists())
+
+
 @pytest.mark.parametrize("scene_path", SCENES, ids=lambda s: Path(s).stem)
 def test_scene_matches_direct_railcontact(fmu_path, scene_path):
+    if _needs_missing_table(scene_path):
+        pytest.skip(f"{Path(scene_path).name}: its table is not built (tablegen)")
     scene, result, messages = simulate(fmu_path, scene_path)
     reference = reference_result(scene)
     assert validate_result(result, reference) == 0

@@ -58,6 +58,7 @@ def test_effect_switched_off_is_absent():
     ("[effects.creep]\nsource = 'lookup'\n", "effects.creep.source must be one of"),
     ("[effects.creep]\nspin = 1\n", "effects.creep.spin must be true or false"),
     ("[effects.magic]\n", "effects: unknown key 'magic'"),
+    ("[effects.creep]\nmethod = 'exact'\n", "effects.creep.source must be 'table' with method"),
     ("[effects.creep]\nenabled = false\n[effects.corrugation]\nwavelengths = [0.05]\n"
      "[geometry]\nkind = 'line'\n", "effects.creep.enabled must be true"),
     ("[effects.wear]\nwear_coefficient = 1e-9\n", "effects.wear needs geometry.kind = 'line'"),

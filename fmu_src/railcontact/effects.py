@@ -54,7 +54,7 @@ class ContactPoint:
     __slots__ = ("normal_force", "creepage_longitudinal", "creepage_lateral", "spin",
                  "rolling_speed", "rail_position", "friction_coefficient", "a0", "b0", "p0",
                  "Fx", "Fy", "stick_area_fraction", "stick_width_ratio", "r_a0",
-                 "creep_within_validity", "contact_half_width", "patch_shift",
+                 "creep_within_validity", "Mz", "contact_half_width", "patch_shift",
                  "wear_depth_per_passage", "corrugation_amplitude", "corrugation_growth_rate")
 
     def __init__(self):
@@ -160,6 +160,14 @@ class Creep3D(_Effect):
     does not pay for them. Out of the table's grid (normalised creepage z beyond its last
     node) the reader holds F = 1, which is exact (full sliding); the FMU logs a warning the
     first time this is seen (when the stick outputs are evaluated).
+    Kalker's exact theory (``method = "exact"``, table source only): the shipped table
+    ``creep_exact`` (:class:`railcontact.tables.ExactCreepTable`, the discretised exact theory of
+    :mod:`railcontact.reference.rolling3d`), the only method that gives the spin moment ``Mz``
+    (0 for the others); stick area fraction from the table, ``stick_width_ratio`` and ``r_a0``
+    the strip-theory estimates at the table's normalised creepage (as
+    :func:`~railcontact.creep3d.creep_solution_3d` does for SHE). Out of the table's range the
+    reader raises (its documented behaviour) and advises the analytic theory: the FMU then uses
+    the analytic modified strip theory for that step (Mz = 0) and logs a warning once.
     With ``spin = false`` the spin input is ignored (treated as 0).
     """
 
@@ -177,24 +185,28 @@ class Creep3D(_Effect):
         creep3d = _import("creep3d", f"creep ({self.source})")
         self._solve = creep3d.creep_solution_3d
         self._spin_coefficient = creep3d.spin_coefficient
+        self._force_analytic = creep3d.creep_force_3d
         self._table = None
+        self._exact = self.method == "exact"
         if self.source == "table":
             tables = _import("tables", "creep (table)")
-            if self.method != "modified_strip":
-                raise SceneError(f"effects.creep.method must be 'modified_strip' with source = "
-                                 f"'table' (the shipped creep table holds the modified strip "
-                                 f"theory); got {self.method!r}")
+            if self.method not in ("modified_strip", "exact"):
+                raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
+                                 f"with source = 'table' (the shipped creep tables); got "
+                                 f"{self.method!r}")
+            reader = tables.ExactCreepTable if self._exact else tables.CreepTable
             try:
                 path = table_path or tables.default_table_path(opts["table"])
-                self._table = tables.CreepTable.from_file(path)
-            except (OSError, ValueError) as exc:
-                raise EffectUnavailable(f"effect creep (table) not available in this build: "
-                                        f"{exc}") from None
+                self._table = reader.from_file(path)
+            except (OSError, ValueError, AttributeError) as exc:
+                raise EffectUnavailable(f"effect creep (table {opts['table']}) not available "
+                                        f"in this build: {exc}") from None
             # The slave has range-checked every input (finite, N >= 0) and a0, b0 come from
             # Hertz, so the reader's scalar fast path without its own input check is used
             # ("inputs already range-checked"); the public method otherwise.
             self._force = getattr(self._table, "_scalar", self._table.creep_force_3d)
-            self._z_max = float(self._table.table.axes[0]["nodes"][-1])
+            if not self._exact:
+                self._z_max = float(self._table.table.axes[0]["nodes"][-1])
 
     def step(self, c):
         self.calls += 1
@@ -202,6 +214,7 @@ class Creep3D(_Effect):
             c.Fx = c.Fy = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
             c.creep_within_validity = True
+            c.Mz = 0.0
             self._aux_args = None
             return
         spin = c.spin if self.use_spin else 0.0
@@ -219,24 +232,48 @@ class Creep3D(_Effect):
         else:
             args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
                     c.b0, self._e, self._nu, c.friction_coefficient)
-            fx, fy = self._force(*args)
-            c.Fx, c.Fy = float(fx), float(fy)
+            out = self._force(*args) if not self._exact else self._exact_force(args)
+            c.Fx, c.Fy = float(out[0]), float(out[1])
             self._aux_args = args
+
+    def _exact_force(self, args):
+        out = self._force(*args)
+        if out is not None:
+            return out
+        try:                               # the reader's own message for the warning
+            self._table.creep_force_3d(*args)
+        except ValueError as exc:
+            reason = str(exc)
+        else:                              # pragma: no cover - fast path declined, slow path ok
+            reason = "fast path declined"
+        self._warn("creep-exact-range",
+                   f"creep table {self._table.table.path.name}: input outside the table "
+                   f"({reason}); the analytic modified strip theory is used there (Mz = 0)")
+        return self._force_analytic(*args, "modified_strip")
 
     def auxiliary(self, c):
         """Fill the stick measures and the validity flag of the last table step (lazily)."""
         args, self._aux_args = self._aux_args, None
         if args is None:
+            c.Mz = 0.0
             return
-        _, _, stick, z = self._table.creep_solution_3d(*args)
+        if self._exact:
+            try:
+                _, _, mz, stick, z = self._table.creep_solution_3d(*args)
+                c.Mz = float(mz)
+            except ValueError:             # out of the table: analytic fallback (see step)
+                res = self._solve(*args, "modified_strip")
+                stick, z, c.Mz = res.stick_area_fraction, res.normalised_creepage, 0.0
+        else:
+            _, _, stick, z = self._table.creep_solution_3d(*args)
         z = float(z)
         zc = min(z, 1.0)
         c.stick_area_fraction = float(stick)
         c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
         c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
-        c.creep_within_validity = bool(float(self._spin_coefficient(
+        c.creep_within_validity = self._exact or bool(float(self._spin_coefficient(
             args[0], args[1], args[2], args[4], args[5])) <= 1.0)
-        if z > self._z_max:
+        if not self._exact and z > self._z_max:
             self._warn("creep-table-range",
                        f"creep table {self._table.table.path.name}: normalised creepage "
                        f"z = {z:.4g} beyond the grid (last node {self._z_max:g}); the reader "

@@ -83,9 +83,10 @@ class SceneError(ValueError):
 #: Effects a scene can switch on, in the order the FMU evaluates them.
 EFFECTS = ("velocity_friction", "roughness", "creep", "corrugation", "nonsteady", "wear")
 #: Creep theories: the 3-D ones of :func:`railcontact.creep3d.creep_force_3d` (elliptic
-#: contact) and Carter's 2-D theory (:func:`railcontact.carter.carter_creep_force`, line
+#: contact), Kalker's exact theory (``"exact"``, from the shipped table ``creep_exact`` of
+#: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory (:func:`railcontact.carter.carter_creep_force`, line
 #: contact, ``geometry.kind = "line"``).
-CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "carter")
+CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "exact", "carter")
 #: Wear models of :func:`railcontact.wear.wear_coefficients`.
 WEAR_MODELS = ("material_point", "patch_coordinate", "nielsen1998", "time_domain_carter")
 #: Where an effect takes its answer from.
@@ -367,6 +368,14 @@ def scene_from_dict(data):
             opts["method"] = _choice("effects.creep.method", opts.get("method"),
                                      CREEP_METHODS)
             opts["spin"] = _boolean("effects.creep.spin", opts.get("spin", True))
+            if opts["method"] == "exact":
+                if opts["source"] != "table":
+                    raise SceneError("effects.creep.source must be 'table' with method = "
+                                     "'exact' (Kalker's exact theory is shipped as the table "
+                                     "creep_exact; the discretised solver is far too slow for a "
+                                     f"co-simulation step); got {opts['source']!r}")
+                if "table" not in data.get("effects", {}).get("creep", {}):
+                    opts["table"] = "creep_exact"
             if not isinstance(opts.get("table"), str):
                 raise SceneError(f"effects.creep.table must be a string; got "
                                  f"{opts['table']!r}")
@@ -561,8 +570,8 @@ FMU_PARAMETERS = (
     ParameterSpec("friction_coefficient", ("friction", "friction_coefficient"), "real", "1",
                   "Coulomb friction coefficient mu, >= 0"),
     ParameterSpec("creep_method", ("effects", "creep", "method"), "string", "",
-                  "Creep theory: linear | she | strip | modified_strip (3-D), carter (2-D, "
-                  "geometry_kind = 'line')"),
+                  "Creep theory: linear | she | strip | modified_strip (3-D), exact (Kalker's "
+                  "exact theory, table source only), carter (2-D, geometry_kind = 'line')"),
     ParameterSpec("creep_source", ("effects", "creep", "source"), "string", "",
                   "Creep forces from the 'analytic' solver or the shipped 'table'"),
     ParameterSpec("creep_spin", ("effects", "creep", "spin"), "boolean", "",
