@@ -197,7 +197,14 @@ def main(argv=None):
         cases = [("trivial PythonFMU slave", trivial, {})]
         cases.append(("normal contact only", fmu,
                       {"scene_toml": "[effects.creep]\nenabled = false\n"}))
+        from railcontact.scene import load_scene
+        from railcontact.tables import tables_directory
         for scene in sorted((ROOT / "examples" / "scenes").glob("*.toml")):
+            creep = load_scene(scene).effects.get("creep", {})
+            if creep.get("source") == "table" and not (
+                    tables_directory() / f"{creep['table']}.nc").exists():
+                print(f"skipping {scene.stem}: tables/{creep['table']}.nc is not built")
+                continue
             cases.append((scene.stem, fmu, {"scene_file": scene}))
 
         results = []
