@@ -199,7 +199,7 @@ class WheelRailContact(Fmi2Slave):
         return values
 
     def _resolve_scene(self, values):
-        base = None
+        base, base_dir = None, None
         if values["scene_file"]:
             path = Path(values["scene_file"])
             bundled = (Path(self.resources) / "scenes" / f"{values['scene_file']}.toml"
@@ -211,7 +211,12 @@ class WheelRailContact(Fmi2Slave):
             except OSError as exc:
                 raise _scene.SceneError(f"scene_file: cannot read {str(path)!r}: "
                                         f"{exc.strerror}") from None
-            base = _scene.tomllib.loads(text) if text else {}
+            try:
+                base = _scene.tomllib.loads(text)
+            except _scene.tomllib.TOMLDecodeError as exc:
+                raise _scene.SceneError(f"scene_file {str(path)!r}: not valid TOML: "
+                                        f"{exc}") from None
+            base_dir = path.parent
         elif values["scene_toml"]:
             try:
                 base = _scene.tomllib.loads(values["scene_toml"])
@@ -219,7 +224,7 @@ class WheelRailContact(Fmi2Slave):
                 raise _scene.SceneError(f"scene_toml: not valid TOML: {exc}") from None
         data = _scene.parameters_to_scene_dict(values, base=base)
         try:
-            return _scene.scene_from_dict(data)
+            return _scene.scene_from_dict(data, base_dir=base_dir)
         except _scene.SceneError as exc:
             raise _scene.SceneError(_name_parameter(str(exc))) from None
 

@@ -145,3 +145,23 @@ def test_fmu_parameters_round_trip_and_override():
     scene = scene_from_dict(parameters_to_scene_dict(dict(defaults, creep_method="linear"),
                                                      base=base))
     assert scene.effects["creep"]["method"] == "linear" and scene.poisson_ratio == 0.25
+
+
+def test_corrugation_surface_file(tmp_path):
+    (tmp_path / "surface.csv").write_text("# measured rail, two harmonics\n"
+                                          "wavelength,amplitude_cos,amplitude_sin\n"
+                                          "0.05, 1e-5, 0\n0.08, 5e-6, 2e-6\n")
+    (tmp_path / "s.toml").write_text(
+        "[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n"
+        "[effects.corrugation]\nsurface_file = 'surface.csv'\n")
+    scene = load_scene(tmp_path / "s.toml")       # relative to the scene file's directory
+    opts = scene.effects["corrugation"]
+    assert opts["wavelengths"] == [0.05, 0.08]
+    assert opts["amplitudes_cos"] == [1e-5, 5e-6] and opts["amplitudes_sin"] == [0.0, 2e-6]
+    (tmp_path / "bad.csv").write_text("0.05, 1e-5\n")
+    with pytest.raises(SceneError, match="three numbers"):
+        parse_scene("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n"
+                    "[effects.corrugation]\nsurface_file = 'bad.csv'\n", base_dir=tmp_path)
+    with pytest.raises(SceneError, match="surface_file: cannot read"):
+        parse_scene("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n"
+                    "[effects.corrugation]\nsurface_file = 'none.csv'\n", base_dir=tmp_path)

@@ -133,7 +133,7 @@ _SECTION_KEYS = {
 _EFFECT_KEYS = {
     "creep": {"enabled", "method", "source", "spin", "table"},
     "corrugation": {"enabled", "source", "method", "wavelengths", "amplitudes_cos",
-                    "amplitudes_sin"},
+                    "amplitudes_sin", "surface_file"},
     "wear": {"enabled", "source", "wear_coefficient", "wear_model", "evolve", "section_length"},
     "velocity_friction": {"enabled", "source", "law", "kinetic_friction_coefficient", "kappa"},
     "roughness": {"enabled", "source"},
@@ -235,16 +235,16 @@ def load_scene(path):
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise SceneError(f"scene_file: cannot read {str(path)!r}: {exc.strerror}") from exc
-    return parse_scene(text, origin=str(path))
+    return parse_scene(text, origin=str(path), base_dir=path.parent)
 
 
-def parse_scene(text, origin="<scene_toml>"):
+def parse_scene(text, origin="<scene_toml>", base_dir=None):
     """Parse and validate scene TOML text (see the module docstring for the format)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{origin}: not valid TOML: {exc}") from exc
-    return scene_from_dict(data)
+    return scene_from_dict(data, base_dir=base_dir)
 
 
 def _merge(base, update):
@@ -298,12 +298,45 @@ def _check_keys(path, table, allowed):
                          f"{sorted(allowed)}")
 
 
-def scene_from_dict(data):
+def _read_surface_file(name, base_dir):
+    """Rail surface harmonics from a CSV file: columns wavelength, amplitude_cos, amplitude_sin
+    [m] (one harmonic per line, ``#`` comments, an optional header line)."""
+    path = Path(name)
+    if not path.is_absolute() and base_dir is not None:
+        path = Path(base_dir) / path
+    try:
+        rows = [line.split("#")[0].strip() for line in
+                path.read_text(encoding="utf-8").splitlines()]
+    except OSError as exc:
+        raise SceneError(f"effects.corrugation.surface_file: cannot read {str(path)!r}: "
+                         f"{exc.strerror}") from None
+    rows = [r for r in rows if r]
+    if rows:
+        try:
+            [float(v) for v in rows[0].replace(",", " ").split()]
+        except ValueError:
+            rows = rows[1:]                                # header line
+    try:
+        table = [[float(v) for v in r.replace(",", " ").split()] for r in rows]
+    except ValueError:
+        raise SceneError(f"effects.corrugation.surface_file {str(path)!r}: every line must "
+                         "hold three numbers: wavelength, amplitude_cos, amplitude_sin [m]") \
+            from None
+    if not table or any(len(r) != 3 for r in table):
+        raise SceneError(f"effects.corrugation.surface_file {str(path)!r}: every line must "
+                         "hold three numbers: wavelength, amplitude_cos, amplitude_sin [m]")
+    return {"wavelengths": [r[0] for r in table], "amplitudes_cos": [r[1] for r in table],
+            "amplitudes_sin": [r[2] for r in table]}
+
+
+def scene_from_dict(data, base_dir=None):
     """Validate a scene given as nested dicts (the parsed TOML), filling defaults.
 
     Missing sections and keys take the values of :data:`DEFAULT_SCENE`; the creep effect is on
     unless ``effects.creep.enabled = false``; other effects are on when their table is present
-    (and ``enabled`` is not false).
+    (and ``enabled`` is not false). ``base_dir``: directory relative file names in the scene
+    (``effects.corrugation.surface_file``) are resolved against (default: the working
+    directory).
     """
     if not isinstance(data, dict):
         raise SceneError(f"scene must be a table; got {data!r}")
@@ -382,6 +415,8 @@ def scene_from_dict(data):
         elif name == "corrugation":
             opts["method"] = _choice("effects.corrugation.method", opts.get("method", "exact"),
                                      ("exact", "linear"))
+            if opts.get("surface_file"):
+                opts.update(_read_surface_file(opts["surface_file"], base_dir))
             waves = _number_list("effects.corrugation.wavelengths", opts.get("wavelengths"),
                                  "m", 0.0, lower_closed=False)
             za = _number_list("effects.corrugation.amplitudes_cos",
@@ -600,6 +635,10 @@ FMU_PARAMETERS = (
     ParameterSpec("corrugation_amplitudes_sin", ("effects", "corrugation", "amplitudes_sin"),
                   "string", "", "Initial sine amplitudes Z_B,m of Eq. (4.1), space-separated "
                                 "[m]"),
+    ParameterSpec("corrugation_surface_file", ("effects", "corrugation", "surface_file"),
+                  "string", "", "CSV file of rail surface harmonics (columns wavelength, "
+                                "amplitude_cos, amplitude_sin [m]); replaces the three lists "
+                                "above"),
     ParameterSpec("wear_enabled", ("effects", "wear", "enabled"), "boolean", "",
                   "Frictional wear per passage (Nielsen Sec. 4.3; needs geometry_kind = 'line')"),
     ParameterSpec("wear_coefficient", ("effects", "wear", "wear_coefficient"), "real", "m2/N",
@@ -622,7 +661,8 @@ _EFFECT_PARAMETER_DEFAULTS = {
     "velocity_friction_enabled": False, "velocity_friction_law": "smooth",
     "kinetic_friction_coefficient": 0.2, "friction_kappa": 0.0,
     "corrugation_enabled": False, "corrugation_method": "exact", "corrugation_wavelengths": "",
-    "corrugation_amplitudes_cos": "", "corrugation_amplitudes_sin": "", "wear_enabled": False,
+    "corrugation_amplitudes_cos": "", "corrugation_amplitudes_sin": "",
+    "corrugation_surface_file": "", "wear_enabled": False,
     "wear_coefficient": 0.0, "wear_model": "material_point", "wear_evolve": False,
     "wear_section_length": 1.0,
 }
