@@ -21,8 +21,11 @@ Wear models (``wear_model=``)
     ``W = K int q s dx`` along the path of the material point, i.e. the dwell factor dropped.
 ``"nielsen1998"``
     The thesis' closed form (4.92) ``W = |K V N R/a0^2 (mu pi B0/a)^2 tau (1 - r - r^2 + r^3)|``,
-    ``r = tau*/tau``, with the passage times tau, tau* of (4.81)-(4.87). Reproduces the thesis'
-    Figs. 4.10, 4.11, 4.14, 4.15, 4.21. The thesis' tau (4.83) follows from (4.76)-(4.78) only if
+    ``r = tau*/tau``, with the passage times tau, tau* of (4.81)-(4.87) (tau*_1 with the sign
+    erratum below corrected, i.e. as derived from (4.76)-(4.77)). Reproduces what the
+    thesis states about its Figs. 4.10, 4.11 and 4.14 (one critical L/a0, 1 - 2 W1 -> 1+ for long
+    waves, characteristic L/a0 5.6-8.9 for r_a0 = 0.1-0.9, inside the stated 5-10).
+    The thesis' tau (4.83) follows from (4.76)-(4.78) only if
     the patch shift enters with the sign of the *opposite* rolling direction (``Delta -> -Delta``;
     checked in the tests), so its passage time carries the factor ``(1 + Delta')`` instead of
     ``1/(1 + Delta')``: the dwell acts the wrong way round. See ``docs/wear_finding.md``.
@@ -42,7 +45,8 @@ Errata of (4.96)-(4.98), found while deriving the linearisation:
   right (W1 must be dimensionless; tau_1 already contains k R / V), the second term lacks a
   factor ``k_m``. ``B^_0`` (never defined) is ``int_0^{k a0} J0(t) dt`` and the bracket is
   ``[int_0^{k a0} J0 - J1(k a0)]`` with a plus sign in front (from B0 = a p(0) C, the pressure
-  at the patch centre; checked against the exact B0 by finite differences).
+  at the patch centre; checked against (4.92) evaluated with the exact B0 and the passage
+  times solved from (4.76)-(4.78), tests/test_wear.py).
 * (4.98) prints ``3 r^3``; the linearisation gives ``(1 + 2 r - 3 r^2)`` as in (4.97).
 * (4.86) prints ``J0(k a0)[3 sin k(2a0* - a0) - sin k a0]``; (4.76)-(4.77) give ``+ sin k a0``.
 
