@@ -380,3 +380,21 @@ def test_fmu_hard_regions_finite_bounded_and_flagged(built_fmu, tmp_path):
     assert np.all(got["zero creepage"][:2] == 0.0)
     assert got["tiny creepage"][0] < 0.0
     assert math.hypot(*got["far beyond saturation"][:2]) == pytest.approx(0.3 * 8e4, rel=1e-12)
+
+
+# --------------------------------------------------------------------------------------------
+# Non-steady (Ch. 7): stick ratio at the ends of its documented range (0, 1]
+# --------------------------------------------------------------------------------------------
+def test_nonsteady_stick_ratio_limits():
+    """r -> 0+ and r = 1: finite transfer functions, continuous into both ends (r = 0 itself is
+    outside the documented range and raises, see tests/test_nonsteady.py)."""
+    from railcontact.nonsteady import nonsteady_transfer_function_normalised as tf
+
+    waves = np.array([1e-6, 0.5, 3.0, 50.0])
+    for variant in ("derived", "printed"):
+        h = {r: tf(waves, r, variant=variant) for r in (1e-12, 1e-9, 1 - 1e-9, 1.0)}
+        for r, v in h.items():
+            assert np.all(np.isfinite(v)), (variant, r)
+        # H - 1 = O(k a0 r) as r -> 0 (|H - 1| ~ 160 (a0/L) r measured): continuous into r = 0+
+        assert np.max(np.abs(h[1e-12] - h[1e-9]) / (1 + waves)) < 1e-6
+        assert np.max(np.abs(h[1.0] - h[1 - 1e-9])) < 1e-6
