@@ -633,7 +633,7 @@ def _normal_solution(mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson
 
 
 def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, table,
-                mx, my, scale, tolerance, max_iterations, spin_offset):
+                mx, my, scale, tolerance, max_iterations, spin_offset, initial=None):
     x, y, dx, dy, pn, approach, kern = _normal_solution(
         mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio)
     _, bxx, bxy, byy = kern
@@ -662,9 +662,19 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
     wx = xi - phi * yc
     wy = eta + phi * (xc + spin_offset * dx)
     pnc = pn[cix, ciy].astype(float)
-    px = np.zeros(cix.shape[0])
-    py = np.zeros(cix.shape[0])
     tab_s, tab_mu = table
+    if initial is not None and initial.px.shape == (mx, my):
+        # warm start from a neighbouring case, clipped to the friction bound
+        px = np.array(initial.px[cix, ciy], dtype=float)
+        py = np.array(initial.py[cix, ciy], dtype=float)
+        bound = tab_mu[0] * pnc
+        mag = np.hypot(px, py)
+        fac = np.where(mag > bound, bound / np.where(mag > 0, mag, 1.0), 1.0)
+        px *= fac
+        py *= fac
+    else:
+        px = np.zeros(cix.shape[0])
+        py = np.zeros(cix.shape[0])
     iters, residual, sx, sy = _sweep_solver(cix, ciy, row_start, wx, wy, pnc, bxx, bxy, byy,
                                             mx, my, tab_s, tab_mu, px, py, tolerance,
                                             max_iterations, _MAX_NEWTON)
@@ -705,7 +715,7 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
 def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                      youngs_modulus, poisson_ratio, friction_coefficient, mx=40, my=20,
                      scale=1.08, tolerance=1e-6, max_iterations=500, richardson=False,
-                     spin_offset=1.0 / 6.0):
+                     spin_offset=1.0 / 6.0, initial_guess=None):
     r"""Steady rolling of two quasi-identical elastic bodies: Kalker's exact theory, discretised.
 
     Solves the Hertzian normal problem numerically on the grid, then the frictional steady
@@ -751,6 +761,10 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         every spin case of ``hertz3d_grid_convergence`` (found by fitting; ``0``, the element
         centre, differs from CONTACT by up to 1e-2 of mu N at 30x30, halving with each grid
         refinement: an O(dx) difference that vanishes in the continuum limit). [-]
+    initial_guess : Rolling3DResult, optional
+        Solution of a neighbouring case on the same grid (e.g. the previous point of a creep
+        curve or table); its tractions, clipped to the friction bound, start the iteration.
+        Only the number of sweeps changes, not the converged solution (to the tolerance).
     Returns
     -------
     Rolling3DResult
@@ -790,10 +804,12 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                          f"(rigid slip |phi| max(a0, b0) <= 1); got {phi:g}")
     table = _friction_table(friction_coefficient)
     args = (xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, table)
-    coarse = _solve_grid(*args, mx, my, scale, tolerance, max_iterations, spin_offset)
+    coarse = _solve_grid(*args, mx, my, scale, tolerance, max_iterations, spin_offset,
+                         initial_guess)
     if not richardson:
         return coarse
-    fine = _solve_grid(*args, 2 * mx, 2 * my, scale, tolerance, max_iterations, spin_offset)
+    fine = _solve_grid(*args, 2 * mx, 2 * my, scale, tolerance, max_iterations, spin_offset,
+                       initial_guess)
     return Rolling3DResult(
         tx=2 * fine.tx - coarse.tx, ty=2 * fine.ty - coarse.ty, mz=2 * fine.mz - coarse.mz,
         normal_load=fine.normal_load, px=fine.px, py=fine.py, pn=fine.pn,
