@@ -301,3 +301,33 @@ def test_bessel_forms_equal_polynomial_series_of_chapter_3(ratio, degree):
     assert abs(nc.centre - res.patch_shift) < 1e-8 * A0
     assert abs(tc.stick_half_width - res.stick_half_width) < 1e-7 * A0
     assert abs(abs(tc.tangential_force) - res.tangential_force) < 1e-7 * MU * N
+
+
+def test_zero_and_tiny_creepage_without_cancellation():
+    """xi -> 0: the stick offset a - a* and |T| are computed as differences in closed form
+    (second-order Taylor below k (a - a*) = 1e-4), so T = 0 exactly at xi = 0 and Carter's
+    2 f - f^2 is reproduced to rounding on a smooth rail down to f = 1e-14."""
+    from railcontact.carter import carter_critical_creepage
+    res = cg.corrugated_contact(0.01, N, R, E, NU, MU, 0.0, [1e-6], [0.0], [0.05])
+    assert float(res.tangential_force) == 0.0
+    assert float(res.stick_half_width) == float(res.half_width)
+    xi_c = float(carter_critical_creepage(N, R, E, NU, MU))
+    for method in ("exact", "linear"):
+        for f in (1e-14, 1e-10, 1e-6, 0.3):
+            res = cg.corrugated_contact(0.01, N, R, E, NU, MU, f * xi_c, [0.0], [0.0], [0.05],
+                                        method=method)
+            assert float(res.tangential_force) / (MU * N * (2 * f - f * f)) == pytest.approx(
+                1.0, rel=1e-12)
+    # corrugated: T / (2 f mu N) is continuous across the Taylor / direct switch
+    x = np.linspace(0, 0.05, 5)
+    lam = 0.05
+    k = 2 * np.pi / lam
+    fs = np.geomspace(1e-9, 1e-3, 13)
+    ratios = np.array([cg.corrugated_contact(x, N, R, E, NU, MU, f * xi_c, [3e-6], [1e-6],
+                                             [lam]).tangential_force / (2 * f * MU * N)
+                       for f in fs])
+    # linear in f near 0: T/(2 f mu N) changes by O(f) only, smoothly through the switch
+    assert np.all(np.abs(ratios - ratios[0]) < 3 * fs[:, None])
+    assert np.all(ratios > 0)
+    # the switch point k (a - a*) = 1e-4 lies inside the scanned range
+    assert k * 1e-9 * xi_c * R / MU < 1e-4 < k * 1e-3 * xi_c * R / MU

@@ -435,28 +435,80 @@ def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radi
     ndarray
         ``a*``. [m]
     """
-    x = np.asarray(rail_position, dtype=float)[..., None]
+    x = np.asarray(rail_position, dtype=float)
     a = np.asarray(a, float)
     d = np.asarray(delta, float)
-    k = np.asarray(wavenumbers, float)
-    za = np.asarray(amplitudes_cos, float)
-    zb = np.asarray(amplitudes_sin, float)
-    big_r = float(radius)
-    xi = float(creepage_over_friction)
-    ast = np.clip(a - xi * big_r, 0.0, a)
+    offset = _stick_offset(x, a, d, float(creepage_over_friction), float(radius),
+                           np.asarray(wavenumbers, float), np.asarray(amplitudes_cos, float),
+                           np.asarray(amplitudes_sin, float), tol, max_iter)
+    return a - offset
+
+
+# Small offsets delta = a - a* (tiny creepage) are handled by second-order Taylor expansions in
+# delta of the *differences* below, so that neither delta nor T is the difference of two
+# nearly equal O(1) numbers (xi -> 0 gives delta = 0 and T = 0 exactly).
+_TAYLOR_LIMIT = 1e-4          # k delta below which the Taylor forms are used
+
+
+def _j1_over_z(z):
+    return np.where(z > 1e-8, j1(z) / np.where(z > 1e-8, z, 1.0), 0.5)
+
+
+def _stick_bracket(y, a, delta, k, za, zb):
+    """G(delta) - G(0), G = sum k J0(k (a - delta)) S(y + delta), and dG/d delta."""
+    kd = k * delta[..., None]
+    small = np.max(kd, -1, initial=0.0) < _TAYLOR_LIMIT
+    s0, c0 = _surface_terms(y[..., None], k, za, zb)
+    z = k * a[..., None]
+    jz, jo = j0(z), j1(z)
+    g1 = np.sum(k * k * (jo * s0 + jz * c0), -1)
+    g2 = np.sum(k ** 3 * (-(2 * jz - _j1_over_z(z)) * s0 + 2 * jo * c0), -1)
+    taylor = delta * g1 + 0.5 * delta * delta * g2
+    s1, c1 = _surface_terms(y[..., None] + delta[..., None], k, za, zb)
+    zs = k * (a - delta)[..., None]
+    direct = np.sum(k * (j0(zs) * s1 - jz * s0), -1)
+    deriv = np.sum(k * k * (j1(zs) * s1 + j0(zs) * c1), -1)
+    return np.where(small, taylor, direct), deriv
+
+
+def _stick_offset(x, a, d, xi, big_r, k, za, zb, tol=1e-13, max_iter=60):
+    """Solve delta = a - a* from delta/R + [G(delta) - G(0)] = xi/mu, delta in [0, a].
+
+    (The creepage condition minus the normal condition (4.31), which holds at delta = 0.)"""
+    y = x + d
+    delta = np.clip(np.full(np.shape(y), xi * big_r), 0.0, a)
     for _ in range(max_iter):
-        xs = d + a - ast
-        s, c = _surface_terms(x + xs[..., None], k, za, zb)
-        kas = k * ast[..., None]
-        f = xs / big_r + np.sum(k * j0(kas) * s, -1) - xi
-        df = -1.0 / big_r + np.sum(-k * k * j1(kas) * s - k * k * j0(kas) * c, -1)
-        step = f / df
-        new = np.clip(ast - step, 0.0, a)
-        if np.all(np.abs(new - ast) < tol * np.maximum(a, 1e-300)):
-            ast = new
+        bracket, deriv = _stick_bracket(y, a, delta, k, za, zb)
+        f = delta / big_r + bracket - xi
+        df = 1.0 / big_r + deriv
+        new = np.clip(delta - f / df, 0.0, a)
+        done = np.all(np.abs(new - delta) <= tol * np.maximum(np.abs(new), 1e-300)
+                      + 1e-15 * tol * a)
+        delta = new
+        if done:
             break
-        ast = new
-    return ast
+    return delta
+
+
+def _tangential_force_exact(x, a, d, delta, mu, comp, big_r, k, za, zb):
+    """|T| = (mu/C) [delta (2a - delta)/(2R) + H(0) - H(delta)] (4.67) minus (4.33),
+    H(delta) = sum k (a - delta) J1(k (a - delta)) Zc(y + delta), y = X + Delta."""
+    y = (x + d)[..., None]
+    kd = k * delta[..., None]
+    small = np.max(kd, -1, initial=0.0) < _TAYLOR_LIMIT
+    s0, c0 = _surface_terms(y, k, za, zb)
+    z = k * a[..., None]
+    jz, jo = j0(z), j1(z)
+    av = a[..., None]
+    h1 = -np.sum(k * k * av * (jz * c0 + jo * s0), -1)
+    h2 = np.sum(k * k * (jz * c0 + jo * s0)
+                - k ** 3 * av * (2 * jo * c0 - (2 * jz - _j1_over_z(z)) * s0), -1)
+    taylor = -(delta * h1 + 0.5 * delta * delta * h2)
+    s1, c1 = _surface_terms(y + delta[..., None], k, za, zb)
+    ast = (a - delta)[..., None]
+    direct = np.sum(k * (av * jo * c0 - ast * j1(k * ast) * c1), -1)
+    diff = np.where(small, taylor, direct)
+    return mu / comp * (delta * (2 * a - delta) / (2 * big_r) + diff)
 
 
 CorrugatedContact = namedtuple("CorrugatedContact", [
@@ -553,12 +605,9 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     a0s = max(a0 - xi * big_r / mu, 0.0)
     if method == "exact":
         a, d, _, _ = solve_normal_exact(x, n_load * comp, big_r, k, za, zb)
-        ast = solve_stick_zone_exact(x, a, d, xi / mu, big_r, k, za, zb)
-        xs = d + a - ast
-        s, c = _surface_terms(x[..., None] + xs[..., None], k, za, zb)
-        t = mu * n_load - mu / comp * (ast ** 2 / (2 * big_r)
-                                       + np.sum(k * ast[..., None] * j1(k * ast[..., None]) * c,
-                                                -1))
+        offset = _stick_offset(x, a, d, xi / mu, big_r, k, za, zb)
+        ast = a - offset
+        t = _tangential_force_exact(x, a, d, offset, mu, comp, big_r, k, za, zb)
     else:
         ratio = a0 / lam
         r = a0s / a0
@@ -570,7 +619,9 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
         a = a0 + np.sum(np.real(k * big_r * ca * zc), -1)
         d = np.sum(np.real(k * big_r * cd * zc), -1)
         ast = a0s + np.sum(np.real(k * big_r * cs * zc), -1)
-        t = mu * n_load * (1 - (a0s / a0) ** 2) + np.sum(np.real(mu / comp * ct * zc), -1)
+        one_minus_r = min(xi * big_r / (mu * a0), 1.0)          # 1 - r without cancellation
+        t = (mu * n_load * one_minus_r * (2.0 - one_minus_r)
+             + np.sum(np.real(mu / comp * ct * zc), -1))
     wear = None
     if wear_coefficient is not None:
         from .wear import wear_coefficients
