@@ -99,8 +99,8 @@ INPUTS = {
     "creepage_lateral": ("1", "Lateral creepage xi_y = (V_y1 - V_y2)/V_m"),
     "spin": ("1/m", "Spin creepage phi = (Omega_z1 - Omega_z2)/V_m"),
     "rolling_speed": ("m/s", "Mean rolling speed V_m of the contact along the rail, >= 0"),
-    "rail_position": ("m", "Position of the contact along the rail (for corrugated or rough "
-                           "rail surfaces)"),
+    "rail_position": ("m", "Position of the wheel axis along the rail (corrugated rail "
+                           "surface; completed passages for wear_evolve)"),
 }
 #: Start values of the inputs (used when a scene does not drive them).
 INPUT_DEFAULTS = {"normal_force": 0.0, "creepage_longitudinal": 0.0, "creepage_lateral": 0.0,
