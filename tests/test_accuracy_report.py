@@ -65,7 +65,7 @@ def test_every_family_with_finite_numbers(report):
         rows = sections[fam]
         assert rows, f"family {fam!r} has no rows"
         errors = [_number(r[2]) for r in rows]
-        times = [_number(r[-3]) for r in rows]
+        times = [_number(r[-3]) for r in rows]   # single-call column
         assert any(e is not None and math.isfinite(e) for e in errors), fam
         assert all(t is not None and math.isfinite(t) and t > 0 for t in times), fam
         assert all(e is None or e >= 0 for e in errors), fam
