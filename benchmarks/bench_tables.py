@@ -1,7 +1,8 @@
 """Speed and size of the smooth tables (issue 5). Prints figures; asserts nothing.
 
     python benchmarks/bench_tables.py            # lookups, sizes, direct-model ratios
-    python benchmarks/bench_tables.py --build    # also: default build time, 1 -> 2 workers
+    python benchmarks/bench_tables.py --build    # also: 1 -> 2 workers (coarse creep_exact)
+    python benchmarks/bench_tables.py --full-build   # also: full default build, 2 workers
 
 Measured in one run, so the ratios are meaningful even on a loaded machine; the absolute
 times depend on the load (the load average is printed).
@@ -108,7 +109,7 @@ def lookups():
               f"{len(tab.variables)} variables")
 
 
-def builds():
+def builds(full):
     from tablegen.build import build_table
     from tablegen.spec import REGISTRY
     from tablegen import specs  # noqa: F401
@@ -117,15 +118,16 @@ def builds():
     print(f"load average: {os.getloadavg()}")
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        for name, spec in sorted(REGISTRY.items()):
+        for name, spec in (sorted(REGISTRY.items()) if full else []):
             if spec.hidden or spec.available():
                 continue
             res = build_table(name, "default", output_dir=tmp, workers=2, progress=False,
                               workdir=os.path.join(tmp, "w"))
             print(f"default build {name:24s}: {res['seconds']:7.1f} s "
                   f"({res['n_points']} points + {res['n_check']} checks, 2 workers)")
-        print(f"full default build (all tables, 2 workers) : {time.perf_counter() - t0:7.1f} s "
-              "wall incl. cluster start-up")
+        if full:
+            print(f"full default build (all tables, 2 workers) : "
+                  f"{time.perf_counter() - t0:7.1f} s wall incl. cluster start-up")
         times = {}
         for workers in (1, 2):
             t0 = time.perf_counter()
@@ -138,8 +140,13 @@ def builds():
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
-    parser.add_argument("--build", action="store_true", help="also time the builds")
+    parser.add_argument("--build", action="store_true",
+                        help="also time a coarse creep_exact build with 1 and 2 workers")
+    parser.add_argument("--full-build", action="store_true",
+                        help="also time the full default build of all tables (minutes)")
+    parser.add_argument("--no-lookups", action="store_true")
     a = parser.parse_args()
-    lookups()
-    if a.build:
-        builds()
+    if not a.no_lookups:
+        lookups()
+    if a.build or a.full_build:
+        builds(a.full_build)

@@ -132,18 +132,18 @@ EXACT_SOLVER = dict(mx=40, my=20, tolerance=1e-7, max_iterations=2000)
 
 _EXACT_COUNTS = {  # nodes: aspect ratio, rho on [0, 1], theta, sigma
     "coarse": (5, 6, 5, 4),
-    "default": (7, 8, 7, 9),
+    "default": (7, 8, 7, 10),
     "fine": (13, 20, 13, 13),
 }
 EXACT_RHO_MAX = 3.0
-EXACT_SIGMA_MAX = 2.0
+EXACT_SIGMA_MAX = 4.0
 
 
 def _exact_axes(resolution):
     n_g, n_r, n_t, n_s = _EXACT_COUNTS[resolution]
     u = np.linspace(0.0, 1.0, n_r + 1)
     rho = np.r_[1.0 - (0.5 * (1.0 + np.cos(np.pi * u))) ** 2, 1.25, 1.6, 2.2, EXACT_RHO_MAX]
-    sig = EXACT_SIGMA_MAX * np.linspace(0.0, 1.0, n_s) ** 1.3
+    sig = EXACT_SIGMA_MAX * np.linspace(0.0, 1.0, n_s) ** 1.5
     return [
         Axis("log_aspect_ratio", np.linspace(np.log(0.1), np.log(10.0), n_g), "1",
              "natural logarithm of the semi-axis ratio a0/b0 (rolling over lateral)",
@@ -158,8 +158,9 @@ def _exact_axes(resolution):
              "theta = atan2(v_y, |v_x|), the direction of the combined creepage v, with v_y "
              "taken relative to the sign of the spin (mirror symmetry)"),
         Axis("normalised_spin", sig, "1",
-             "sigma = sqrt(a0 b0) C23 |phi| / w_sat",
-             comment="nodes crowd towards 0 (sigma = 2 s^1.3, s uniform)"),
+             "tau = |phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat (rigid slip of the spin at "
+             "the ellipse edges over the saturation creepages)",
+             comment="nodes crowd towards 0 (tau = 4 s^1.5, s uniform)"),
     ]
 
 
@@ -260,7 +261,8 @@ register(TableSpec(
         "solver_grid": "40 x 20 elements over [-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]",
         "normalisation": (
             "forces over mu N depend only on a0/b0, nu and the Kalker-weighted creepages "
-            "(C11 xi_x, C22 xi_y, sqrt(a0 b0) C23 phi)/w_sat; symmetry reduces to xi_x >= 0, "
+            "(C11 xi_x, C22 xi_y, sqrt(a0 b0) C23 phi)/w_sat (the spin axis uses the equivalent "
+            "tau = |phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat); symmetry reduces to xi_x >= 0, "
             "phi >= 0; the check points draw nu from poisson_ratio_range, so the recorded "
             "accuracy includes using the nu = 0.28 table at other nu in that range"),
     },

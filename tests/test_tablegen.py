@@ -123,3 +123,23 @@ def test_cli_list_and_build(tmp_path, capsys):
 
 def test_package_exports():
     assert tablegen.build_table is build_table
+
+
+def test_exact_spec_grid_and_inverse_coordinates():
+    """The exact creep table's grid covers a0/b0 in [0.1, 10], has the saturation rho = 1 on
+    a grid line, and its coordinate map round-trips through the physical inputs."""
+    from railcontact.tables import exact_table_coordinates, exact_table_inverse
+
+    spec = get_spec("creep_exact")
+    axes, pts = spec.grid("coarse")
+    names = [a.name for a in axes]
+    assert names == ["log_aspect_ratio", "normalised_creepage", "creepage_angle",
+                     "normalised_spin"]
+    assert np.exp(axes[0].nodes[[0, -1]]) == pytest.approx([0.1, 10.0])
+    assert 1.0 in axes[1].nodes
+    check = spec.make_check_points(axes, "coarse")
+    assert check.shape[1] == 5          # last column: Poisson's ratio in the stated range
+    assert np.all((check[:, 4] >= 0.25) & (check[:, 4] <= 0.31))
+    phys = exact_table_inverse(*check[:, :4].T, check[:, 4])
+    back = exact_table_coordinates(**phys)
+    np.testing.assert_allclose(np.column_stack(back[:4]), check[:, :4], atol=1e-12)

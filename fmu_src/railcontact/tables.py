@@ -841,7 +841,8 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, norma
     With Kalker's coefficients C_ij(a0/b0, nu), ``w_sat = pi^2 (1 + nu) mu p0 / E`` and
     ``p0 = 3 N / (2 pi a0 b0)``, the normalised creepages are
 
-        u_x = C11 xi_x / w_sat,   u_y = C22 xi_y / w_sat,   sigma = sqrt(a0 b0) C23 phi / w_sat.
+        u_x = C11 xi_x / w_sat,   u_y = C22 xi_y / w_sat,   sigma = sqrt(a0 b0) C23 phi / w_sat,
+        tau = |phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat.
 
     In these units Kalker's linear theory reads ``T / (mu N) = -(3 pi / 4) v`` with the
     combined creepage ``v = (u_x, u_y + sigma)``, and the modified strip theory is
@@ -851,7 +852,12 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, norma
     mirroring y maps (u_y, sigma, T_y) to their negatives. So the table covers v_x >= 0,
     sigma >= 0, with coordinates
 
-        rho = |v|,  theta = atan2(v_y, v_x) in [-pi/2, pi/2],  sigma >= 0,
+        rho = |v|,  theta = atan2(v_y, v_x) in [-pi/2, pi/2],  tau >= 0.
+
+    tau measures the spin by the rigid slip it causes at the edges of the ellipse (phi b0 in
+    x, phi a0 in y) in units of the saturation creepages w_sat/C11, w_sat/C22; sigma (the
+    linear theory's measure) would crowd the effect of spin on T_x into a tiny range for
+    a0 < b0, where C23 is small.
 
     and holds the force in the frame of v: ``T / (mu N) = -(f_par e + f_perp e_perp)`` with
     ``e = (cos theta, sin theta)``, ``e_perp = (-sin theta, cos theta)``. Then f_par is close to
@@ -861,7 +867,7 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, norma
     Returns
     -------
     tuple of ndarray
-        ``(log_aspect_ratio, rho, theta, sigma, sign_x, sign_y, mu N, w_sat)``; the forces of
+        ``(log_aspect_ratio, rho, theta, tau, sign_x, sign_y, mu N, w_sat)``; the forces of
         the reduced problem are multiplied by ``sign_x`` (T_x) and ``sign_y`` (T_y).
     """
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.asarray(v, dtype=float) for v in (
@@ -881,10 +887,11 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, norma
     v_y = u_y * sign_y + sig
     rho = np.hypot(v_x, v_y)
     theta = np.arctan2(v_y, v_x)
-    return np.log(g), rho, theta, sig, sign_x, sign_y, mu * n_load, w_sat
+    tau = np.abs(phi) * np.hypot(b0 * c11, a0 * c22) / w_sat
+    return np.log(g), rho, theta, tau, sign_x, sign_y, mu * n_load, w_sat
 
 
-def exact_table_inverse(log_aspect_ratio, rho, theta, sigma, poisson_ratio):
+def exact_table_inverse(log_aspect_ratio, rho, theta, tau, poisson_ratio):
     """Physical inputs on :data:`EXACT_REFERENCE_CONTACT` for table coordinates.
 
     Returns
@@ -904,9 +911,11 @@ def exact_table_inverse(log_aspect_ratio, rho, theta, sigma, poisson_ratio):
     w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
     v_x = rho * np.cos(theta)
     v_y = rho * np.sin(theta)
+    phi = tau * w_sat / np.hypot(b0 * c11, a0 * c22)
+    sigma = np.sqrt(a0 * b0) * c23 * phi / w_sat
     return dict(creepage_longitudinal=v_x * w_sat / c11,
                 creepage_lateral=(v_y - sigma) * w_sat / c22,
-                spin=sigma * w_sat / (np.sqrt(a0 * b0) * c23),
+                spin=phi,
                 normal_load=np.full(g.shape, n_load), a0=a0, b0=b0,
                 youngs_modulus=np.full(g.shape, e_mod), poisson_ratio=nu,
                 friction_coefficient=np.full(g.shape, mu))
@@ -919,12 +928,12 @@ class ExactCreepTable:
 
     The table holds the force over mu N in the frame of the combined creepage (f_par,
     f_perp), the spin moment M_z/(mu N sqrt(a0 b0)) and the stick area fraction over
-    (ln(a0/b0), rho, theta, sigma) (see :func:`exact_table_coordinates`),
+    (ln(a0/b0), rho, theta, tau) (see :func:`exact_table_coordinates`),
     computed by the solver at one fixed grid (file attributes ``solver_grid``): the table's
     recorded accuracy is against that solver, whose own discretisation error is stated in the
     file (``solver_accuracy``).
 
-    **Out of grid:** a0/b0 outside the table's range, rho or sigma beyond their last nodes
+    **Out of grid:** a0/b0 outside the table's range, rho or tau beyond their last nodes
     (very large creepage or spin) and Poisson's ratio outside the file's
     ``poisson_ratio_range`` raise ``ValueError`` (use the analytic
     :func:`railcontact.creep_force_3d` there). theta always lies in the grid. The magnitude of the force is never above mu N: if the
@@ -945,8 +954,9 @@ class ExactCreepTable:
                                                          "stick_area_fraction")]
         self.poisson_ratio_range = tuple(_attr_list(table.attrs["poisson_ratio_range"]))
         ax = {a["name"]: a for a in table.axes}
-        self._g_range = (float(np.exp(ax["log_aspect_ratio"]["nodes"][0])),
-                         float(np.exp(ax["log_aspect_ratio"]["nodes"][-1])))
+        # the a0/b0 range stated by the file, widened by rounding of exp(ln(0.1)) etc.
+        self._g_range = (float(np.exp(ax["log_aspect_ratio"]["nodes"][0])) * (1 - 1e-12),
+                         float(np.exp(ax["log_aspect_ratio"]["nodes"][-1])) * (1 + 1e-12))
         self._rho_max = float(ax["normalised_creepage"]["nodes"][-1])
         self._sigma_max = float(ax["normalised_spin"]["nodes"][-1])
 
@@ -978,7 +988,7 @@ class ExactCreepTable:
         check_range("normalised_creepage", rho, "1", 0.0, self._rho_max,
                     condition="|(C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)| / w_sat, " + where)
         check_range("normalised_spin", sig, "1", 0.0, self._sigma_max,
-                    condition="sqrt(a0 b0) C23 |phi| / w_sat, " + where)
+                    condition="|phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat, " + where)
         pts = np.stack([np.clip(v, lo_, hi_) for v, lo_, hi_ in zip(
             (s, rho, theta, sig), self._spline._lower, self._spline._upper)], axis=-1)
         vals = self._spline.evaluate(pts.reshape(-1, 4), check=False).reshape(shape + (-1,))
@@ -1026,11 +1036,12 @@ class ExactCreepTable:
         sig = abs(sig)
         v_y = c22 * xi_y / w_sat * sy + sig
         rho = math.hypot(v_x, v_y)
-        if rho > self._rho_max or sig > self._sigma_max:
+        tau = abs(phi) * math.hypot(b0 * c11, a0 * c22) / w_sat
+        if rho > self._rho_max or tau > self._sigma_max:
             return None
         theta = math.atan2(v_y, v_x)
         s = min(max(math.log(g), self._spline._lower[0]), self._spline._upper[0])
-        vals = self._spline.evaluate_point((s, rho, theta, sig))
+        vals = self._spline.evaluate_point((s, rho, theta, tau))
         f_par, f_perp = vals[self._idx[0]], vals[self._idx[1]]
         mag = math.hypot(f_par, f_perp)
         n_mu = mu * n_load * ((1.0 - 2.0**-51) / mag if mag > 1.0 else 1.0)
