@@ -143,11 +143,17 @@ def carter_creep_force(creepage, normal_load, radius, youngs_modulus, poisson_ra
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Sec. 2.4.2; F.W. Carter (1926).
     """
     xi = _creepage(creepage)
-    r_a0 = carter_stick_ratio(xi, normal_load, radius, youngs_modulus, poisson_ratio,
-                              friction_coefficient)
+    xi_c = carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
+                                    friction_coefficient)
     mu = np.asarray(friction_coefficient, dtype=float)
     n_load = np.asarray(normal_load, dtype=float)
-    return (-np.sign(xi) * mu * n_load * (1.0 - r_a0**2))[()]
+    # 1 - r^2 written as f (2 - f) with f = 1 - r = min(|xi|/xi_c, 1), f computed directly: no
+    # cancellation at tiny creepage (1 - r**2 loses all digits below |xi|/xi_c ~ 1e-16).
+    xi_b, xi_c = np.broadcast_arrays(xi, xi_c)
+    frac = np.divide(np.abs(xi_b), xi_c, out=np.where(xi_b == 0.0, 0.0, np.inf),
+                     where=xi_c > 0)
+    frac = np.minimum(frac, 1.0)
+    return (-np.sign(xi) * mu * n_load * (frac * (2.0 - frac)))[()]
 
 
 def _half_ellipse(x, a):
