@@ -175,8 +175,9 @@ def _check_contact_row(row, tol):
 
 @pytest.mark.parametrize("row", _rows("30x30"), ids=_ids(_rows("30x30")))
 def test_contact_hertz3d_30x30(row):
-    # measured agreement: <= 5e-6 of mu N on all 21 cases (CONTACT ran with EPS = 1e-5)
-    _check_contact_row(row, 2e-5)
+    # measured agreement: <= 4.9e-6 of mu N on all 21 cases, i.e. CONTACT's printed precision
+    # (5 decimals); Mz to 3.9e-5 relative
+    _check_contact_row(row, 1e-5)
 
 
 _SLOW_ROWS = _rows("60x60") + _rows("120x30") + _rows("120x60")
@@ -185,7 +186,8 @@ _SLOW_ROWS = _rows("60x60") + _rows("120x30") + _rows("120x60")
 @pytest.mark.slow
 @pytest.mark.parametrize("row", _SLOW_ROWS, ids=_ids(_SLOW_ROWS))
 def test_contact_hertz3d_finer_grids(row):
-    _check_contact_row(row, 3e-5)
+    # measured max 4.9e-6 of mu N on 60x60, 120x30 and 120x60 (63 cases)
+    _check_contact_row(row, 1e-5)
 
 
 def test_first_order_convergence_and_richardson():
