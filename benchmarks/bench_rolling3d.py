@@ -8,7 +8,7 @@ cache) and the error of Fx, Fy against the finest-grid CONTACT value (240x60, th
 proxy of tests/data/contact_hertz3d_grid_convergence.csv; that value has its own first-order
 error, about 1e-3 of mu N) are printed, in units of mu N.
 
-Run:  python benchmarks/bench_rolling3d.py [--repeat 3] [--cases all]
+Run:  python benchmarks/bench_rolling3d.py [--repeat 3] [--cases all] [--tolerance 1e-6]
 
 Reference figures (issue 9): a scratch implementation 40x20 15 ms (0.9 % max error against the
 continuum), 40x40 67 ms, Richardson 40x20 -> 80x40 0.23-0.38 s (0.4-0.5 %); CONTACT 38 ms at
@@ -56,6 +56,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--cases", choices=["default", "all"], default="default")
+    parser.add_argument("--tolerance", type=float, default=1e-6,
+                        help="relative traction change per sweep at which to stop")
     opts = parser.parse_args()
     print(f"{'a/b':>4} {'case':<13} {'grid':<14} {'cpu [ms]':>9} {'wall [ms]':>9} {'sweeps':>6} "
           f"{'err Fx':>8} {'err Fy':>8}   (errors vs CONTACT 240x60, units of mu N)")
@@ -64,11 +66,12 @@ def main():
         mu_n = args["friction_coefficient"] * args["normal_load"]
         fx_ref, fy_ref = float(row["fx_over_mu_fn"]), float(row["fy_over_mu_fn"])
         for mx, my, rich in GRIDS:
-            solve_rolling_3d(**args, mx=mx, my=my, richardson=rich)  # warm caches
+            kw = dict(mx=mx, my=my, richardson=rich, tolerance=opts.tolerance)
+            solve_rolling_3d(**args, **kw)  # warm caches
             best = wall = float("inf")
             for _ in range(opts.repeat):
                 t0, w0 = time.process_time(), time.perf_counter()
-                res = solve_rolling_3d(**args, mx=mx, my=my, richardson=rich)
+                res = solve_rolling_3d(**args, **kw)
                 best = min(best, time.process_time() - t0)
                 wall = min(wall, time.perf_counter() - w0)
             label = f"{mx}x{my}" + (f"->{2 * mx}x{2 * my}" if rich else "")
