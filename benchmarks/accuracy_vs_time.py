@@ -650,7 +650,7 @@ def family_friction(quick):
 
 def family_other(quick):
     """Non-steady and roughness closed forms: timed; error only where a limit is exact."""
-    fam = Family("Non-steady & roughness", "closed forms of Ch. 6-7",
+    fam = Family("Non-steady & one asperity", "closed forms of Ch. 6-7",
                  "exact limits where available (see rows); otherwise timing only")
     try:
         from railcontact.nonsteady import nonsteady_transfer_function_normalised as h
@@ -680,6 +680,53 @@ def family_other(quick):
     fam.notes.append("no independent reference is run for these closed forms here (the transient "
                      "half-space solver, reference.halfspace2d.solve_transient_rolling_2d, and the "
                      "two-patch reference comparison are in the modules' tests); no tables exist")
+    return fam
+
+
+def family_two_patch(quick):
+    """Two contact patches of a double asperity (Ch. 6.4): the polynomial degree knob."""
+    from railcontact import roughness as rg
+    from railcontact.reference.halfspace2d import solve_normal_2d
+
+    l2 = -20.0                                   # asperity A of Fig. 6.5
+    z = rg.double_asperity_coefficients(l2)
+    d = 1 / (16 * abs(l2))
+    n_load = 4.0e6
+    ref_deg = 12 if quick else 24
+    fam = Family("Roughness, two patches (Ch. 6)",
+                 f"half-width and centre of the leading patch, double asperity A of Fig. 6.5 "
+                 f"(lambda2 = {l2} 1/m), N = {n_load:g} N/m",
+                 f"two_patch_normal_contact at degree {ref_deg} (Chebyshev cross field); "
+                 "error max(|a - a_ref|, |c - c_ref|)/a_ref")
+
+    def solve(**kw):
+        return rg.two_patch_normal_contact(z, n_load, E, NU, (-d, d), **kw).patches[1]
+
+    ref = solve(degree=ref_deg)
+    a_ref, c_ref = ref.half_width, ref.centre
+    knobs = ([dict(degree=4), dict(degree=8), dict(cross_influence=False)] if quick else
+             [dict(degree=4), dict(degree=6), dict(degree=8), dict(degree=12), dict(degree=16),
+              dict(degree=8, expansion="taylor"), dict(degree=16, expansion="taylor"),
+              dict(cross_influence=False)])
+    for kw in knobs:
+        p = solve(**kw)
+        err = max(abs(p.half_width - a_ref), abs(p.centre - c_ref)) / a_ref
+        t1 = median_time(lambda: solve(**kw), repeat=3, warmup=0, budget=2.0)
+        label = ("no cross influence" if kw.get("cross_influence") is False else
+                 f"degree {kw['degree']}, {kw.get('expansion', 'chebyshev')}")
+        fam.rows.append(Row(fam.name, "polynomial approach, two patches (6.12)-(6.25)", label,
+                            err, t1))
+    for n in ([300] if quick else [300, 600, 1200, 2400]):
+        def one(n=n):
+            return solve_normal_2d(lambda x: np.polynomial.polynomial.polyval(x, z), n_load,
+                                   E, NU, -1.4 * d, 1.4 * d, n)
+        t0 = time.perf_counter()
+        r = one()
+        t1 = time.perf_counter() - t0
+        s_, e_ = r.zones[1]
+        err = max(abs(0.5 * (e_ - s_) - a_ref), abs(0.5 * (e_ + s_) - c_ref)) / a_ref
+        fam.rows.append(Row(fam.name, "half-space solver (reference 2-D)", f"{n} elements",
+                            err, t1))
     return fam
 
 
@@ -813,7 +860,7 @@ def plot(families, contact_errors, path):
     ax.set_ylabel("max error against the family's project reference (see table) [-]")
     ax.set_title("All families: Pareto frontiers (errors at 1e-16 are exact to round-off)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower left")
+    ax.legend(fontsize=8, loc="lower right")
 
     ax = axes[1]
     fam3 = next((f for f in families if f.name == "3-D creep forces"), None)
@@ -1094,7 +1141,8 @@ def main(argv=None):
     parser.add_argument("--out", default=str(ROOT / "docs"),
                         help="output directory (default: the checkout's docs/)")
     parser.add_argument("--skip", nargs="*", default=[],
-                        help="families to skip: 2d corrugated 3d wear friction other fmu")
+                        help="families to skip: 2d corrugated 3d wear friction other "
+                             "roughness fmu")
     args = parser.parse_args(argv)
     out = Path(args.out)
     if args.quick:
@@ -1108,6 +1156,7 @@ def main(argv=None):
     steps = [("2d", family_2d_hertz), ("corrugated", family_2d_corrugated),
              ("3d", lambda q: family_3d(q, work)), ("wear", family_wear),
              ("friction", family_friction), ("other", family_other),
+             ("roughness", family_two_patch),
              ("fmu", lambda q: family_fmu(q, work))]
     try:
         for key, fn in steps:

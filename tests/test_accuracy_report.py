@@ -15,7 +15,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 FAMILIES = ["2-D Hertz/Carter", "2-D corrugated rail", "3-D creep forces", "Corrugation & wear",
-            "Friction (Ch. 5)", "Non-steady & roughness", "FMU (per step)"]
+            "Friction (Ch. 5)", "Non-steady & one asperity", "Roughness, two patches (Ch. 6)",
+            "FMU (per step)"]
 
 
 @pytest.fixture(scope="module")
