@@ -911,7 +911,8 @@ def plot(families, contact_errors, path):
     ax.set_title("3-D creep forces against CONTACT's converged values (a/b = 1, 240x60),\n"
                  "with the peers' published times")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="lower left")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
@@ -1018,6 +1019,14 @@ def answers(fams, series, amp, contact_errors):
         lines.append(f"| {a['ratio']:g} | {a['eps']:g} | {a['kkrz']:.3f} | {a['wear']:.2e} | "
                      f"{a['force']:.2e} | {a['force_var']:.2e} |")
     lines.append("")
+    if amp:
+        cw = max(a["wear"] / a["kkrz"] ** 2 for a in amp)
+        ct = max(a["force"] / a["kkrz"] ** 2 for a in amp)
+        lines.append(f"Rule of thumb from this table: relative wear-coefficient error <= "
+                     f"{cw:.2g} (k^2 R |Z|)^2 and force error <= {ct:.2g} (k^2 R |Z|)^2 mu N "
+                     "(k^2 R |Z| < 1 is the no-contact-loss condition (4.2)); e.g. a 1 % wear "
+                     f"error needs k^2 R |Z| ~ {math.sqrt(0.01 / cw):.2f}.")
+        lines.append("")
     lines.append("The error grows like the square of the amplitude (the first harmonic has no "
                  "O(eps) correction) and with k^2 R |Z| = eps * 2 pi a0/L, the distance to "
                  "contact loss (4.2). Error of the linear corrugated-rail force at one position "
