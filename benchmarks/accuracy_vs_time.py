@@ -551,7 +551,7 @@ def series_study(quick):
             true = np.max(np.abs(d.pressure - ref.pressure)) / pmax
             t1 = per_call(lambda: contact_distributions(*args, degree=deg), repeat=3,
                           budget=1.0)
-            out.append(dict(ka=float(k * ref.pressure.size * 0 + ka), degree=deg,
+            out.append(dict(ka=ka, degree=deg,
                             ratio=d.truncation_ratio, estimate=d.truncation_error,
                             true=true, t=t1))
     return out
@@ -668,7 +668,7 @@ def family_other(quick):
     try:
         from railcontact import roughness as rg
         from railcontact import polynomial as poly
-        n_load, mu, curv = 1.0e6, 0.3, 2.0       # Hertz limit: skewness = flatness = 0
+        n_load, curv = 1.0e6, 2.0       # Hertz limit: skewness = flatness = 0
         c = rg.asperity_normal_contact(n_load, curv, 0.0, 0.0, E, NU)
         ref = poly.solve_normal_polynomial([0, 0, curv / 2], n_load, E, NU)
         err = abs(c.half_width / ref.half_width - 1)
@@ -929,7 +929,7 @@ def _find(fam, method_start, knob_start=""):
 def answers(fams, series, amp, contact_errors):
     """The four questions of issue 7, answered with this run's numbers."""
     f = {fam.name: fam for fam in fams}
-    f3, f2, fw = f.get("3-D creep forces"), f.get("2-D Hertz/Carter"), f.get("Corrugation & wear")
+    f3, f2 = f.get("3-D creep forces"), f.get("2-D Hertz/Carter")
     fc, ff = f.get("2-D corrugated rail"), f.get("FMU (per step)")
     lines = ["## Answers (this run)", ""]
     # 1. error budget
