@@ -53,12 +53,12 @@ def lookups():
         t_ex = per_call(lambda: ex.creep_force_3d(*args), 2000)
         print(f"ExactCreepTable.creep_force_3d (checked)   : {t_ex * 1e6:7.2f} us")
         knots = tuple(a["knots"] for a in ex.table.axes)
-        coef = ex.table.spline._coef[:, 0].reshape(tuple(sp._shape))
+        coef = ex.table.spline._coef[0].reshape(tuple(sp._shape))
         nd = NdBSpline(knots, coef, 3)
         t_nd = per_call(lambda: nd(p), 2000)
         print(f"scipy NdBSpline point (1 variable)         : {t_nd * 1e6:7.2f} us")
         grid = tuple(a["nodes"] for a in ex.table.axes)
-        rgi = RegularGridInterpolator(grid, ex.table.values["force_ratio_longitudinal"],
+        rgi = RegularGridInterpolator(grid, ex.table.values["force_ratio_parallel"],
                                       method="cubic")
         t_rgi = per_call(lambda: rgi(p), 200)
         print(f"scipy RegularGridInterpolator cubic point  : {t_rgi * 1e6:7.2f} us")
@@ -96,7 +96,10 @@ def lookups():
         t_nd = per_call(lambda: nd(pts), 1)
         print(f"scipy NdBSpline batch (1 variable)         : {t_nd / n * 1e9:7.1f} ns/point")
         small = {k: (v[:20000] if np.ndim(v) else v) for k, v in case.items()}
-        small["poisson_ratio"] = 0.28
+        for key, lim in (("creepage_longitudinal", 1e-3), ("creepage_lateral", 1e-3),
+                         ("spin", 0.3)):
+            small[key] = rng.uniform(-lim, lim, 20000)   # inside the exact table's range
+        small["normal_load"] = rng.uniform(6e4, 1e5, 20000)
         t_exb = per_call(lambda: ex.creep_force_3d(**small), 1)
         print(f"ExactCreepTable.creep_force_3d batch       : {t_exb / 20000 * 1e9:7.1f} "
               "ns/point")

@@ -213,15 +213,10 @@ def _basis_ders(t, span, x, nder, out, ndu, a, left, right):
 
 
 @njit(cache=True)
-def _tensor_eval(coef, shape, knots, knot_start, points, deriv, out):
-    """Evaluate a tensor-product cubic spline (all variables) at many points.
-
-    coef : (prod(shape), n_var) C-ordered coefficients (grid index first); knots: all knot vectors concatenated,
-    axis d starting at knot_start[d] (length shape[d] + 4); points (n_pts, D); deriv (D,)
-    derivative orders (0, 1 or 2); out (n_pts, n_var).
-    """
+def _offsets(shape):
+    """Strides of the flattened coefficient grid and the relative flat offsets of the
+    (SPLINE_DEGREE+1)**D coefficients one point touches (last axis fastest)."""
     ndim = shape.shape[0]
-    nvar = coef.shape[1]
     p1 = SPLINE_DEGREE + 1
     strides = np.empty(ndim, dtype=np.int64)
     s = 1
@@ -229,19 +224,33 @@ def _tensor_eval(coef, shape, knots, knot_start, points, deriv, out):
         strides[d] = s
         s *= shape[d]
     ncomb = p1 ** ndim
-    # relative flat offsets of the p1**D coefficients touched by one point (constant)
     offset = np.zeros(ncomb, dtype=np.int64)
     block = 1
     for d in range(ndim - 1, -1, -1):
         for c in range(block, block * p1):
             offset[c] = offset[c % block] + (c // block) * strides[d]
         block *= p1
-    weight = np.empty(ncomb)
-    acc = np.empty(nvar)
-    tmp = np.empty((3, p1))
-    ndu = np.empty((p1, p1))
-    work = np.empty((2, p1))
-    left = np.empty(p1)
+    return strides, offset
+
+
+@njit(cache=True, fastmath=True)
+def _tensor_eval(coef, shape, knots, knot_start, strides, offset, points, deriv, out, work):
+    """Evaluate a tensor-product cubic spline (all variables) at many points.
+
+    coef : (n_var, prod(shape)) C-ordered coefficients (variable first); knots: all knot
+    vectors concatenated, axis d starting at knot_start[d] (length shape[d] + 4); strides,
+    offset from :func:`_offsets`; points (n_pts, D); deriv (D,) derivative orders (0, 1 or
+    2); out (n_pts, n_var); work: float scratch of length >= 4**D + 40.
+    """
+    ndim = shape.shape[0]
+    nvar = coef.shape[0]
+    p1 = SPLINE_DEGREE + 1
+    ncomb = offset.shape[0]
+    weight = work[:ncomb]
+    tmp = work[ncomb:ncomb + 12].reshape((3, p1))
+    ndu = work[ncomb + 12:ncomb + 28].reshape((p1, p1))
+    wrk = work[ncomb + 28:ncomb + 36].reshape((2, p1))
+    left = work[ncomb + 36:ncomb + 40]
     right = np.empty(p1)
     for ip in range(points.shape[0]):
         base = 0
@@ -249,7 +258,7 @@ def _tensor_eval(coef, shape, knots, knot_start, points, deriv, out):
         for d in range(ndim - 1, -1, -1):
             t = knots[knot_start[d]:knot_start[d] + shape[d] + p1]
             span = _find_span(t, shape[d], points[ip, d])
-            _basis_ders(t, span, points[ip, d], deriv[d], tmp, ndu, work, left, right)
+            _basis_ders(t, span, points[ip, d], deriv[d], tmp, ndu, wrk, left, right)
             base += (span - SPLINE_DEGREE) * strides[d]
             if block == 1:
                 for j in range(p1):
@@ -261,14 +270,11 @@ def _tensor_eval(coef, shape, knots, knot_start, points, deriv, out):
                         weight[j * block + c] = bj * weight[c]
             block *= p1
         for v in range(nvar):
-            acc[v] = 0.0
-        for c in range(ncomb):
-            w = weight[c]
-            row = base + offset[c]
-            for v in range(nvar):
-                acc[v] += w * coef[row, v]
-        for v in range(nvar):
-            out[ip, v] = acc[v]
+            cv = coef[v]
+            acc = 0.0
+            for c in range(ncomb):
+                acc += weight[c] * cv[base + offset[c]]
+            out[ip, v] = acc
 
 
 class TensorSpline:
@@ -294,15 +300,17 @@ class TensorSpline:
         coef = np.asarray(coefficients, dtype=float)
         self.ndim = len(self.axes)
         self._shape = np.array(coef.shape[1:], dtype=np.int64)
-        self._coef = np.ascontiguousarray(coef.reshape(coef.shape[0], -1).T)
+        self._coef = np.ascontiguousarray(coef.reshape(coef.shape[0], -1))
         self._knots = np.ascontiguousarray(np.concatenate([a["knots"] for a in self.axes]))
         self._knot_start = np.cumsum([0] + [len(a["knots"]) for a in self.axes[:-1]]).astype(np.int64)
         self._lower = np.array([a["nodes"][0] for a in self.axes])
         self._upper = np.array([a["nodes"][-1] for a in self.axes])
         self._hold = np.array([a.get("out_of_range", "error") == "hold" for a in self.axes])
         self._zero = np.zeros(self.ndim, dtype=np.int64)
+        self._strides, self._offset = _offsets(self._shape)
+        self._work = np.zeros(4**self.ndim + 40)
         self._pt_buf = np.zeros((1, self.ndim))
-        self._out_buf = np.zeros((1, self._coef.shape[1]))
+        self._out_buf = np.zeros((1, self._coef.shape[0]))
 
     def _check(self, pts):
         upper = np.where(self._hold, np.inf, self._upper)
@@ -341,15 +349,20 @@ class TensorSpline:
             beyond = pts > self._upper
             if np.any(beyond & self._hold):
                 pts = np.where(beyond & self._hold, self._upper, pts)
-                out = np.empty((pts.shape[0], self._coef.shape[1]))
-                _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, pts,
-                             deriv, out)
+                out = np.empty((pts.shape[0], self._coef.shape[0]))
+                self._eval(pts, deriv, out)
                 held = np.any(beyond[:, self._hold & (deriv > 0)], axis=1)
                 out[held] = 0.0
                 return out[0] if single else out
-        out = np.empty((pts.shape[0], self._coef.shape[1]))
-        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, pts, deriv, out)
+        out = np.empty((pts.shape[0], self._coef.shape[0]))
+        self._eval(pts, deriv, out)
         return out[0] if single else out
+
+    def _eval(self, pts, deriv, out):
+        if deriv.shape != (self.ndim,) or np.any((deriv < 0) | (deriv > 2)):
+            raise ValueError(f"derivative must be {self.ndim} orders in 0..2; got {deriv}")
+        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, self._strides,
+                     self._offset, pts, deriv, out, np.empty_like(self._work))
 
     def evaluate_point(self, point, derivative=None):
         """One point, no range check (fast path; the caller guarantees the range).
@@ -360,8 +373,8 @@ class TensorSpline:
         buf = self._pt_buf
         buf[0, :] = point
         deriv = self._zero if derivative is None else np.asarray(derivative, dtype=np.int64)
-        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, buf, deriv,
-                     self._out_buf)
+        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, self._strides,
+                     self._offset, buf, deriv, self._out_buf, self._work)
         return self._out_buf[0].copy()
 
 
