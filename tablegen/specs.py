@@ -142,7 +142,10 @@ EXACT_SIGMA_MAX = 4.0
 def _exact_axes(resolution):
     n_g, n_r, n_t, n_s = _EXACT_COUNTS[resolution]
     u = np.linspace(0.0, 1.0, n_r + 1)
-    rho = np.r_[1.0 - (0.5 * (1.0 + np.cos(np.pi * u))) ** 2, 1.25, 1.6, 2.2, EXACT_RHO_MAX]
+    rho = 1.0 - (0.5 * (1.0 + np.cos(np.pi * u))) ** 2
+    # one extra node near 0: the slope at rho = 0 (linear theory) sets the relative accuracy
+    # at tiny creepage
+    rho = np.r_[0.0, 0.3 * rho[1], rho[1:], 1.25, 1.6, 2.2, EXACT_RHO_MAX]
     sig = EXACT_SIGMA_MAX * np.linspace(0.0, 1.0, n_s) ** 1.5
     return [
         Axis("log_aspect_ratio", np.linspace(np.log(0.1), np.log(10.0), n_g), "1",
@@ -266,4 +269,85 @@ register(TableSpec(
             "phi >= 0; the check points draw nu from poisson_ratio_range, so the recorded "
             "accuracy includes using the nu = 0.28 table at other nu in that range"),
     },
+))
+
+
+# --------------------------------------------------------------------------------------------
+# Corrugation and wear: linearised response coefficients (Nielsen Ch. 4), railcontact.wear
+# --------------------------------------------------------------------------------------------
+
+_CW_COUNTS = {"coarse": (8, 31, 16), "default": (15, 61, 41), "fine": (30, 121, 81)}
+_CW_ZERO = ("patch_shift_real", "half_width_imag", "tau_imag")  # identically 0: not stored
+_CW_FIELDS = ("patch_shift", "half_width", "stick_half_width", "tangential_force", "tau",
+              "tau_star", "wear")
+_CW_NAMES = {
+    "patch_shift": "patch shift Delta",
+    "half_width": "contact half-width a",
+    "stick_half_width": "stick-zone half-width a*",
+    "tangential_force": "tangential force T",
+    "tau": "passage time tau",
+    "tau_star": "passage time through the stick zone tau*",
+    "wear": "wear w = (W1 + i W2) a0 / (K mu^2 N), model material_point",
+}
+
+
+def _cw_axes(resolution):
+    n_log, n_lin, n_r = _CW_COUNTS[resolution]
+    s = np.linspace(0.0, 1.0, n_r)
+    ratio = np.r_[np.geomspace(0.01, 0.1, n_log)[:-1], np.linspace(0.1, 1.0, n_lin)]
+    return [
+        Axis("a0_over_wavelength", ratio, "1",
+             "a0/L, contact half-length over corrugation wavelength",
+             comment="a0/L from 0.01 to 1 (L/a0 from 1 to 100): log-spaced below 0.1, "
+                     "uniform above (the Bessel functions of k a0 = 2 pi a0/L oscillate)"),
+        Axis("stick_ratio", 0.5 - 0.5 * np.cos(np.pi * s), "1",
+             "r_a0 = a0*/a0, stick-zone half-width over contact half-width (1 = full stick)",
+             comment="nodes crowd towards 0 and 1 (0.5 - 0.5 cos(pi s), s uniform)"),
+    ]
+
+
+def corrugation_wear_function(points):
+    """Real and imaginary parts of :func:`railcontact.wear.linear_response` at (a0/L, r_a0)."""
+    from railcontact.wear import linear_response  # noqa: PLC0415
+
+    ratio = points[:, 0]
+    r = np.clip(points[:, 1], 0.0, 1.0)
+    res = linear_response(ratio, r)
+    cols = []
+    for f in _CW_FIELDS:
+        v = np.asarray(getattr(res, f), dtype=complex)
+        for part, val in (("real", v.real), ("imag", v.imag)):
+            if f"{f}_{part}" not in _CW_ZERO:
+                cols.append(val)
+    return np.stack(cols, axis=1)
+
+
+_CW_VARIABLES = []
+for _f in _CW_FIELDS:
+    for _part, _label in (("real", "real part"), ("imag", "imaginary part")):
+        if f"{_f}_{_part}" in _CW_ZERO:
+            continue
+        _CW_VARIABLES.append(Variable(
+            f"{_f}_{_part}", "1", f"{_label} of the normalised first-harmonic response of the "
+            f"{_CW_NAMES[_f]} (railcontact.wear.linear_response)", error_target=1e-4))
+
+register(TableSpec(
+    name="corrugation_response",
+    title="Linearised corrugation and wear response of the 2-D rolling contact "
+          "(Nielsen 1998, Ch. 4)",
+    axes=_cw_axes,
+    function=corrugation_wear_function,
+    variables=_CW_VARIABLES,
+    references=(f"{THESIS}, Sec. 4.1-4.3, Eqs. (4.1)-(4.98) with the errata recorded in "
+                "railcontact.corrugation and railcontact.wear"),
+    method="railcontact.wear.linear_response(a0/L, r_a0) (wear_model='material_point')",
+    n_check={"coarse": 300, "default": 2000, "fine": 5000},
+    chunk_size=256,
+    requires=("railcontact.wear",),
+    attributes={"normalisation": (
+        "coefficients of one harmonic per unit relative corrugation amplitude, normalised as "
+        "in railcontact.wear.linear_response; complex values stored as _real/_imag pairs "
+        "(patch_shift_real, half_width_imag and tau_imag are identically 0 and not stored); the "
+        "growth factor per passage is 1 - 2 wear_number * wear_real "
+        "(railcontact.evolution.growth_factor)")},
 ))

@@ -478,3 +478,28 @@ def test_exact_table_recorded_rms_rechecked_on_many_points(exact_table):
         acc = exact_table.table.accuracy()[name]
         assert err.max() <= 1.5 * acc["max_abs_error"], (name, err.max(), acc)
         assert np.sqrt(np.mean(err**2)) <= 2.0 * acc["rms_error"], (name, acc)
+
+
+# --------------------------------------------------------------------------------------------
+# Corrugation / wear response table against railcontact.wear.linear_response
+# --------------------------------------------------------------------------------------------
+
+@pytest.mark.skipif(not (tables_directory() / "corrugation_response.nc").exists(),
+                    reason="tables/corrugation_response.nc not built")
+def test_corrugation_table_rechecked_against_linear_response():
+    from railcontact.wear import linear_response
+
+    table = Table.from_file(default_table_path("corrugation_response"))
+    rng = np.random.default_rng(31)
+    ratio = np.exp(rng.uniform(np.log(0.01), np.log(1.0), 3000))
+    r = rng.uniform(0.0, 1.0, 3000)
+    ref = linear_response(ratio, r)
+    got = table.spline.evaluate(np.column_stack([ratio, r]))
+    acc = table.accuracy()
+    for k, name in enumerate(table.variables):
+        field, part = name.rsplit("_", 1)
+        want = getattr(np.asarray(getattr(ref, field), dtype=complex), part)
+        err = np.max(np.abs(got[:, k] - want))
+        assert err <= 1e-4 and err <= 2.0 * acc[name]["max_abs_error"] + 1e-12, (name, err)
+    with pytest.raises(ValueError, match="a0_over_wavelength must be in"):
+        table("wear_real", [[1.5, 0.5]])
