@@ -85,7 +85,7 @@ def _run(spec, tasks, workdir, scheduler, workers, progress):
         if scheduler is None:
             cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1,
                                    threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+                                   dashboard_address=":0")
             client = Client(cluster)
         else:
             cluster = None
