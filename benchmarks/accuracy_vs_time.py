@@ -999,8 +999,9 @@ def answers(fams, series, amp, contact_errors):
                      f"{direct.t_single / tab.t_single:.1f}x; in a batch "
                      f"{_fmt_t(tab.t_batch)} vs {_fmt_t(direct.t_batch)} per point "
                      f"({direct.t_batch / tab.t_batch:.2f}x).")
-        for r in r3:
-            if r.knob in ("24x24", "48x48", "12x12"):
+        for r in (next((r for r in r3 if r.knob == k), None) for k in ("12x12", "24x24",
+                                                                         "48x48")):
+            if r is not None:
                 lines.append(f"* vs the 3-D exact theory at {r.knob} ({_fmt_t(r.t_single)}): "
                              f"{r.t_single / tab.t_single:,.0f}x faster, at an error of "
                              f"{tab.error:.2e} (table, vs exact theory) against {r.error:.2e} "
