@@ -50,6 +50,16 @@ def main(argv=None):
                    help="where finished chunks are kept (resume after a failure)")
     b.add_argument("--progress", dest="progress", action="store_true", default=None)
     b.add_argument("--no-progress", dest="progress", action="store_false")
+    c = sub.add_parser("check", help="re-measure a table file's accuracy on fresh points and "
+                                     "update its attributes")
+    c.add_argument("--only", action="append", metavar="NAME", required=True)
+    c.add_argument("--points", type=int, default=None, help="number of check points")
+    c.add_argument("--seed", type=int, default=1)
+    c.add_argument("--scheduler", default=None, metavar="ADDRESS")
+    c.add_argument("--workers", type=int, default=None)
+    c.add_argument("--output-dir", default=None, help="directory of the table files")
+    c.add_argument("--progress", dest="progress", action="store_true", default=None)
+    c.add_argument("--no-progress", dest="progress", action="store_false")
     sub.add_parser("list", help="list the table specifications")
     args = parser.parse_args(argv)
 
@@ -60,9 +70,23 @@ def main(argv=None):
             print(f"{name:28s} {state:12s} {spec.title}")
         return 0
 
-    names = args.only or [n for n, s in sorted(REGISTRY.items()) if not s.hidden]
     command = "python -m tablegen " + " ".join(shlex.quote(a) for a in
                                                (argv if argv is not None else sys.argv[1:]))
+    if args.command == "check":
+        from pathlib import Path  # noqa: PLC0415
+
+        from .build import check_table  # noqa: PLC0415
+
+        for name in args.only:
+            if name not in REGISTRY:
+                parser.error(f"--only must be one of {sorted(REGISTRY)}; got {name!r}")
+            path = (Path(args.output_dir) / f"{name}.nc") if args.output_dir else None
+            res = check_table(name, path, args.points, args.seed, args.scheduler,
+                              args.workers, progress=args.progress, command=command)
+            print(f"{name}: " + ", ".join(f"{v}: max {a['max_abs_error']:.2e} rms "
+                                          f"{a['rms_error']:.2e}" for v, a in res.items()))
+        return 0
+    names = args.only or [n for n, s in sorted(REGISTRY.items()) if not s.hidden]
     status = 0
     for name in names:
         spec = REGISTRY.get(name)

@@ -216,8 +216,7 @@ def _exact_provenance():
 def _exact_check(axes, n, rng):
     lo = np.array([a.nodes[0] for a in axes])
     hi = np.array([a.nodes[-1] for a in axes])
-    pts = lo + (hi - lo) * rng.random((n, len(axes)))
-    pts[:, 1] = EXACT_RHO_MAX * rng.random(n) ** 1.5      # more points at small creepage
+    pts = lo + (hi - lo) * rng.random((n, len(axes)))     # uniform in the grid box
     nu = rng.uniform(*EXACT_POISSON_RANGE, n)
     return np.column_stack([pts, nu])[np.argsort(pts[:, 0])]
 
@@ -251,7 +250,7 @@ register(TableSpec(
             "tolerance=1e-7) on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3, "
             f"nu = {EXACT_POISSON_RATIO}"),
     check_points=_exact_check,
-    n_check={"coarse": 100, "default": 300, "fine": 2000},
+    n_check={"coarse": 100, "default": 1000, "fine": 4000},
     chunk_size=16,
     requires=("railcontact.reference.rolling3d",),
     build_attributes=_exact_provenance,

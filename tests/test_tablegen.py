@@ -143,3 +143,26 @@ def test_exact_spec_grid_and_inverse_coordinates():
     phys = exact_table_inverse(*check[:, :4].T, check[:, 4])
     back = exact_table_coordinates(**phys)
     np.testing.assert_allclose(np.column_stack(back[:4]), check[:, :4], atol=1e-12)
+
+
+def test_check_table_rewrites_accuracy_attributes(tmp_path):
+    from tablegen.build import check_table
+
+    res = build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False)
+    out = check_table("selftest", res["path"], n_points=37, seed=5, scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False)
+    table = Table.from_file(res["path"])
+    spec = get_spec("selftest")
+    axes, _ = spec.grid("coarse")
+    rng = np.random.default_rng(5)
+    lo = np.array([a.nodes[0] for a in axes])
+    hi = np.array([a.nodes[-1] for a in axes])
+    pts = lo + (hi - lo) * rng.random((37, 2))
+    err = np.abs(table.spline.evaluate(pts) - selftest_function(pts))
+    for k, v in enumerate(table.variables):
+        assert table.variable_attrs[v]["n_check_points"] == 37
+        assert table.variable_attrs[v]["max_abs_error"] == pytest.approx(err[:, k].max(),
+                                                                         abs=1e-300)
+        assert out[v]["max_abs_error"] == table.variable_attrs[v]["max_abs_error"]
+    assert "accuracy re-checked" in table.attrs["history"]
