@@ -965,6 +965,11 @@ class ExactCreepTable:
                                                          "force_ratio_perpendicular",
                                                          "spin_moment_ratio",
                                                          "stick_area_fraction")]
+        # forces only (half the work of all four variables): creep_force_3d and the fast path
+        sp = table.spline
+        self._force_spline = TensorSpline(
+            table.axes, sp._coef[self._idx[:2]].reshape((2,) + tuple(sp._shape)),
+            ["force_ratio_parallel", "force_ratio_perpendicular"], source=str(table.path))
         self.poisson_ratio_range = tuple(_attr_list(table.attrs["poisson_ratio_range"]))
         ax = {a["name"]: a for a in table.axes}
         # the a0/b0 range stated by the file, widened by rounding of exp(ln(0.1)) etc.
@@ -980,7 +985,7 @@ class ExactCreepTable:
             path = default_table_path("creep_exact", directory)
         return cls(Table.from_file(path))
 
-    def _solve(self, args):
+    def _solve(self, args, forces_only=False):
         xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_creep_inputs(*args)
         lo, hi = self.poisson_ratio_range
         check_range("poisson_ratio", nu, "-", lo, hi,
@@ -1004,8 +1009,13 @@ class ExactCreepTable:
                     condition="|phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat, " + where)
         pts = np.stack([np.clip(v, lo_, hi_) for v, lo_, hi_ in zip(
             (s, rho, theta, sig), self._spline._lower, self._spline._upper)], axis=-1)
-        vals = self._spline.evaluate(pts.reshape(-1, 4), check=False).reshape(shape + (-1,))
-        f_par, f_perp, mz, stick = (vals[..., i] for i in self._idx)
+        if forces_only:
+            vals = self._force_spline.evaluate(pts.reshape(-1, 4), check=False)
+            f_par, f_perp = (vals[:, i].reshape(shape) for i in (0, 1))
+            mz = stick = np.zeros(shape)
+        else:
+            vals = self._spline.evaluate(pts.reshape(-1, 4), check=False).reshape(shape + (-1,))
+            f_par, f_perp, mz, stick = (vals[..., i] for i in self._idx)
         mag = np.hypot(f_par, f_perp)
         over = mag > 1.0
         scale = np.divide(1.0 - 2.0**-51, mag, out=np.ones(shape), where=over)
@@ -1027,7 +1037,7 @@ class ExactCreepTable:
             out = self._scalar(*args)
             if out is not None:
                 return result(*out)
-        tx, ty = self._solve(args)[:2]
+        tx, ty = self._solve(args, forces_only=True)[:2]
         return result(tx[()], ty[()])
 
     def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
@@ -1054,8 +1064,7 @@ class ExactCreepTable:
             return None
         theta = math.atan2(v_y, v_x)
         s = min(max(math.log(g), self._spline._lower[0]), self._spline._upper[0])
-        vals = self._spline.evaluate_point((s, rho, theta, tau))
-        f_par, f_perp = vals[self._idx[0]], vals[self._idx[1]]
+        f_par, f_perp = self._force_spline.evaluate_point((s, rho, theta, tau))
         mag = math.hypot(f_par, f_perp)
         n_mu = mu * n_load * ((1.0 - 2.0**-51) / mag if mag > 1.0 else 1.0)
         c, s_ = math.cos(theta), math.sin(theta)
@@ -1088,8 +1097,8 @@ class ExactCreepTable:
             plus, minus = list(args), list(args)
             plus[j] = args[j] + h
             minus[j] = args[j] - h
-            tp = self._solve(tuple(plus))
-            tm = self._solve(tuple(minus))
+            tp = self._solve(tuple(plus), forces_only=True)
+            tm = self._solve(tuple(minus), forces_only=True)
             jac[..., 0, j] = (tp[0] - tm[0]) / (2 * h)
             jac[..., 1, j] = (tp[1] - tm[1]) / (2 * h)
         return jac
