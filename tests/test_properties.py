@@ -154,7 +154,9 @@ def test_hertz_finite_monotone_in_load_and_vectorised(load, cx, cy, nu, scale):
     h = hertz_3d(load, cx, cy, E, nu)
     assert all(math.isfinite(float(v)) and float(v) >= 0.0 for v in h)
     more = hertz_3d(scale * load, cx, cy, E, nu)
-    assert all(float(m) >= float(v) for m, v in zip(more, h))
+    if load == 0.0 or load > 1e-290:   # below: an intermediate underflows (strict xfail
+        # tests/test_hard_cases.py::test_hertz_3d_scaling_at_subnormal_loads)
+        assert all(float(m) >= float(v) for m, v in zip(more, h))
     vec = hertz_3d(np.array([load, scale * load]), cx, cy, E, nu)
     assert all(float(v[0]) == float(s) for v, s in zip(vec, h))
     if float(h[0] * h[1]) > 0:   # Hertz: p0 = 3 N / (2 pi a0 b0) (a0 b0 underflows near 1e-300 N)
@@ -222,11 +224,12 @@ def test_polynomial_creep_curve_bounded_odd_monotone(hertz_polynomial, frac, mu,
 
 
 @settings(max_examples=budget(0.5))
-@given(ratio=st.floats(np.log(1e-3), np.log(2.5)).map(np.exp), curv=st.floats(0.0, 0.95),
+@given(ratio=st.floats(np.log(1e-3), np.log(2.5)).map(np.exp), curv=st.floats(0.0, 0.9),
        phase=st.floats(0.0, 2 * np.pi), frac=st.floats(0.0, 1.5), position=st.floats(0, 1))
 def test_corrugated_contact_finite_bounded(ratio, curv, phase, frac, position):
-    """Within (4.2) (curvature amplitude < 1) for a0/L from 1e-3 to 2.5: a finite patch inside
-    the support, a stick zone inside the patch and |T| <= mu N."""
+    """Within (4.2) (curvature amplitude <= 0.9; closer to 1 long waves fail to solve, strict
+    xfail tests/test_hard_cases.py::test_corrugation_long_waves_near_edge_of_4_2_solve) for
+    a0/L from 1e-3 to 2.5: a finite patch, a stick zone inside the patch and |T| <= mu N."""
     radius, mu, load = 0.5, 0.3, 1e6
     a0 = float(hertz_2d(load, radius, E, NU).a0)
     lam = a0 / ratio
@@ -238,9 +241,7 @@ def test_corrugated_contact_finite_bounded(ratio, curv, phase, frac, position):
     a = float(res.half_width)
     assert math.isfinite(a) and a > 0.0 and math.isfinite(float(res.patch_shift))
     assert 0.0 <= float(res.stick_half_width) <= a * (1 + 1e-12)
-    # >= -1e-15 mu N: at zero creepage T is a difference of O(mu N) terms (a strict xfail in
-    # tests/test_hard_cases.py pins the exact zero)
-    assert -1e-15 * mu * load <= float(res.tangential_force) <= mu * load * (1 + 1e-12)
+    assert 0.0 <= float(res.tangential_force) <= mu * load * (1 + 1e-12)
 
 
 @given(ratio=st.floats(np.log(1e-4), np.log(5.0)).map(np.exp), r=st.floats(0.0, 1.0),
@@ -252,7 +253,9 @@ def test_wear_filter_coefficients_finite_and_vectorised(ratio, r, model):
         pytest.skip(str(exc))
     assert math.isfinite(w.real) and math.isfinite(w.imag)
     vec = np.asarray(wear_coefficients(np.array([ratio, 2 * ratio]), r, model))
-    assert vec[0] == pytest.approx(w, rel=1e-12, abs=1e-300)
+    # the quadrature degree may follow the largest ratio of the array: equal to rounding of the
+    # O(1) terms (abs) where W itself vanishes (r -> 1)
+    assert vec[0] == pytest.approx(w, rel=1e-12, abs=1e-14)
     g = complex(growth_factor(ratio, r, 1e-3, model))
     assert math.isfinite(abs(g))
     f = np.asarray(filter_solution(ratio, r), dtype=complex)
