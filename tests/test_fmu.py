@@ -43,13 +43,9 @@ OUTPUTS = ["Fx", "Fy", "a0", "b0", "p0", "stick_area_fraction", "stick_width_rat
 
 
 @pytest.fixture(scope="session")
-def fmu_path(tmp_path_factory):
-    dest = tmp_path_factory.mktemp("fmu")
-    subprocess.run([sys.executable, str(ROOT / "build_fmu.py"), "--dest", str(dest)],
-                   check=True, capture_output=True, text=True)
-    path = dest / "WheelRailContact.fmu"
-    assert path.is_file()
-    return path
+def fmu_path(built_fmu):
+    """The FMU built by ``build_fmu.py`` for the current sources (conftest.py)."""
+    return built_fmu
 
 
 def _collect():
