@@ -74,6 +74,16 @@ OUTPUTS = {
                                      "(Eqs. (4.103)-(4.104)); < 0 levels, > 0 amplifies; 0 "
                                      "unless corrugation and wear are on",
                                 "corrugation_growth_rate"),
+    "creep_table_error_estimate": ("1", "Accuracy of the creep table in use: its recorded max "
+                                        "error of |(Fx, Fy)| / (mu N) against the direct "
+                                        "solution of the theory it holds (file attributes "
+                                        "max_abs_error, read at initialisation; creep_exact: "
+                                        "hypot of the two force components' errors, against the "
+                                        "discretised solver). -1 = not estimated: analytic "
+                                        "source (no interpolation error; the theory's own error "
+                                        "against Kalker's exact theory is not estimated), creep "
+                                        "off, or a step outside the exact table",
+                                   "creep_table_error_estimate"),
 }
 
 #: Boolean outputs: name -> (description, ContactPoint field).

@@ -377,3 +377,48 @@ def test_exact_table_out_of_range_falls_back_with_one_warning():
     ref = creep3d.creep_force_3d(0.5, 0.0, 0.0, 7e4, c.a0, c.b0, E, NU, 0.3, "modified_strip")
     assert (c.Fx, c.Fy) == (ref.tx, ref.ty)
     assert warnings.count("creep-exact-range") >= 1
+
+
+# --------------------------------------------------------------------------------------------
+# accuracy outputs (issue 7, "accuracy as a user setting")
+# --------------------------------------------------------------------------------------------
+def _file_max_error(name, variable):
+    """The netCDF attribute <variable>:max_abs_error of tables/<name>.nc, read with netCDF4."""
+    import netCDF4
+    from railcontact.tables import tables_directory
+    with netCDF4.Dataset(tables_directory() / f"{name}.nc") as nc:
+        return float(nc.variables[variable].getncattr("max_abs_error"))
+
+
+def test_table_error_estimate_is_the_file_attribute():
+    pipe = build_pipeline(parse_scene("[effects.creep]\nsource = 'table'\n"))
+    c = _contact(normal_force=7e4, creepage_longitudinal=1e-3, friction_coefficient=0.3)
+    pipe.step(c)
+    expected = _file_max_error("creep_modified_strip", "force_ratio")
+    assert c.creep_table_error_estimate == expected
+    assert 0.0 < expected < 1e-4                       # the file's own error_target
+
+
+@pytest.mark.skipif(not _have_exact(), reason="tables/creep_exact.nc not built")
+def test_exact_table_error_estimate_is_the_file_attributes_and_minus_one_outside():
+    pipe = build_pipeline(parse_scene(EXACT), warn=lambda key, msg: None)
+    c = _contact(normal_force=7e4, creepage_longitudinal=1e-3, friction_coefficient=0.3)
+    pipe.step(c)
+    expected = math.hypot(_file_max_error("creep_exact", "force_ratio_parallel"),
+                          _file_max_error("creep_exact", "force_ratio_perpendicular"))
+    assert c.creep_table_error_estimate == pytest.approx(expected, rel=1e-15)
+    c.creepage_longitudinal = 0.5                     # outside the table: analytic fallback
+    pipe.step(c)
+    assert c.creep_table_error_estimate == effects.NOT_ESTIMATED
+    c.creepage_longitudinal = 1e-3
+    pipe.step(c)
+    assert c.creep_table_error_estimate == pytest.approx(expected, rel=1e-15)
+
+
+@pytest.mark.parametrize("text", ["", "[effects.creep]\nmethod = 'she'\n",
+                                  "[effects.creep]\nenabled = false\n", LINE])
+def test_analytic_creep_error_is_not_estimated(text):
+    pipe = build_pipeline(parse_scene(text))
+    c = _contact(normal_force=7e4, creepage_longitudinal=1e-3, friction_coefficient=0.3)
+    pipe.step(c)
+    assert c.creep_table_error_estimate == -1.0 == effects.NOT_ESTIMATED

@@ -469,3 +469,14 @@ def test_long_run_1e6_steps(fmu_path, tmp_path):
     samples, bad = _long_run(fmu_path, tmp_path, 10**6)
     assert bad == 0
     assert samples[10**6] - samples[10**5] < 5.0, samples
+
+
+def test_creep_table_error_estimate_output_is_the_file_attribute(fmu_path):
+    import netCDF4
+    scene_path = str(ROOT / "examples" / "scenes" / "creep_only_table.toml")
+    _, result, _ = simulate(fmu_path, scene_path, output=["creep_table_error_estimate"])
+    with netCDF4.Dataset(tables_directory() / "creep_modified_strip.nc") as nc:
+        expected = float(nc.variables["force_ratio"].getncattr("max_abs_error"))
+    assert np.all(result["creep_table_error_estimate"] == expected)
+    _, result, _ = simulate(fmu_path, MAIN_SCENE, output=["creep_table_error_estimate"])
+    assert np.all(result["creep_table_error_estimate"] == -1.0)      # analytic: not estimated

@@ -28,13 +28,55 @@ from .scene import SceneError
 
 __all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
            "Corrugation", "Wear",
-           "Pipeline", "build_pipeline", "EffectUnavailable"]
+           "Pipeline", "build_pipeline", "EffectUnavailable", "NOT_ESTIMATED",
+           "table_error_estimate"]
 
 _PACKAGE = __name__.rpartition(".")[0]     # "railcontact", or the FMU's bundled copy's name
 
 
 class EffectUnavailable(SceneError):
     """The scene asks for an effect whose model is not part of this build."""
+
+
+#: Sentinel of the accuracy outputs for "not estimated" (no table in use, no iteration run).
+NOT_ESTIMATED = -1.0
+
+
+def table_error_estimate(table):
+    r"""Recorded max error of a creep table's force, in units of mu N, from its file attributes.
+
+    The table files record, per variable, the max ``|spline - direct computation|`` on seeded
+    random off-grid check points (netCDF attribute ``<variable>:max_abs_error``, read by
+    :meth:`railcontact.tables.Table.accuracy`); the direct computation is the theory the table
+    holds, so this is the interpolation error only, not the theory's own error.
+
+    * ``creep_modified_strip`` (:class:`railcontact.tables.CreepTable`): the force is
+      ``-mu N F(z) w/|w|`` with the direction exact, so the error of the force over mu N is that
+      of ``force_ratio``.
+    * ``creep_exact`` (:class:`railcontact.tables.ExactCreepTable`): the force over mu N has the
+      components ``force_ratio_parallel`` and ``force_ratio_perpendicular``; the returned bound on
+      the error of the force vector is ``hypot`` of their two recorded maxima. It is against the
+      discretised solver the table was built with (file attribute ``solver_grid``), not against
+      the continuum exact theory.
+
+    Parameters
+    ----------
+    table : railcontact.tables.CreepTable or railcontact.tables.ExactCreepTable
+        A loaded creep table.
+
+    Returns
+    -------
+    float
+        Max error of |T| / (mu N) over the check points. [-] :data:`NOT_ESTIMATED` (-1) if the
+        file records no accuracy.
+    """
+    acc = table.table.accuracy()
+    names = (("force_ratio",) if "force_ratio" in acc
+             else ("force_ratio_parallel", "force_ratio_perpendicular"))
+    errors = [acc[n]["max_abs_error"] for n in names]
+    if not all(math.isfinite(e) for e in errors):
+        return NOT_ESTIMATED
+    return float(math.hypot(*errors))
 
 
 def _import(module, effect):
@@ -55,13 +97,16 @@ class ContactPoint:
                  "rolling_speed", "rail_position", "friction_coefficient", "a0", "b0", "p0",
                  "Fx", "Fy", "stick_area_fraction", "stick_width_ratio", "r_a0",
                  "creep_within_validity", "Mz", "contact_half_width", "patch_shift",
-                 "wear_depth_per_passage", "corrugation_amplitude", "corrugation_growth_rate")
+                 "wear_depth_per_passage", "corrugation_amplitude", "corrugation_growth_rate",
+                 "creep_table_error_estimate", "friction_iteration_residual")
 
     def __init__(self):
         for name in self.__slots__:
             setattr(self, name, 0.0)
         self.stick_area_fraction = self.stick_width_ratio = self.r_a0 = 1.0
         self.creep_within_validity = True
+        self.creep_table_error_estimate = NOT_ESTIMATED
+        self.friction_iteration_residual = NOT_ESTIMATED
 
     def as_dict(self):
         """Field name -> value (plain floats)."""
@@ -188,6 +233,9 @@ class Creep3D(_Effect):
         self._force_analytic = creep3d.creep_force_3d
         self._table = None
         self._exact = self.method == "exact"
+        #: Output ``creep_table_error_estimate``: :func:`table_error_estimate` of the table in
+        #: use (read once here), :data:`NOT_ESTIMATED` for the analytic source.
+        self.table_error_estimate = NOT_ESTIMATED
         if self.source == "table":
             tables = _import("tables", "creep (table)")
             if self.method not in ("modified_strip", "exact"):
@@ -205,11 +253,13 @@ class Creep3D(_Effect):
             # Hertz, so the reader's scalar fast path without its own input check is used
             # ("inputs already range-checked"); the public method otherwise.
             self._force = getattr(self._table, "_scalar", self._table.creep_force_3d)
+            self.table_error_estimate = table_error_estimate(self._table)
             if not self._exact:
                 self._z_max = float(self._table.table.axes[0]["nodes"][-1])
 
     def step(self, c):
         self.calls += 1
+        c.creep_table_error_estimate = self.table_error_estimate
         if c.normal_force <= 0.0:
             c.Fx = c.Fy = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
@@ -232,14 +282,14 @@ class Creep3D(_Effect):
         else:
             args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
                     c.b0, self._e, self._nu, c.friction_coefficient)
-            out = self._force(*args) if not self._exact else self._exact_force(args)
+            out = self._force(*args)
+            if out is None:                # exact table only: out of its range
+                out = self._exact_fallback(args)
+                c.creep_table_error_estimate = NOT_ESTIMATED
             c.Fx, c.Fy = float(out[0]), float(out[1])
             self._aux_args = args
 
-    def _exact_force(self, args):
-        out = self._force(*args)
-        if out is not None:
-            return out
+    def _exact_fallback(self, args):
         try:                               # the reader's own message for the warning
             self._table.creep_force_3d(*args)
         except ValueError as exc:
