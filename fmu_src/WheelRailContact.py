@@ -26,7 +26,7 @@ from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
 
 from pythonfmu import Boolean, DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability
-from pythonfmu import Real, String
+from pythonfmu import Integer, Real, String
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 
 _PACKAGE = "railcontact"  # build_fmu.py rewrites this line to the bundled copy's unique name
@@ -74,6 +74,12 @@ OUTPUTS = {
                                      "(Eqs. (4.103)-(4.104)); < 0 levels, > 0 amplifies; 0 "
                                      "unless corrugation and wear are on",
                                 "corrugation_growth_rate"),
+    "friction_iteration_residual": ("1", "Final residual of the smooth friction law's iteration "
+                                         "(Sec. 5.3): max |mu(s)/mu_0 - mu(x)/mu_0| at the "
+                                         "nodes, below friction_tolerance once converged; -1 = "
+                                         "no iteration (velocity friction off, step law (closed "
+                                         "form) or no contact)",
+                                    "friction_iteration_residual"),
     "creep_table_error_estimate": ("1", "Accuracy of the creep table in use: its recorded max "
                                         "error of |(Fx, Fy)| / (mu N) against the direct "
                                         "solution of the theory it holds (file attributes "
@@ -145,7 +151,8 @@ class WheelRailContact(Fmi2Slave):
         defaults = _scene.scene_to_parameters()
         for spec in _scene.FMU_PARAMETERS:
             setattr(self, spec.name, defaults[spec.name])
-            cls = {"real": Real, "string": String, "boolean": Boolean}[spec.kind]
+            cls = {"real": Real, "integer": Integer, "string": String,
+                   "boolean": Boolean}[spec.kind]
             self.register_variable(cls(spec.name, causality=Fmi2Causality.parameter,
                                        variability=Fmi2Variability.fixed,
                                        description=spec.description))

@@ -422,3 +422,60 @@ def test_analytic_creep_error_is_not_estimated(text):
     c = _contact(normal_force=7e4, creepage_longitudinal=1e-3, friction_coefficient=0.3)
     pipe.step(c)
     assert c.creep_table_error_estimate == -1.0 == effects.NOT_ESTIMATED
+
+
+SMOOTH = (LINE + "[effects.velocity_friction]\nlaw = 'smooth'\n"
+          "kinetic_friction_coefficient = 0.15\nkappa = 400.0\n")
+
+
+def _solve_cost(monkeypatch):
+    """Count the dense Newton solves of the friction iteration, weighted by n^3 (flop proxy)."""
+    cost = {"solves": 0, "n3": 0}
+    original = np.linalg.solve
+
+    def counted(a, b):
+        cost["solves"] += 1
+        cost["n3"] += a.shape[0] ** 3
+        return original(a, b)
+    monkeypatch.setattr(np.linalg, "solve", counted)
+    return cost
+
+
+@pytest.mark.parametrize("xi", [2e-4, 6e-4, 1.2e-3])
+def test_lower_friction_series_degree_is_cheaper_and_within_documented_accuracy(
+        monkeypatch, xi):
+    cost = _solve_cost(monkeypatch)
+    runs = {}
+    for degree in (128, 32):
+        pipe = build_pipeline(parse_scene(SMOOTH + f"series_degree = {degree}\n"))
+        assert pipe.effects["velocity_friction"].series_degree == degree
+        cost.update(solves=0, n3=0)
+        c = _line_contact(pipe, xi=xi)
+        runs[degree] = (c.Fx, c.friction_iteration_residual, dict(cost))
+    mu_n = 0.3 * 1e5
+    # documented (railcontact.scene, "Accuracy knobs"): degree 32 within 3.2e-4 mu_0 N of
+    # degree 512, degree 128 within 2.2e-4; the solver's own accuracy is about 1e-3 mu_0 N
+    assert abs(runs[32][0] - runs[128][0]) <= 1e-3 * mu_n
+    assert runs[128][0] != runs[32][0]                    # the knob reaches the solver
+    assert runs[32][2]["n3"] < runs[128][2]["n3"] / 10    # n^3-weighted solve count
+    for fx, residual, _ in runs.values():
+        assert 0.0 <= residual < 1e-10 and fx < 0.0
+
+
+def test_friction_tolerance_reaches_the_iteration():
+    loose = build_pipeline(parse_scene(SMOOTH + "tolerance = 1e-3\n"))
+    tight = build_pipeline(parse_scene(SMOOTH + "tolerance = 1e-12\n"))
+    a, b = _line_contact(loose, xi=6e-4), _line_contact(tight, xi=6e-4)
+    assert 0.0 <= b.friction_iteration_residual < 1e-12
+    assert 0.0 <= a.friction_iteration_residual < 1e-3
+    assert a.friction_iteration_residual >= b.friction_iteration_residual
+    assert abs(a.Fx - b.Fx) <= 1e-2 * 0.3 * 1e5
+
+
+def test_friction_residual_is_not_estimated_without_iteration():
+    step = build_pipeline(parse_scene(LINE + "[effects.velocity_friction]\nlaw = 'step'\n"
+                                             "kinetic_friction_coefficient = 0.2\n"))
+    assert _line_contact(step).friction_iteration_residual == effects.NOT_ESTIMATED
+    smooth = build_pipeline(parse_scene(SMOOTH))
+    assert _line_contact(smooth, n=0.0).friction_iteration_residual == effects.NOT_ESTIMATED
+    assert _line_contact(build_pipeline(parse_scene(LINE))).friction_iteration_residual == -1.0

@@ -278,6 +278,10 @@ def test_switched_off_creep_is_not_built(fmu_path, tmp_path):
     ({"geometry_kind": "semi_axes", "semi_axis_lateral": 0.0}, "semi_axis_lateral"),
     ({"scene_file": "/nonexistent/scene.toml"}, "scene_file"),
     ({"scene_file": "", "scene_toml": "[effects.creep]\nmethodd = 'she'\n"}, "methodd"),
+    ({"scene_file": str(ROOT / "examples" / "scenes" / "velocity_friction_step.toml"),
+      "friction_series_degree": 4}, "parameter friction_series_degree"),
+    ({"scene_file": str(ROOT / "examples" / "scenes" / "velocity_friction_step.toml"),
+      "friction_tolerance": 0.5}, "parameter friction_tolerance"),
 ])
 def test_bad_parameter_gives_fmi_error_naming_it(fmu_path, start_values, name):
     # fmpy raises on the failed FMI call and surfaces the FMU's log, which names the parameter
@@ -480,3 +484,35 @@ def test_creep_table_error_estimate_output_is_the_file_attribute(fmu_path):
     assert np.all(result["creep_table_error_estimate"] == expected)
     _, result, _ = simulate(fmu_path, MAIN_SCENE, output=["creep_table_error_estimate"])
     assert np.all(result["creep_table_error_estimate"] == -1.0)      # analytic: not estimated
+
+
+def test_friction_accuracy_knobs_reach_the_fmu(fmu_path):
+    from railcontact.effects import ContactPoint, build_pipeline
+    from railcontact.scene import parse_scene
+    text = ("[geometry]\nkind = 'line'\nradius = 0.46\ncontact_width = 0.02\n"
+            "[effects.creep]\nmethod = 'carter'\n[effects.velocity_friction]\nlaw = 'smooth'\n"
+            "kinetic_friction_coefficient = 0.15\nkappa = 400.0\n"
+            "[simulation]\nstop_time = 0.02\nstep_size = 0.01\n"
+            "[inputs]\nnormal_force = 1e5\ncreepage_longitudinal = 6e-4\n")
+    params = dict(geometry_kind="line", creep_method="carter", radius=0.46, contact_width=0.02,
+                  velocity_friction_enabled=True, velocity_friction_law="smooth",
+                  kinetic_friction_coefficient=0.15, friction_kappa=400.0)
+    scene = parse_scene(text)
+    out = {}
+    for degree in (128, 32):
+        result = fmpy.simulate_fmu(
+            str(fmu_path), start_time=0.0, stop_time=0.02, output_interval=0.01,
+            input=scene.input_signals(),
+            start_values=dict(params, friction_series_degree=degree, friction_tolerance=1e-9),
+            output=["Fx", "friction_iteration_residual"])
+        pipe = build_pipeline(parse_scene(text.replace(
+            "kappa = 400.0\n", f"kappa = 400.0\nseries_degree = {degree}\ntolerance = 1e-9\n")))
+        c = ContactPoint()
+        c.normal_force, c.creepage_longitudinal, c.friction_coefficient = 1e5, 6e-4, 0.3
+        pipe.step(c)
+        np.testing.assert_allclose(result["Fx"], c.Fx, rtol=1e-12)
+        assert np.all(result["friction_iteration_residual"] == c.friction_iteration_residual)
+        assert np.all((result["friction_iteration_residual"] >= 0)
+                      & (result["friction_iteration_residual"] < 1e-9))
+        out[degree] = result["Fx"][-1]
+    assert out[32] != out[128] and abs(out[32] - out[128]) <= 1e-3 * 0.3 * 1e5

@@ -165,3 +165,38 @@ def test_corrugation_surface_file(tmp_path):
     with pytest.raises(SceneError, match="surface_file: cannot read"):
         parse_scene("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n"
                     "[effects.corrugation]\nsurface_file = 'none.csv'\n", base_dir=tmp_path)
+
+
+VF = ("[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n"
+      "[effects.velocity_friction]\nlaw = 'smooth'\nkinetic_friction_coefficient = 0.2\n"
+      "kappa = 1.0\n")
+
+
+def test_friction_accuracy_knobs_default_and_parse():
+    opts = parse_scene(VF).effects["velocity_friction"]
+    assert (opts["series_degree"], opts["tolerance"]) == (128, 1e-10)
+    opts = parse_scene(VF + "series_degree = 32\ntolerance = 1e-8\n").effects["velocity_friction"]
+    assert (opts["series_degree"], opts["tolerance"]) == (32, 1e-8)
+    assert isinstance(opts["series_degree"], int)
+
+
+@pytest.mark.parametrize("extra, match", [
+    ("series_degree = 4\n", r"effects.velocity_friction.series_degree must be in \[8, 2048\]"),
+    ("series_degree = 32.5\n", "effects.velocity_friction.series_degree must be an integer"),
+    ("series_degree = 'high'\n", "effects.velocity_friction.series_degree must be an integer"),
+    ("series_degree = nan\n", "effects.velocity_friction.series_degree must be an integer"),
+    ("tolerance = 0\n", r"effects.velocity_friction.tolerance must be in \(0, 0.01\]"),
+    ("tolerance = 0.5\n", "effects.velocity_friction.tolerance"),
+])
+def test_invalid_friction_accuracy_knob_names_the_key(extra, match):
+    with pytest.raises(SceneError, match=match):
+        parse_scene(VF + extra)
+
+
+def test_friction_knobs_as_fmu_parameters():
+    values = scene_to_parameters()
+    assert (values["friction_series_degree"], values["friction_tolerance"]) == (128, 1e-10)
+    values.update(geometry_kind="line", creep_method="carter", velocity_friction_enabled=True,
+                  friction_kappa=1.0, friction_series_degree=40, friction_tolerance=1e-9)
+    opts = scene_from_dict(parameters_to_scene_dict(values)).effects["velocity_friction"]
+    assert (opts["series_degree"], opts["tolerance"]) == (40, 1e-9)

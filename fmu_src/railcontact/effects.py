@@ -390,8 +390,14 @@ class VelocityFriction(_Effect):
     ratio of Carter's solution for mu_k (:func:`railcontact.carter.carter_stick_ratio`), which is
     that minimum solution (module docstring of :mod:`railcontact.friction`). ``law = "smooth"``:
     the law (5.16) solved by :func:`railcontact.friction.solve_velocity_friction_normalised`
-    (the iteration of Sec. 5.3; accurate to about 1e-3 mu N, and slow: of the order of a second
-    per step). Normalisation by :func:`railcontact.friction.normalised_inputs`.
+    (the iteration of Sec. 5.3; accurate to about 1e-3 mu N at the default degree, and slow:
+    0.01-0.1 s per step). Normalisation by :func:`railcontact.friction.normalised_inputs`.
+
+    Accuracy knobs of the smooth law (scene keys ``series_degree``, ``tolerance``; FMU
+    parameters ``friction_series_degree``, ``friction_tolerance``): the number of Chebyshev nodes
+    of the friction polynomial (5.7) and the iteration's tolerance, passed as ``degree`` and
+    ``tol``. ``friction_iteration_residual`` is the solution's final residual
+    (:data:`NOT_ESTIMATED` for the step law, a closed form, and without contact).
     """
 
     name = "velocity_friction"
@@ -407,6 +413,8 @@ class VelocityFriction(_Effect):
         self.law = opts["law"]
         self.mu_kinetic = opts["kinetic_friction_coefficient"]
         self.kappa = opts.get("kappa", 0.0)
+        self.series_degree = int(opts.get("series_degree", 128))
+        self.tolerance = float(opts.get("tolerance", 1e-10))
         geo = scene.geometry
         self._radius, self._width = geo["radius"], geo["contact_width"]
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
@@ -414,6 +422,7 @@ class VelocityFriction(_Effect):
     def step(self, c):
         self.calls += 1
         mu0 = c.friction_coefficient
+        c.friction_iteration_residual = NOT_ESTIMATED
         if c.normal_force <= 0.0 or mu0 <= 0.0:
             return                       # Creep2D already gave the no-force answer
         n_line = c.normal_force / self._width
@@ -430,8 +439,11 @@ class VelocityFriction(_Effect):
         else:
             sol = self._friction.solve_velocity_friction_normalised(
                 float(norm["creepage_ratio"]), float(norm["friction_ratio"]),
-                float(norm["kappa_normalised"]))
+                float(norm["kappa_normalised"]), degree=self.series_degree,
+                tol=self.tolerance)
             ratio = float(sol.force_ratio)          # T/(mu_0 N), opposes the creepage
+            if math.isfinite(sol.residual):
+                c.friction_iteration_residual = float(sol.residual)
             c.r_a0 = float(sol.stick_ratio)
         c.Fx = ratio * scale
         c.stick_area_fraction = c.r_a0

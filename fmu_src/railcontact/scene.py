@@ -55,6 +55,44 @@ Each entry of ``[inputs]`` is a number (constant) or an inline table with ``kind
   (trapezoidal rule on the output grid).
 
 Inputs not named are held at the FMU's start values (:data:`INPUT_DEFAULTS`).
+
+Accuracy knobs and error outputs
+--------------------------------
+Where an effect has an accuracy setting, the scene (and the FMU parameter in brackets) exposes
+it; where an error estimate exists, the FMU reports it as an output (-1 = not estimated):
+
+* Creep tables (``effects.creep.source = "table"``): the table's resolution is fixed when it is
+  built (``python -m tablegen build --resolution ...``); the output
+  ``creep_table_error_estimate`` is the max error of ``|(Fx, Fy)| / (mu N)`` the file records
+  against the direct solution of the theory it holds (netCDF attributes ``max_abs_error``, read
+  at initialisation; ``creep_modified_strip``: about 2e-7; ``creep_exact``: about 0.064,
+  against its 40 x 20 element solver, not against the continuum theory). With
+  ``source = "analytic"`` it is -1: there is no interpolation error, and the error of the
+  strip, modified strip, SHE and linear theories against Kalker's exact theory is not
+  estimated at run time (the package's tests and benchmarks measure it).
+* Velocity-dependent friction, smooth law (5.16): ``effects.velocity_friction.series_degree``
+  (``friction_series_degree``, integer in [8, 2048], default 128) is the number of Chebyshev
+  nodes of the friction polynomial (5.7), ``effects.velocity_friction.tolerance``
+  (``friction_tolerance``, in (0, 1e-2], default 1e-10) the tolerance of the iteration of Sec.
+  5.3; the output ``friction_iteration_residual`` is the converged residual. The cost of a
+  step grows like ``series_degree^3`` (dense Newton solves). Measured (largest change of
+  T / (mu_0 N) against degree 512 over creepage ratios 0.1-1.2, mu_k/mu_0 in {0.3, 0.7, 1.5},
+  kappa xi_c0 in {0.5, 3, 20}): degree 128: 2.2e-4, 64: 3.2e-4, 32: 3.2e-4, 16: 2.0e-2 (a steep
+  law, kappa xi_c0 = 20, needs a degree well above it). The solver's own accuracy against the
+  discretised reference is about 1e-3 mu_0 N at degree 128 (:mod:`railcontact.friction`), so
+  degree 32 is the cheap setting for laws with kappa xi_c0 up to about 3. The step law is a
+  closed form and has no knob.
+* Corrugation: the FMU path (:func:`railcontact.corrugation.corrugated_contact`, methods
+  "exact" and "linear") uses closed forms only: the Chebyshev series of the contact
+  distributions is summed in closed form through Bessel functions, and the nonlinear
+  conditions (4.31), (4.33), (4.57), (4.67) are solved by Newton to 1e-13. The truncated series
+  (4.18)-(4.28) with its degree knob and the estimate (4.28) belong to
+  :func:`railcontact.corrugation.contact_distributions` (pressure, traction and slip
+  distributions), which the FMU does not evaluate, so there is no ``series_degree`` parameter
+  and no ``corrugation_series_error_estimate`` output. (The linearised wear coefficients of the
+  wear effect, :func:`railcontact.wear.wear_coefficients`, sum a Chebyshev-Bessel series with
+  the automatic degree ``ceil(e k a0) + 12`` on 24 quadrature nodes, whose quadrature error is
+  documented there as below 1e-9 relative; neither is exposed as an FMU knob.)
 """
 
 from __future__ import annotations
@@ -87,6 +125,10 @@ EFFECTS = ("velocity_friction", "roughness", "creep", "corrugation", "nonsteady"
 #: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory (:func:`railcontact.carter.carter_creep_force`, line
 #: contact, ``geometry.kind = "line"``).
 CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "exact", "carter")
+#: Defaults of the accuracy knobs of the smooth friction law's iteration (those of
+#: :func:`railcontact.friction.solve_velocity_friction_normalised`).
+FRICTION_SERIES_DEGREE = 128
+FRICTION_TOLERANCE = 1e-10
 #: Wear models of :func:`railcontact.wear.wear_coefficients`.
 WEAR_MODELS = ("material_point", "patch_coordinate", "nielsen1998", "time_domain_carter")
 #: Where an effect takes its answer from.
@@ -135,7 +177,8 @@ _EFFECT_KEYS = {
     "corrugation": {"enabled", "source", "method", "wavelengths", "amplitudes_cos",
                     "amplitudes_sin", "surface_file"},
     "wear": {"enabled", "source", "wear_coefficient", "wear_model", "evolve", "section_length"},
-    "velocity_friction": {"enabled", "source", "law", "kinetic_friction_coefficient", "kappa"},
+    "velocity_friction": {"enabled", "source", "law", "kinetic_friction_coefficient", "kappa",
+                          "series_degree", "tolerance"},
     "roughness": {"enabled", "source"},
     "nonsteady": {"enabled", "source"},
 }
@@ -264,6 +307,14 @@ def _number(path, value, unit, lower=None, upper=None, **kwargs):
         return float(check_range(path, value, unit, lower, upper, **kwargs))
     except ValueError as exc:
         raise SceneError(str(exc)) from None
+
+
+def _integer(path, value, unit, lower, upper):
+    if (isinstance(value, bool) or not isinstance(value, (int, float))
+            or not (math.isfinite(value) and float(value).is_integer())):
+        raise SceneError(f"{path} must be an integer in [{lower}, {upper}] [{unit}]; got "
+                         f"{value!r}")
+    return int(_number(path, value, unit, lower, upper))
 
 
 def _number_list(path, value, unit, lower=None, **kwargs):
@@ -437,6 +488,12 @@ def scene_from_dict(data, base_dir=None):
             if opts["law"] == "smooth":
                 opts["kappa"] = _number("effects.velocity_friction.kappa", opts.get("kappa"),
                                         "-", 0.0)
+            opts["series_degree"] = _integer("effects.velocity_friction.series_degree",
+                                             opts.get("series_degree", FRICTION_SERIES_DEGREE),
+                                             "-", 8, 2048)
+            opts["tolerance"] = _number("effects.velocity_friction.tolerance",
+                                        opts.get("tolerance", FRICTION_TOLERANCE), "-", 0.0,
+                                        1e-2, lower_closed=False)
         elif name == "wear":
             opts["wear_coefficient"] = _number("effects.wear.wear_coefficient",
                                                opts.get("wear_coefficient"), "m^2/N", 0.0)
@@ -570,7 +627,7 @@ class ParameterSpec:
 
     name: str
     path: tuple
-    kind: str          # "real", "string" or "boolean"
+    kind: str          # "real", "integer", "string" or "boolean"
     unit: str          # FMI unit ("" for strings and booleans)
     description: str
 
@@ -622,6 +679,14 @@ FMU_PARAMETERS = (
                   "Kinetic friction coefficient mu_k (large slip)"),
     ParameterSpec("friction_kappa", ("effects", "velocity_friction", "kappa"), "real", "1",
                   "Slope parameter kappa of the smooth law (5.16) per unit of slip s"),
+    ParameterSpec("friction_series_degree", ("effects", "velocity_friction", "series_degree"),
+                  "integer", "", "Accuracy knob of the smooth law (5.16): number of Chebyshev "
+                  "nodes of the friction polynomial (5.7), integer in [8, 2048] (default 128: "
+                  "about 1e-3 mu_0 N; cost grows like its cube)"),
+    ParameterSpec("friction_tolerance", ("effects", "velocity_friction", "tolerance"), "real",
+                  "1", "Accuracy knob of the smooth law (5.16): convergence tolerance of the "
+                  "friction iteration on max |mu(s)/mu_0 - mu(x)/mu_0| at the nodes, in "
+                  "(0, 1e-2]"),
     ParameterSpec("corrugation_enabled", ("effects", "corrugation", "enabled"), "boolean", "",
                   "Corrugated rail surface (Nielsen Ch. 4.2; needs geometry_kind = 'line')"),
     ParameterSpec("corrugation_method", ("effects", "corrugation", "method"), "string", "",
@@ -660,6 +725,7 @@ FMU_PARAMETERS = (
 _EFFECT_PARAMETER_DEFAULTS = {
     "velocity_friction_enabled": False, "velocity_friction_law": "smooth",
     "kinetic_friction_coefficient": 0.2, "friction_kappa": 0.0,
+    "friction_series_degree": FRICTION_SERIES_DEGREE, "friction_tolerance": FRICTION_TOLERANCE,
     "corrugation_enabled": False, "corrugation_method": "exact", "corrugation_wavelengths": "",
     "corrugation_amplitudes_cos": "", "corrugation_amplitudes_sin": "",
     "corrugation_surface_file": "", "wear_enabled": False,
