@@ -80,6 +80,14 @@ OUTPUTS = {
                                          "no iteration (velocity friction off, step law (closed "
                                          "form) or no contact)",
                                     "friction_iteration_residual"),
+    "corrugation_series_error_estimate": (
+        "1", "Truncation error of the Chebyshev-Bessel series of the contact distributions "
+             "(Nielsen (4.18), (4.27)-(4.28)) that the linearised wear coefficients sum (wear "
+             "on, wear_model material_point or patch_coordinate), at its automatic degree "
+             "ceil(e k a0) + 12, worst harmonic: neglected |J_n(k a0)| relative to the largest. "
+             "-1 = no truncated series in use (the corrugated contact itself is closed-form; "
+             "wear off, time-domain wear models, or no contact)",
+        "corrugation_series_error_estimate"),
     "creep_table_error_estimate": ("1", "Accuracy of the creep table in use: its recorded max "
                                         "error of |(Fx, Fy)| / (mu N) against the direct "
                                         "solution of the theory it holds (file attributes "
@@ -103,7 +111,7 @@ BOOLEAN_OUTPUTS = {
 
 #: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
-         "corrugation_growth_rate", "Mz"}
+         "corrugation_growth_rate", "Mz", "corrugation_series_error_estimate"}
 
 #: SI units used by the variables: name -> exponents of kg, m, s.
 UNITS = {

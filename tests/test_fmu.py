@@ -516,3 +516,17 @@ def test_friction_accuracy_knobs_reach_the_fmu(fmu_path):
                       & (result["friction_iteration_residual"] < 1e-9))
         out[degree] = result["Fx"][-1]
     assert out[32] != out[128] and abs(out[32] - out[128]) <= 1e-3 * 0.3 * 1e5
+
+
+def test_corrugation_series_error_estimate_output(fmu_path):
+    from railcontact.corrugation import series_truncation_error
+    from railcontact.effects import wear_series_degree
+    scene, result, _ = simulate(fmu_path, CORRUGATION_SCENE,
+                                output=["corrugation_series_error_estimate", "a0"])
+    ka = 2.0 * np.pi * result["a0"] / min(scene.effects["corrugation"]["wavelengths"])
+    expected = [float(series_truncation_error(v, wear_series_degree(v))[1]) for v in ka]
+    assert np.array_equal(result["corrugation_series_error_estimate"], expected)
+    assert np.all((result["corrugation_series_error_estimate"] >= 0.0)
+                  & (result["corrugation_series_error_estimate"] < 1e-16))
+    _, result, _ = simulate(fmu_path, MAIN_SCENE, output=["corrugation_series_error_estimate"])
+    assert np.all(result["corrugation_series_error_estimate"] == -1.0)

@@ -29,7 +29,7 @@ from .scene import SceneError
 __all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
            "Corrugation", "Wear",
            "Pipeline", "build_pipeline", "EffectUnavailable", "NOT_ESTIMATED",
-           "table_error_estimate"]
+           "table_error_estimate", "wear_series_degree"]
 
 _PACKAGE = __name__.rpartition(".")[0]     # "railcontact", or the FMU's bundled copy's name
 
@@ -40,6 +40,13 @@ class EffectUnavailable(SceneError):
 
 #: Sentinel of the accuracy outputs for "not estimated" (no table in use, no iteration run).
 NOT_ESTIMATED = -1.0
+
+
+def wear_series_degree(ka):
+    """Series degree :func:`railcontact.wear.wear_coefficients` uses by default for ``k a0 = ka``:
+    ``ceil(e ka) + 12`` (its documented default; ``tests/test_effects.py`` checks that they
+    agree). [-]"""
+    return int(math.ceil(math.e * ka)) + 12
 
 
 def table_error_estimate(table):
@@ -98,7 +105,8 @@ class ContactPoint:
                  "Fx", "Fy", "stick_area_fraction", "stick_width_ratio", "r_a0",
                  "creep_within_validity", "Mz", "contact_half_width", "patch_shift",
                  "wear_depth_per_passage", "corrugation_amplitude", "corrugation_growth_rate",
-                 "creep_table_error_estimate", "friction_iteration_residual")
+                 "creep_table_error_estimate", "friction_iteration_residual",
+                 "corrugation_series_error_estimate")
 
     def __init__(self):
         for name in self.__slots__:
@@ -107,6 +115,7 @@ class ContactPoint:
         self.creep_within_validity = True
         self.creep_table_error_estimate = NOT_ESTIMATED
         self.friction_iteration_residual = NOT_ESTIMATED
+        self.corrugation_series_error_estimate = NOT_ESTIMATED
 
     def as_dict(self):
         """Field name -> value (plain floats)."""
@@ -462,6 +471,18 @@ class Corrugation(_Effect):
     (linearised, Eq. (4.94)). ``corrugation_amplitude`` is |Z| of the first listed harmonic.
     Condition (4.2) (no loss of contact) is checked at build time for the initial surface.
     The surface harmonics are internal state (the wear effect may evolve them).
+
+    Accuracy: the contact itself (both methods) is computed from closed forms (the Chebyshev
+    series of the contact distributions summed through Bessel functions, Newton to 1e-13): no
+    truncated series, no knob. The linearised wear coefficients
+    (:func:`railcontact.wear.wear_coefficients`, models "material_point" and
+    "patch_coordinate"; used for the wear depth, the growth rate and the evolution) do truncate
+    that series, at the automatic degree ``ceil(e k a0) + 12`` of the largest ``k a0``; its
+    truncation error (:func:`railcontact.corrugation.series_truncation_error`, the neglected
+    Bessel coefficients relative to the largest, the size (4.27) whose term ratio is (4.28)) is
+    the output ``corrugation_series_error_estimate``, evaluated when read (:meth:`auxiliary`);
+    :data:`NOT_ESTIMATED` when no truncated series is in use (wear off, or the time-domain wear
+    models, or no contact). The degree is not a scene knob: ``corrugated_contact`` takes none.
     """
 
     name = "corrugation"
@@ -482,6 +503,10 @@ class Corrugation(_Effect):
         self._radius, self._width = geo["radius"], geo["contact_width"]
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
         self._wear = wear
+        self._series = wear is not None and wear.wear_model in ("material_point",
+                                                                 "patch_coordinate")
+        self._truncation_error = module.series_truncation_error
+        self._pending_ka = None
         k = [2.0 * math.pi / lam for lam in self.wavelengths]
         try:
             module.check_no_contact_loss([km * km * self._radius * math.hypot(za, zb) for
@@ -494,9 +519,13 @@ class Corrugation(_Effect):
         self.calls += 1
         c.corrugation_amplitude = math.hypot(self.amplitudes_cos[0], self.amplitudes_sin[0])
         c.patch_shift = 0.0
+        c.corrugation_series_error_estimate = NOT_ESTIMATED
+        self._pending_ka = None
         if c.normal_force <= 0.0 or c.friction_coefficient <= 0.0:
             c.wear_depth_per_passage = 0.0
             return
+        if self._series:
+            self._pending_ka = 2.0 * math.pi * c.a0 / min(self.wavelengths)
         kw = {} if self._wear is None else {"wear_coefficient": self._wear.wear_coefficient,
                                              "wear_model": self._wear.wear_model}
         res = self._solve(c.rail_position, c.normal_force / self._width, self._radius, self._e,
@@ -510,14 +539,22 @@ class Corrugation(_Effect):
         if res.wear_depth is not None:
             c.wear_depth_per_passage = float(res.wear_depth)
 
+    def auxiliary(self, c):
+        """``corrugation_series_error_estimate`` of the last step (on demand)."""
+        ka, self._pending_ka = self._pending_ka, None
+        if ka is not None:
+            _, error = self._truncation_error(ka, wear_series_degree(ka))
+            c.corrugation_series_error_estimate = float(error)
+
     def get_state(self):
         return {"calls": self.calls, "amplitudes_cos": list(self.amplitudes_cos),
-                "amplitudes_sin": list(self.amplitudes_sin)}
+                "amplitudes_sin": list(self.amplitudes_sin), "pending_ka": self._pending_ka}
 
     def set_state(self, state):
         self.calls = int(state["calls"])
         self.amplitudes_cos = [float(v) for v in state["amplitudes_cos"]]
         self.amplitudes_sin = [float(v) for v in state["amplitudes_sin"]]
+        self._pending_ka = state.get("pending_ka")
 
 
 class Wear(_Effect):
