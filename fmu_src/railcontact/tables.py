@@ -688,6 +688,20 @@ class CreepTable:
         d2 = self._spline.evaluate_point([0.0], [2])
         self._slope0 = float(d1[self._i_f])     # F'(0) of the table (3 pi / 4 exactly in theory)
         self._curv0 = float(d2[self._i_f])
+        # The same cubic spline of F(z) in piecewise-polynomial form, as plain Python floats, for
+        # the scalar path (_scalar): one bisect and one Horner step cost far less than a numba
+        # dispatch with array arguments (an FMU calls this once per step).
+        from bisect import bisect_right  # noqa: PLC0415
+
+        from scipy.interpolate import BSpline, PPoly  # noqa: PLC0415
+
+        knots = np.asarray(table.axes[0]["knots"], dtype=float)
+        coef = np.asarray(self._spline._coef[self._i_f], dtype=float)
+        pp = PPoly.from_spline(BSpline(knots, coef, 3, extrapolate=False))
+        keep = np.diff(pp.x) > 0.0                       # drop the zero-length double-knot span
+        self._pp_breaks = [float(v) for v in pp.x[:-1][keep]]
+        self._pp_coefs = [tuple(float(v) for v in pp.c[:, j]) for j in np.flatnonzero(keep)]
+        self._bisect = bisect_right
 
     @classmethod
     def from_file(cls, path=None, directory=None):
@@ -797,7 +811,11 @@ class CreepTable:
         if z < 1e-6:
             f_over_z = self._slope0 + 0.5 * self._curv0 * z
         else:
-            f = min(self._spline.evaluate_point((min(z, self._z_max),))[self._i_f], 1.0)
+            zz = min(z, self._z_max)
+            i = max(self._bisect(self._pp_breaks, zz) - 1, 0)
+            c3, c2, c1, c0 = self._pp_coefs[i]
+            dz = zz - self._pp_breaks[i]
+            f = min(((c3 * dz + c2) * dz + c1) * dz + c0, 1.0)
             f_over_z = f / z
         k = mu_n / w_sat * f_over_z
         tx, ty = -k * w_x, -k * w_y
