@@ -208,12 +208,13 @@ class Creep3D(_Effect):
 
     Table (``method = "modified_strip"`` only, the theory the shipped table holds):
     :meth:`railcontact.tables.CreepTable.creep_force_3d` gives the forces in the step (its
-    scalar fast path, whose input check the slave has already made); the stick measures and the validity flag are computed when first read
-    after a step (:meth:`auxiliary`) with :meth:`~railcontact.tables.CreepTable.
-    creep_solution_3d` on the inputs of that step, so an importer that reads only Fx and Fy
-    does not pay for them. Out of the table's grid (normalised creepage z beyond its last
-    node) the reader holds F = 1, which is exact (full sliding); the FMU logs a warning the
-    first time this is seen (when the stick outputs are evaluated).
+    scalar fast path, whose input check the slave has already made); the stick measures and the
+    validity flag are computed when first read after a step (:meth:`auxiliary`) with
+    :meth:`~railcontact.tables.CreepTable.creep_solution_3d` on the inputs of that step, so an
+    importer that reads only Fx and Fy does not pay for them. Out of the table's grid
+    (normalised creepage z beyond its last node) the reader holds F = 1, which is exact (full
+    sliding); the FMU logs a warning the first time this is seen (when the stick outputs are
+    evaluated). ``creep_table_error_estimate`` is :func:`table_error_estimate` of the table.
     Kalker's exact theory (``method = "exact"``, table source only): the shipped table
     ``creep_exact`` (:class:`railcontact.tables.ExactCreepTable`, the discretised exact theory of
     :mod:`railcontact.reference.rolling3d`), the only method that gives the spin moment ``Mz``

@@ -93,12 +93,13 @@ it; where an error estimate exists, the FMU reports it as an output (-1 = not es
   output ``corrugation_series_error_estimate`` is its truncation error
   (:func:`railcontact.corrugation.series_truncation_error`: the neglected ``|J_n(k a0)|``
   relative to the largest, the size (4.27) whose term ratio is the estimate (4.28)), below
-  1e-16 at that degree (measured for k a0 from 0.01 to 12); -1 without wear, with the time-domain wear models or without
-  contact. It is an estimate of the right size, not a strict bound: for k a0 = 0.5-6,
-  r_a0 = 0.2-0.6 and degrees 2-12 the actual relative change of the wear coefficient against
-  the default degree is 0.003 to 1.03 times it (``tests/test_effects.py``). The degree is not a
-  scene/FMU knob: ``corrugated_contact`` takes no degree argument, and a knob that reached the
-  growth rate but not the wear depth would be inconsistent.
+  1e-16 at that degree (measured for k a0 from 0.01 to 12); -1 without wear, with the
+  time-domain wear models or without contact. It is an estimate of the right size, not a
+  strict bound: for k a0 = 0.5-6, r_a0 = 0.2-0.6 and degrees 2-12 the actual relative change
+  of the wear coefficient against the default degree is 0.003 to 1.03 times it
+  (``tests/test_effects.py``). The degree is not a scene/FMU knob: ``corrugated_contact``
+  takes no degree argument, and a knob that reached the growth rate but not the wear depth
+  would be inconsistent.
 """
 
 from __future__ import annotations
@@ -128,8 +129,8 @@ class SceneError(ValueError):
 EFFECTS = ("velocity_friction", "roughness", "creep", "corrugation", "nonsteady", "wear")
 #: Creep theories: the 3-D ones of :func:`railcontact.creep3d.creep_force_3d` (elliptic
 #: contact), Kalker's exact theory (``"exact"``, from the shipped table ``creep_exact`` of
-#: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory (:func:`railcontact.carter.carter_creep_force`, line
-#: contact, ``geometry.kind = "line"``).
+#: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory
+#: (:func:`railcontact.carter.carter_creep_force`, line contact, ``geometry.kind = "line"``).
 CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "exact", "carter")
 #: Defaults of the accuracy knobs of the smooth friction law's iteration (those of
 #: :func:`railcontact.friction.solve_velocity_friction_normalised`).
