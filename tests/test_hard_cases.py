@@ -295,7 +295,11 @@ def test_corrugation_amplitude_at_edge_of_4_2():
     "100 R, a ~ 10 a0 ~ L/2). Either the Newton solve of (4.31), (4.33) needs a better start / "
     "damping there, or the documented limit must be stricter than (4.2). Repro: a0 = "
     "hertz_2d(1e6, 0.5, 210e9, 0.28).a0; L = a0 / 0.05; k = 2 pi / L; corrugated_contact(L / 2, "
-    "1e6, 0.5, 210e9, 0.28, 0.3, 0.0, [0.99 / (k**2 * 0.5)], [0.0], [L]) -> ValueError."))
+    "1e6, 0.5, 210e9, 0.28, 0.3, 0.0, [0.99 / (k**2 * 0.5)], [0.0], [L]) -> ValueError. "
+    "Second mode (long hypothesis run, 2 of 2001 positions): a0/L = 1e-3, k^2 R |Z| = 0.858: "
+    "'the normal problem (4.31), (4.33) did not converge'. Repro: corrugated_contact("
+    "0.5009757221830826, 1e6, 0.5, 210e9, 0.28, 0.3, 0.0, [-0.08393828741367358], "
+    "[-0.22802442202657747], [2.3638322038063566])."))
 def test_corrugation_long_waves_near_edge_of_4_2_solve():
     a0 = float(hertz_2d(N_LINE, R, E, NU).a0)
     for ratio, curv in ((0.05, 0.99), (np.exp(-4.0), 0.95)):
@@ -304,6 +308,10 @@ def test_corrugation_long_waves_near_edge_of_4_2_solve():
         res = cg.corrugated_contact(np.linspace(0.0, lam, 33), N_LINE, R, E, NU, MU, 0.0,
                                     [curv / (k * k * R)], [0.0], [lam])
         assert np.all(np.isfinite(res.half_width)) and np.all(res.half_width > 0)
+    res = cg.corrugated_contact(0.5009757221830826, N_LINE, R, E, NU, MU, 0.0,
+                                [-0.08393828741367358], [-0.22802442202657747],
+                                [2.3638322038063566])
+    assert np.isfinite(float(res.half_width))
 
 
 # --------------------------------------------------------------------------------------------
