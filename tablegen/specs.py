@@ -347,3 +347,181 @@ register(TableSpec(
         "growth factor per passage is 1 - 2 wear_number * wear_real "
         "(railcontact.evolution.growth_factor)")},
 ))
+
+
+# --------------------------------------------------------------------------------------------
+# Non-steady (oscillating-creepage) transfer function, Carter model (Nielsen Ch. 7)
+# --------------------------------------------------------------------------------------------
+
+_NS_COUNTS = {"coarse": (8, 13, 6, 9), "default": (19, 31, 13, 21), "fine": (29, 49, 21, 33)}
+NONSTEADY_STICK_MIN = 0.02
+
+
+def _nonsteady_axes(resolution):
+    n_log, n_lin, n_rlog, n_rlin = _NS_COUNTS[resolution]
+    ratio = np.r_[0.0, np.geomspace(0.001, 0.1, n_log)[:-1], np.linspace(0.1, 1.0, n_lin)]
+    stick = np.r_[np.geomspace(NONSTEADY_STICK_MIN, 0.2, n_rlog)[:-1],
+                  np.linspace(0.2, 1.0, n_rlin)]
+    return [
+        Axis("a0_over_wavelength", ratio, "1",
+             "a0/L, contact half-width over the wavelength of the creepage oscillation",
+             comment="a0/L from 0 (quasi-static: H = 1 exactly) to 1 (L/a0 = 1); nodes 0, then "
+                     "log-spaced from 0.001 to 0.1, uniform above (H is analytic in k a0, "
+                     "varying on the scale 1/(k a0* Lambda) at low frequency)"),
+        Axis("stick_ratio", stick, "1",
+             "r_a0 = a0*/a0, steady stick-zone half-width over contact half-width "
+             "(1 = full stick)",
+             comment=f"r_a0 from {NONSTEADY_STICK_MIN} to 1: log-spaced below 0.2 (the "
+                     "k a0* ln(4 b/a0*) term has a logarithmic derivative singularity at "
+                     "r_a0 = 0, so the axis stops short of it), uniform above; below the "
+                     "first node the reader raises"),
+    ]
+
+
+def nonsteady_transfer_function(points):
+    """|H| and angle(H) of :func:`railcontact.nonsteady.nonsteady_amplitude_phase_normalised`
+    (model="carter", variant="derived", nu = 0.28, b/a0 = 20) at (a0/L, r_a0)."""
+    from railcontact.nonsteady import nonsteady_amplitude_phase_normalised  # noqa: PLC0415
+
+    amp, phase = nonsteady_amplitude_phase_normalised(
+        points[:, 0], points[:, 1], **NONSTEADY_SETTINGS)
+    return np.stack([np.asarray(amp, dtype=float), np.asarray(phase, dtype=float)], axis=1)
+
+
+NONSTEADY_SETTINGS = dict(poisson_ratio=0.28, pseudo_width_ratio=20.0, model="carter",
+                          variant="derived")
+
+register(TableSpec(
+    name="nonsteady_transfer",
+    title="Amplitude ratio and phase of the non-steady creep force for an oscillating "
+          "creepage, Carter model (Nielsen 1998, Ch. 7)",
+    axes=_nonsteady_axes,
+    function=nonsteady_transfer_function,
+    variables=[
+        Variable("amplitude_ratio", "1",
+                 "|T_hat/xi_hat| over Carter's quasi-static slope pi E a0* / (4 (1 - nu^2)), "
+                 "Eq. (7.53)", error_target=1e-4,
+                 comment="1 at a0/L = 0; decays like 1/(k a0* Lambda) at high frequency"),
+        Variable("phase", "rad",
+                 "phase of the force relative to the creepage, phi_T - phi_xi, Eq. (7.54) "
+                 "(negative: the force lags)", error_target=1e-4,
+                 comment="stays in (-pi/2 - 0.05, 0] on the grid: no 2 pi wrap"),
+    ],
+    references=(f"{THESIS}, Ch. 7, Eqs. (7.16)-(7.20), (7.53)-(7.54), with the errata "
+                "recorded in railcontact.nonsteady; F.W. Carter, Proc. R. Soc. Lond. A 112 "
+                "(1926) 151-157 (steady traction)"),
+    method=("railcontact.nonsteady.nonsteady_amplitude_phase_normalised(a0/L, r_a0, "
+            "poisson_ratio=0.28, pseudo_width_ratio=20, model='carter', variant='derived')"),
+    n_check={"coarse": 1000, "default": 4000, "fine": 10000},
+    chunk_size=1024,
+    requires=("railcontact.nonsteady",),
+    attributes={
+        "poisson_ratio": 0.28,
+        "pseudo_width_ratio": 20.0,
+        "model": "carter",
+        "normalisation": (
+            "H = (T_hat/xi_hat) / (pi E a0* / (4 (1 - nu^2))) of the 2-D linearised "
+            "non-steady Carter contact (magnitude-frame force; the force on the wheel is -T); "
+            "amplitude_ratio = |H|, phase = angle(H). Valid while k^2 R |U| << 1 (see "
+            "railcontact.nonsteady). The table holds nu = 0.28 and b/a0 = 20 fixed; other "
+            "values need the direct function"),
+    },
+))
+
+
+# --------------------------------------------------------------------------------------------
+# Velocity-dependent friction: creep curves of the smooth law (5.16) (Nielsen Sec. 5.3)
+# --------------------------------------------------------------------------------------------
+
+VELOCITY_FRICTION_SOLVER = dict(degree=128, tol=1e-10)
+VELOCITY_FRICTION_RATIO_RANGE = (0.2, 1.8)
+VELOCITY_FRICTION_KAPPA_MAX = 6.0
+VELOCITY_FRICTION_CREEPAGE_MAX = 3.0
+
+_VF_COUNTS = {"coarse": (5, 5, 13, 6), "default": (13, 9, 19, 10), "fine": (17, 13, 37, 19)}
+
+
+def _velocity_friction_axes(resolution):
+    n_m, n_k, n_c, n_s = _VF_COUNTS[resolution]
+    chi = np.r_[np.linspace(0.0, 1.2, n_c),
+                np.linspace(1.2, VELOCITY_FRICTION_CREEPAGE_MAX, n_s)[1:]]
+    s = np.linspace(0.0, 1.0, n_k)
+    return [
+        Axis("friction_ratio", np.linspace(*VELOCITY_FRICTION_RATIO_RANGE, n_m), "1",
+             "m = mu_k/mu_0, kinetic over static friction coefficient of the law (5.16)",
+             comment="m from 0.2 (falling law) to 1.8 (rising law); m = 1 (Carter) is a node"),
+        Axis("kappa_normalised", VELOCITY_FRICTION_KAPPA_MAX * s ** 2, "1",
+             "kappa xi_c0: decay rate of the law (5.16) in slip velocity over rolling speed, "
+             "times Carter's critical creepage xi_c0 = mu_0 a0/R",
+             comment="kappa xi_c0 from 0 (Carter) to 6, nodes 6 s^2 (s uniform) crowd towards "
+                     "0; steeper laws (kappa xi_c0 >> 6) put the peak of the curve at a few "
+                     "percent of xi_c0, which this grid does not resolve, and need many more "
+                     "polynomial terms (the iteration fails for kappa xi_c0 >> degree)"),
+        Axis("creepage_ratio", chi, "1",
+             "|xi|/xi_c0, creepage magnitude over Carter's critical creepage "
+             "xi_c0 = mu_0 a0/R (the table is odd in xi: T(-xi) = -T(xi))",
+             comment="uniform (step 1/15 for the default grid) on [0, 1.2], where the peak and "
+                     "the onset of full sliding lie for this (m, kappa) box, step 0.2 beyond "
+                     "(sliding branch, varying with kappa |xi|) up to 3; beyond the last node "
+                     "the reader raises"),
+    ]
+
+
+def velocity_friction_function(points):
+    """T/(mu_0 N) magnitude of :func:`railcontact.friction.velocity_friction_creep_force_normalised`
+    at (m, kappa xi_c0, |xi|/xi_c0) (degree 128, tol 1e-10), sign flipped to be >= 0."""
+    from railcontact.friction import velocity_friction_creep_force_normalised  # noqa: PLC0415
+
+    f = velocity_friction_creep_force_normalised(points[:, 2], points[:, 0], points[:, 1],
+                                                 **VELOCITY_FRICTION_SOLVER)
+    return -np.asarray(f, dtype=float)[:, None]
+
+
+def _velocity_friction_check(axes, n, rng):
+    lo = np.array([a.nodes[0] for a in axes])
+    hi = np.array([a.nodes[-1] for a in axes])
+    pts = lo + (hi - lo) * rng.random((n, len(axes)))
+    return pts[np.lexsort((pts[:, 1], pts[:, 0]))]
+
+
+register(TableSpec(
+    name="velocity_friction",
+    title="Creep curves of the 2-D rolling contact with slip-velocity-dependent friction "
+          "(Nielsen 1998, Sec. 5.3, law (5.16))",
+    axes=_velocity_friction_axes,
+    function=velocity_friction_function,
+    variables=[
+        Variable("force_ratio", "1",
+                 "magnitude of the tangential force over the static Coulomb limit, "
+                 "|T|/(mu_0 N)", error_target=2e-3,
+                 comment="T = -force_ratio sign(xi) mu_0 N (on the wheel, opposing the "
+                         "creepage); 0 <= force_ratio <= max(1, m). The curve has a kink "
+                         "(discontinuous higher derivative) at the onset of full sliding, "
+                         "whose creepage depends on (m, kappa) and so is not a grid line: the "
+                         "spline is C2 everywhere (no double knots) and its error is largest "
+                         "there (see max_abs_error); the direct solver itself is accurate to "
+                         "about 1e-3 (railcontact.friction, degree 128)"),
+    ],
+    references=(f"{THESIS}, Sec. 5.3, Eq. (5.16) and Fig. 5.4 (polynomial approach); "
+                "F.W. Carter, Proc. R. Soc. Lond. A 112 (1926) 151-157 (m = 1 or kappa = 0)"),
+    method=("railcontact.friction.velocity_friction_creep_force_normalised(chi, m, kappa, "
+            "degree=128, tol=1e-10)"),
+    check_points=_velocity_friction_check,
+    n_check={"coarse": 60, "default": 200, "fine": 800},
+    chunk_size=28,
+    requires=("railcontact.friction",),
+    attributes={
+        "smoothness": (
+            "cubic B-spline interpolant, C2 on every axis, not-a-knot ends, no double knots: "
+            "the kink of the creep curve at the onset of full sliding moves with (m, kappa) "
+            "and is not on a grid line, so the spline rounds it off; max_abs_error of "
+            "force_ratio (random off-grid points in the whole box) is dominated by that kink"),
+        "solver_settings": "degree = 128, tol = 1e-10 (railcontact.friction)",
+        "normalisation": (
+            "law (5.16) mu(s) = mu_0 [(1 - m)/(1 + kappa s) + m], s the slip velocity over the "
+            "rolling speed; creepage over xi_c0 = mu_0 a0/R, kappa times xi_c0, force over "
+            "mu_0 N: one 3-D table serves every load, radius and mu_0 of the 2-D (Carter) "
+            "contact. Grid box: 0.2 <= m <= 1.8, 0 <= kappa xi_c0 <= 6, 0 <= |xi|/xi_c0 <= 3, "
+            "inside the region where the Sec. 5.3 iteration converges at degree 128"),
+    },
+))
