@@ -325,7 +325,11 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
     if method != "linear":
         # full sliding: |T| = mu N up to rounding of the unit vector; never above mu N
         t_abs = np.hypot(tx, ty)
-        over = t_abs > mu_n
+        # With two non-zero components np.hypot may round |T| down onto mu N while the exact
+        # |(tx, ty)| is a few ulp above it: rescale those with a 4 eps margin too. A single
+        # component is exact (|tx| <= mu N is then what hypot checks).
+        margin = np.where((tx != 0.0) & (ty != 0.0), 1.0 - 4.0 * np.finfo(float).eps, 1.0)
+        over = t_abs > mu_n * margin
         # (1 - 4 eps): the rescaled hypot must not round above mu N again
         scale = np.divide(mu_n * (1.0 - 4.0 * np.finfo(float).eps), t_abs, out=np.ones(shape),
                           where=over)

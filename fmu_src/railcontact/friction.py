@@ -796,7 +796,11 @@ def velocity_friction_creep_force_normalised(creepage_ratio, friction_ratio, kap
     solvers = {}
     for idx in np.ndindex(chi.shape):
         c, mm, kk = float(chi[idx]), float(m[idx]), float(kap[idx])
-        if mm == 1.0 or kk == 0.0:
+        # Linear regime: the slip zone has length ~2|chi| a0 and mu departs from mu_0 there by
+        # ~(1 - m) kappa |chi| mu_0, so Carter with mu_0 is exact to a relative
+        # ~kappa |1 - m| |chi| (<= 1e-9 here), while the iteration loses digits below chi ~ 1e-9
+        # (its force sticks at a rounding floor ~5e-18).
+        if mm == 1.0 or kk == 0.0 or (abs(c) <= 1e-8 and abs(c) * kk * abs(1.0 - mm) <= 1e-9):
             out[idx] = -np.sign(c) * _carter_force_ratio(abs(c), 1.0)
             continue
         key = (mm, kk)

@@ -220,10 +220,12 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
     k = _k_from_ratio(c_minor / c_major)
     # c_major = p0 c_min (K - E) / (E* c_max^2 m), p0 = 3N/(2 pi c_max c_min),
     # (K - E)/m = R_D(0, k^2, 1)/3  ->  c_max^3 = N R_D(0, k^2, 1) / (2 pi E* C_major)
-    c_max = np.cbrt(n_load * elliprd(0.0, k * k, 1.0) / (2.0 * np.pi * e_star * c_major))
+    # cbrt of each factor: cbrt(N * ...) underflows for N below ~1e-297 N although a0 ~ N^(1/3)
+    c_max = np.cbrt(n_load) * np.cbrt(elliprd(0.0, k * k, 1.0) / (2.0 * np.pi * e_star * c_major))
     c_min = k * c_max
     a0 = np.where(x_major, c_max, c_min)
     b0 = np.where(x_major, c_min, c_max)
     area = np.pi * a0 * b0
-    p0 = np.divide(1.5 * n_load, area, out=np.zeros_like(area), where=area > 0)
+    # N / area first: 1.5 N would round in the subnormal range for N < ~1e-308 N
+    p0 = 1.5 * np.divide(n_load, area, out=np.zeros_like(area), where=area > 0)
     return Hertz3D(a0[()], b0[()], p0[()])
