@@ -77,7 +77,7 @@ def test_velocity_friction_spec_grid():
     spec = get_spec("velocity_friction")
     axes, pts = spec.grid("default")
     assert [a.name for a in axes] == ["friction_ratio", "kappa_normalised", "creepage_ratio"]
-    assert pts.shape == (13 * 9 * 28, 3) and spec.chunk_size == 28   # one curve per task
+    assert pts.shape == (13 * 9 * 30, 3) and spec.chunk_size == 30   # one curve per task
     assert 1.0 in axes[0].nodes and axes[1].nodes[0] == 0.0 and axes[2].nodes[0] == 0.0
 
 
