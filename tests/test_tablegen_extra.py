@@ -77,7 +77,7 @@ def test_velocity_friction_spec_grid():
     spec = get_spec("velocity_friction")
     axes, pts = spec.grid("default")
     assert [a.name for a in axes] == ["friction_ratio", "kappa_normalised", "creepage_ratio"]
-    assert pts.shape == (13 * 9 * 30, 3) and spec.chunk_size == 30   # one curve per task
+    assert pts.shape == (13 * 13 * 30, 3) and spec.chunk_size == 30   # one curve per task
     assert 1.0 in axes[0].nodes and axes[1].nodes[0] == 0.0 and axes[2].nodes[0] == 0.0
 
 
@@ -87,7 +87,7 @@ def test_velocity_friction_table_against_direct_solver():
 
     table = Table.from_file(default_table_path("velocity_friction"))
     acc = table.accuracy()["force_ratio"]["max_abs_error"]
-    assert 0.0 < acc <= 2e-3
+    assert 0.0 < acc <= 1e-3
     rng = np.random.default_rng(5316)
     n = 5                                            # each direct call builds a solver (slow)
     pts = np.column_stack([rng.uniform(0.2, 1.8, n), rng.uniform(0.0, 6.0, n),
