@@ -147,6 +147,7 @@ class WheelRailContact(Fmi2Slave):
         self._contact = _effects.ContactPoint()
         self._pipeline = None
         self._steps = ()
+        self._checked_step = _effects.checked_steps(())    # (no effects before initialisation)
         self._warned = set()
         self._built_from = None
 
@@ -261,6 +262,7 @@ class WheelRailContact(Fmi2Slave):
         self._pipeline = _effects.build_pipeline(scene, tables_dir=tables_dir,
                                                  warn=self._warn_once)
         self._steps = tuple(e.step for e in self._pipeline.effects.values())
+        self._checked_step = self._pipeline.checked_step
         self._contact.friction_coefficient = scene.friction_coefficient
         self._built_from = values
         self.log(f"scene {scene.name!r}: effects on: {', '.join(self._pipeline.effects)}",
@@ -313,6 +315,17 @@ class WheelRailContact(Fmi2Slave):
             step(c)
 
     def do_step(self, current_time, step_size):
+        # Fast path: the pipeline's checked step (railcontact.effects.Pipeline.checked_step)
+        # makes the cheap input check (one isfinite on the sum of the inputs, N >= 0, V >= 0)
+        # and evaluates the effects in one call; it returns False, changing nothing, when that
+        # check does not pass. Then the full check below names the bad input (or finds them
+        # all valid, e.g. when only their sum overflowed) before the effects run.
+        try:
+            if self._checked_step(self._contact):
+                return True
+        except ValueError as exc:
+            self._log_step_failure(current_time, exc)
+            raise
         try:
             self._check_inputs()
         except ValueError as exc:
@@ -321,10 +334,15 @@ class WheelRailContact(Fmi2Slave):
         try:
             for step in self._steps:
                 step(self._contact)
-        except ValueError as exc:   # a model's own range check (e.g. Eq. (4.2) as the surface
-            self.log(f"step at t = {current_time:g} s failed: {exc}", Fmi2Status.error)
-            raise                   # evolves): an error status with the model's message
+        except ValueError as exc:
+            self._log_step_failure(current_time, exc)
+            raise
         return True
+
+    def _log_step_failure(self, current_time, exc):
+        # a model's own range check (e.g. Eq. (4.2) as the surface evolves): an error status
+        # with the model's message
+        self.log(f"step at t = {current_time:g} s failed: {exc}", Fmi2Status.error)
 
     # ---------------------------------------------------------------------------------------
     # FMU state: everything (parameters, inputs, outputs, effect state, warnings logged)
@@ -344,6 +362,7 @@ class WheelRailContact(Fmi2Slave):
         built_from = state["built_from"]
         if built_from is None:
             self._pipeline, self._steps, self._built_from = None, (), None
+            self._checked_step = _effects.checked_steps(())
         elif built_from != self._built_from:
             self._build(dict(built_from))
         for name, value in state["contact"].items():

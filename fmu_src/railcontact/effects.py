@@ -29,7 +29,7 @@ from .scene import SceneError
 __all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
            "Corrugation", "Wear",
            "Pipeline", "build_pipeline", "EffectUnavailable", "NOT_ESTIMATED",
-           "table_error_estimate", "wear_series_degree"]
+           "table_error_estimate", "wear_series_degree", "checked_steps"]
 
 _PACKAGE = __name__.rpartition(".")[0]     # "railcontact", or the FMU's bundled copy's name
 
@@ -670,6 +670,10 @@ class Pipeline:
         self.effects = effects
         self._steps = tuple(e.step for e in effects.values())
         self._auxiliary = tuple(e for e in effects.values() if hasattr(e, "auxiliary"))
+        #: ``checked_step(contact) -> bool``: :meth:`step` behind a cheap validity check of the
+        #: inputs (see :func:`checked_steps`); the FMU slave's ``do_step``.
+        self.checked_step = (_checked_normal_table_creep(effects["normal"], effects["creep"])
+                             if _fusable(effects) else checked_steps(self._steps))
 
     def step(self, contact):
         """Evaluate every built effect once on ``contact`` (in place)."""
@@ -693,6 +697,89 @@ class Pipeline:
         """Restore :meth:`get_state` (the scene must be the same)."""
         for name, e in self.effects.items():
             e.set_state(state[name])
+
+
+# --------------------------------------------------------------------------------------------
+# the FMU's per-step call: input pre-check + effects, one Python frame where possible
+# --------------------------------------------------------------------------------------------
+# An FMU step is a few microseconds of Python, so the interpreter overhead (frames, attribute
+# look-ups, float() calls) is a large part of it (issue 6, "Speed": the creep-only table scene
+# at <= 2x a trivial PythonFMU slave's doStep, measured by benchmarks/bench_fmu.py). The
+# functions below return closures with everything constant bound at build time.
+
+
+def _inputs_plausible(c, _isfinite=math.isfinite):
+    """Cheap check: all six inputs finite (one isfinite on their sum), N >= 0 and V >= 0.
+
+    False does not mean invalid (a sum may overflow): the caller then makes the full range
+    check, with messages naming the input."""
+    n, v = c.normal_force, c.rolling_speed
+    return (_isfinite(n + c.creepage_longitudinal + c.creepage_lateral + c.spin + v
+                      + c.rail_position) and n >= 0.0 and v >= 0.0)
+
+
+def checked_steps(steps):
+    """``checked(c)``: if :func:`_inputs_plausible`, evaluate ``steps`` on ``c`` and return
+    True; else return False and change nothing."""
+    def checked(c, _ok=_inputs_plausible):
+        if not _ok(c):
+            return False
+        for step in steps:
+            step(c)
+        return True
+    return checked
+
+
+def _fusable(effects):
+    """True for exactly {normal (ellipse), creep (modified-strip table)}: the fused step."""
+    normal, creep = effects.get("normal"), effects.get("creep")
+    return (list(effects) == ["normal", "creep"] and type(normal) is NormalContact
+            and not normal._line and type(creep) is Creep3D and creep._table is not None
+            and not creep._exact)
+
+
+def _checked_normal_table_creep(normal, creep):
+    """:func:`checked_steps` for ``NormalContact.step`` then ``Creep3D.step`` (table,
+    modified strip), fused into one frame: the same statements, with the effects' constants
+    bound here and the table's scalar path called directly. Same results, bit for bit
+    (``tests/test_effects.py`` compares it with the two effects' own steps); both call
+    counters still count."""
+    a1, b1, p1, fixed = normal._a1, normal._b1, normal._p1, normal._fixed
+    force, e_mod, nu, use_spin = creep._force, creep._e, creep._nu, creep.use_spin
+    estimate = creep.table_error_estimate
+    third = 1.0 / 3.0
+
+    def checked(c, _isfinite=math.isfinite):
+        n, v = c.normal_force, c.rolling_speed
+        xi_x, xi_y, phi = c.creepage_longitudinal, c.creepage_lateral, c.spin
+        if not (_isfinite(n + xi_x + xi_y + phi + v + c.rail_position) and n >= 0.0
+                and v >= 0.0):
+            return False
+        # NormalContact.step
+        normal.calls += 1
+        if fixed:
+            a0, b0, p0 = a1, b1, p1 * n
+        else:
+            scale = n ** third
+            a0, b0, p0 = a1 * scale, b1 * scale, p1 * scale
+        c.a0, c.b0, c.p0 = a0, b0, p0
+        c.contact_half_width = a0
+        # Creep3D.step, table path
+        creep.calls += 1
+        c.creep_table_error_estimate = estimate
+        if n <= 0.0:
+            c.Fx = c.Fy = 0.0
+            c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
+            c.creep_within_validity = True
+            c.Mz = 0.0
+            creep._aux_args = None
+            return True
+        args = (xi_x, xi_y, phi if use_spin else 0.0, n, a0, b0, e_mod, nu,
+                c.friction_coefficient)
+        c.Fx, c.Fy = force(*args)
+        creep._aux_args = args
+        return True
+    return checked
 
 
 def build_pipeline(scene, tables_dir=None, warn=None):

@@ -797,29 +797,49 @@ class CreepTable:
         tx, ty = self._solve(args)[:2]
         return result(tx[()], ty[()])
 
-    def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
-        """Scalar fast path (inputs already range-checked)."""
+    def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, _kalker=_kalker_cached,
+                _sqrt=math.sqrt, _hypot=math.hypot, _pi=math.pi, _pi2=math.pi**2,
+                _last=[None, None, None]):  # noqa: B006 - deliberate memo, see below
+        """Scalar fast path (inputs already range-checked).
+
+        Called once per FMU step, so written for the interpreter: the math functions and
+        constants are bound as default arguments (no global/attribute look-ups), no builtin
+        min/max calls, and the Kalker coefficients of the last (a0/b0, nu) are kept in
+        ``_last`` (an FMU asks for the same ellipse shape step after step; any other shape
+        goes to the lru-cached :func:`_kalker_cached`). Same arithmetic, in the same order, as
+        before these changes: results are bit-identical.
+        """
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             return 0.0, 0.0
-        c11, c22, c23 = _kalker_cached(a0 / b0, nu)
+        g = a0 / b0
+        if g == _last[0] and nu == _last[1]:
+            c11, c22, c23 = _last[2]
+        else:
+            c11, c22, c23 = coefs = _kalker(g, nu)
+            _last[:] = (g, nu, coefs)
         w_x = c11 * xi_x
-        w_y = c22 * xi_y + math.sqrt(a0 * b0) * c23 * phi
-        p0 = 1.5 * n_load / (math.pi * a0 * b0)
-        w_sat = math.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+        w_y = c22 * xi_y + _sqrt(a0 * b0) * c23 * phi
+        p0 = 1.5 * n_load / (_pi * a0 * b0)
+        w_sat = _pi2 * (1.0 + nu) * mu * p0 / e_mod
         mu_n = mu * n_load
-        z = math.hypot(w_x, w_y) / w_sat
+        z = _hypot(w_x, w_y) / w_sat
         if z < 1e-6:
             f_over_z = self._slope0 + 0.5 * self._curv0 * z
         else:
-            zz = min(z, self._z_max)
-            i = max(self._bisect(self._pp_breaks, zz) - 1, 0)
+            zz = z if z < self._z_max else self._z_max          # min(z, z_max)
+            breaks = self._pp_breaks
+            i = self._bisect(breaks, zz) - 1
+            if i < 0:
+                i = 0
             c3, c2, c1, c0 = self._pp_coefs[i]
-            dz = zz - self._pp_breaks[i]
-            f = min(((c3 * dz + c2) * dz + c1) * dz + c0, 1.0)
+            dz = zz - breaks[i]
+            f = ((c3 * dz + c2) * dz + c1) * dz + c0
+            if f > 1.0:                                         # min(f, 1)
+                f = 1.0
             f_over_z = f / z
         k = mu_n / w_sat * f_over_z
         tx, ty = -k * w_x, -k * w_y
-        t_abs = math.hypot(tx, ty)
+        t_abs = _hypot(tx, ty)
         if t_abs > mu_n:  # rounding guard, see _solve
             r = mu_n * (1.0 - 2.0**-51) / t_abs
             tx, ty = tx * r, ty * r
