@@ -263,6 +263,13 @@ class WheelRailContact(Fmi2Slave):
                                                  warn=self._warn_once)
         self._steps = tuple(e.step for e in self._pipeline.effects.values())
         self._checked_step = self._pipeline.checked_step
+        # creep-only table scene: the whole step in one Python frame (an instance attribute
+        # shadows the do_step method; PythonFMU looks the method up by name on each step)
+        self.__dict__.pop("do_step", None)
+        fused = self._pipeline.fmu_step(self._contact, self._do_step_full,
+                                        self._log_step_failure)
+        if fused is not None:
+            self.do_step = fused
         self._contact.friction_coefficient = scene.friction_coefficient
         self._built_from = values
         self.log(f"scene {scene.name!r}: effects on: {', '.join(self._pipeline.effects)}",
@@ -315,17 +322,22 @@ class WheelRailContact(Fmi2Slave):
             step(c)
 
     def do_step(self, current_time, step_size):
-        # Fast path: the pipeline's checked step (railcontact.effects.Pipeline.checked_step)
-        # makes the cheap input check (one isfinite on the sum of the inputs, N >= 0, V >= 0)
-        # and evaluates the effects in one call; it returns False, changing nothing, when that
-        # check does not pass. Then the full check below names the bad input (or finds them
-        # all valid, e.g. when only their sum overflowed) before the effects run.
+        # The pipeline's checked step (railcontact.effects.Pipeline.checked_step) makes a cheap
+        # input check (one isfinite on the sum of the inputs, N >= 0, V >= 0) and evaluates the
+        # effects in one call; it returns False, changing nothing, when that check does not
+        # pass: then _do_step_full's range check names the bad input (or finds all valid, e.g.
+        # when only their sum overflowed) before the effects run. For the creep-only table
+        # scene _build replaces this method by Pipeline.fmu_step, the same in one frame.
         try:
             if self._checked_step(self._contact):
                 return True
         except ValueError as exc:
             self._log_step_failure(current_time, exc)
             raise
+        return self._do_step_full(current_time, step_size)
+
+    def _do_step_full(self, current_time, step_size):
+        """The step with the full input check: an error message naming the bad input."""
         try:
             self._check_inputs()
         except ValueError as exc:
@@ -363,6 +375,7 @@ class WheelRailContact(Fmi2Slave):
         if built_from is None:
             self._pipeline, self._steps, self._built_from = None, (), None
             self._checked_step = _effects.checked_steps(())
+            self.__dict__.pop("do_step", None)
         elif built_from != self._built_from:
             self._build(dict(built_from))
         for name, value in state["contact"].items():

@@ -21,6 +21,7 @@ Sign convention: the forces are those acting on the wheel, opposing the creepage
 
 from __future__ import annotations
 
+import functools
 import importlib
 import math
 
@@ -670,10 +671,13 @@ class Pipeline:
         self.effects = effects
         self._steps = tuple(e.step for e in effects.values())
         self._auxiliary = tuple(e for e in effects.values() if hasattr(e, "auxiliary"))
+        self._fused = _fusable(effects)
         #: ``checked_step(contact) -> bool``: :meth:`step` behind a cheap validity check of the
-        #: inputs (see :func:`checked_steps`); the FMU slave's ``do_step``.
-        self.checked_step = (_checked_normal_table_creep(effects["normal"], effects["creep"])
-                             if _fusable(effects) else checked_steps(self._steps))
+        #: inputs (see :func:`checked_steps`); fused into one function for the creep-only
+        #: table scene (:func:`_normal_table_creep`).
+        self.checked_step = (_normal_table_creep(effects["normal"], effects["creep"],
+                                                 _declined, _no_log)
+                             if self._fused else checked_steps(self._steps))
 
     def step(self, contact):
         """Evaluate every built effect once on ``contact`` (in place)."""
@@ -684,6 +688,23 @@ class Pipeline:
         """Evaluate the outputs effects compute only on demand (after a step)."""
         for e in self._auxiliary:
             e.auxiliary(contact)
+
+    def fmu_step(self, contact, otherwise, on_error):
+        """The whole FMU ``do_step(current_time, step_size)`` in one Python frame, if fused.
+
+        For the scene whose effects are exactly the normal contact and the modified-strip creep
+        table (the creep-only table scene): a callable ``(current_time, step_size) -> True``
+        that makes the cheap input check and evaluates both effects on ``contact`` (as
+        :attr:`checked_step`); if the check does not pass it returns
+        ``otherwise(current_time, step_size)`` (the slave's full path: the range check that
+        names the input, then the effects), and a ValueError raised by a model is passed to
+        ``on_error(current_time, exc)`` and re-raised. None for every other scene.
+        """
+        if not self._fused:
+            return None
+        step = _normal_table_creep(self.effects["normal"], self.effects["creep"], otherwise,
+                                   on_error)
+        return functools.partial(step, contact)
 
     def calls(self):
         """Effect name -> number of evaluations so far."""
@@ -738,23 +759,35 @@ def _fusable(effects):
             and not creep._exact)
 
 
-def _checked_normal_table_creep(normal, creep):
+def _declined(current_time, step_size):
+    return False
+
+
+def _no_log(current_time, exc):
+    pass
+
+
+def _normal_table_creep(normal, creep, otherwise, on_error):
     """:func:`checked_steps` for ``NormalContact.step`` then ``Creep3D.step`` (table,
-    modified strip), fused into one frame: the same statements, with the effects' constants
-    bound here and the table's scalar path called directly. Same results, bit for bit
-    (``tests/test_effects.py`` compares it with the two effects' own steps); both call
-    counters still count."""
+    modified strip), fused into one function: the same statements in the same order, with
+    the effects' constants bound here and the table's scalar path called directly, so the
+    results are the same bit for bit; both call counters still count.
+
+    Returns ``step(c, current_time=0.0, step_size=0.0)``: True after evaluating, or
+    ``otherwise(current_time, step_size)`` if the cheap input check does not pass (nothing
+    changed); a ValueError of a model goes to ``on_error(current_time, exc)``, then up.
+    """
     a1, b1, p1, fixed = normal._a1, normal._b1, normal._p1, normal._fixed
     force, e_mod, nu, use_spin = creep._force, creep._e, creep._nu, creep.use_spin
     estimate = creep.table_error_estimate
     third = 1.0 / 3.0
 
-    def checked(c, _isfinite=math.isfinite):
+    def step(c, current_time=0.0, step_size=0.0, _isfinite=math.isfinite):
         n, v = c.normal_force, c.rolling_speed
         xi_x, xi_y, phi = c.creepage_longitudinal, c.creepage_lateral, c.spin
         if not (_isfinite(n + xi_x + xi_y + phi + v + c.rail_position) and n >= 0.0
                 and v >= 0.0):
-            return False
+            return otherwise(current_time, step_size)
         # NormalContact.step
         normal.calls += 1
         if fixed:
@@ -776,10 +809,14 @@ def _checked_normal_table_creep(normal, creep):
             return True
         args = (xi_x, xi_y, phi if use_spin else 0.0, n, a0, b0, e_mod, nu,
                 c.friction_coefficient)
-        c.Fx, c.Fy = force(*args)
+        try:
+            c.Fx, c.Fy = force(*args)
+        except ValueError as exc:  # (Kalker coefficients' range; shape fixed by the scene)
+            on_error(current_time, exc)
+            raise
         creep._aux_args = args
         return True
-    return checked
+    return step
 
 
 def build_pipeline(scene, tables_dir=None, warn=None):
