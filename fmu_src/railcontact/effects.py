@@ -756,7 +756,7 @@ def _fusable(effects):
     normal, creep = effects.get("normal"), effects.get("creep")
     return (list(effects) == ["normal", "creep"] and type(normal) is NormalContact
             and not normal._line and type(creep) is Creep3D and creep._table is not None
-            and not creep._exact)
+            and not creep._exact and creep._force == getattr(creep._table, "_scalar", None))
 
 
 def _declined(current_time, step_size):
@@ -778,7 +778,8 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
     changed); a ValueError of a model goes to ``on_error(current_time, exc)``, then up.
     """
     a1, b1, p1, fixed = normal._a1, normal._b1, normal._p1, normal._fixed
-    force, e_mod, nu, use_spin = creep._force, creep._e, creep._nu, creep.use_spin
+    table, e_mod, nu, use_spin = creep._table, creep._e, creep._nu, creep.use_spin
+    scalar = type(table)._scalar      # (creep._force is table._scalar, see _fusable)
     estimate = creep.table_error_estimate
     third = 1.0 / 3.0
 
@@ -807,14 +808,15 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
             c.Mz = 0.0
             creep._aux_args = None
             return True
-        args = (xi_x, xi_y, phi if use_spin else 0.0, n, a0, b0, e_mod, nu,
-                c.friction_coefficient)
+        if not use_spin:
+            phi = 0.0
+        mu = c.friction_coefficient
         try:
-            c.Fx, c.Fy = force(*args)
+            c.Fx, c.Fy = scalar(table, xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
         except ValueError as exc:  # (Kalker coefficients' range; shape fixed by the scene)
             on_error(current_time, exc)
             raise
-        creep._aux_args = args
+        creep._aux_args = (xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
         return True
     return step
 
