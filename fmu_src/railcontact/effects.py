@@ -2,7 +2,9 @@ r"""Effect objects of the WheelRailContact FMU: one small object per physical ef
 
 The FMU slave (``fmu_src/WheelRailContact.py``) builds, at initialisation, only the effects a
 :class:`~railcontact.scene.Scene` switches on (:func:`build_pipeline`), and each communication
-step calls only those (:meth:`Pipeline.step`). Every effect reads and writes the fields of one
+step calls only those (:meth:`Pipeline.step`; the slave uses :attr:`Pipeline.checked_step`
+or :meth:`Pipeline.fmu_step`, the same behind a cheap input check, with the creep-only table
+scene fused into one function for speed). Every effect reads and writes the fields of one
 :class:`ContactPoint` and keeps its own call counter (``calls``), which tests use to show that a
 switched-off effect costs nothing.
 
@@ -180,6 +182,7 @@ class NormalContact(_Effect):
             self._fixed = True
 
     def step(self, c):
+        # (a change here must be made in _normal_table_creep too: the fused FMU step)
         self.calls += 1
         n = c.normal_force
         if self._line:
@@ -269,6 +272,7 @@ class Creep3D(_Effect):
                 self._z_max = float(self._table.table.axes[0]["nodes"][-1])
 
     def step(self, c):
+        # (a change here must be made in _normal_table_creep too: the fused FMU step)
         self.calls += 1
         c.creep_table_error_estimate = self.table_error_estimate
         if c.normal_force <= 0.0:
