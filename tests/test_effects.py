@@ -519,3 +519,48 @@ def test_series_error_estimate_bounds_the_wear_coefficient_truncation(ka, r):
         estimate = float(series_truncation_error(ka, degree)[1])
         assert actual <= 1.5 * estimate, degree
         assert actual >= 1e-3 * estimate or actual < 1e-11, degree
+
+
+# Fused FMU step (issue 6 speed): a refactoring guard, not a physics check -- the physics of
+# both paths is checked against direct railcontact calls in tests/test_fmu.py.
+import random  # noqa: E402
+
+from railcontact.effects import ContactPoint, build_pipeline, checked_steps  # noqa: E402
+from railcontact.scene import parse_scene  # noqa: E402
+
+
+@pytest.mark.parametrize("toml", [
+    "[effects.creep]\nsource = 'table'\n",
+    "[effects.creep]\nsource = 'table'\nspin = false\n",
+    "[geometry]\nkind = 'semi_axes'\nsemi_axis_longitudinal = 6e-3\nsemi_axis_lateral = 4e-3\n"
+    "[effects.creep]\nsource = 'table'\n"])
+def test_fused_table_step_equals_effect_steps(toml):
+    """The fused normal + table-creep step (Pipeline.checked_step) is bit-identical to the two
+    effects' own steps, counters and lazy outputs included; bad inputs change nothing."""
+    scene = parse_scene(toml)
+    fused, plain = build_pipeline(scene), build_pipeline(scene)
+    assert fused._fused
+    generic = checked_steps(plain._steps)
+    c1, c2 = ContactPoint(), ContactPoint()
+    c1.friction_coefficient = c2.friction_coefficient = scene.friction_coefficient
+    rng = random.Random(6)
+    for k in range(2000):
+        vals = [rng.choice([0.0, rng.uniform(0.0, 2e5), 10.0 ** rng.uniform(-300, 6)]),
+                rng.uniform(-0.05, 0.05) * rng.choice([1.0, 1e-9, 0.0]),
+                rng.uniform(-0.01, 0.01), rng.uniform(-5.0, 5.0), rng.uniform(0.0, 50.0),
+                rng.uniform(0.0, 100.0)]
+        for c in (c1, c2):
+            (c.normal_force, c.creepage_longitudinal, c.creepage_lateral, c.spin,
+             c.rolling_speed, c.rail_position) = vals
+        assert fused.checked_step(c1) and generic(c2)
+        if k % 7 == 0:
+            fused.auxiliary(c1)
+            plain.auxiliary(c2)
+        assert c1.as_dict() == c2.as_dict()
+    assert fused.calls() == plain.calls() == {"normal": 2000, "creep": 2000}
+    before = c1.as_dict()
+    for bad in (float("nan"), float("inf"), -1.0):
+        c1.normal_force = bad
+        assert not fused.checked_step(c1)
+        c1.normal_force = before["normal_force"]
+        assert c1.as_dict() == before
