@@ -436,18 +436,18 @@ register(TableSpec(
 VELOCITY_FRICTION_SOLVER = dict(degree=128, tol=1e-10)
 VELOCITY_FRICTION_RATIO_RANGE = (0.2, 1.8)
 VELOCITY_FRICTION_KAPPA_MAX = 6.0
-VELOCITY_FRICTION_CREEPAGE_MAX = 3.0
+VELOCITY_FRICTION_SLIDING_NODES = (1.05, 1.15, 1.3, 1.5, 1.75, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0,
+                                   5.5, 6.0)
 
-_VF_COUNTS = {"coarse": (5, 7, 15, 5), "default": (13, 13, 22, 9), "fine": (17, 21, 43, 17)}
-VELOCITY_FRICTION_FINE_END = 1.4   # uniform creepage nodes up to here (kinks of rising laws)
+_VF_COUNTS = {"coarse": (5, 7, 8), "default": (13, 17, 16), "fine": (17, 25, 32)}
 
 
 def _velocity_friction_axes(resolution):
-    n_m, n_k, n_c, n_s = _VF_COUNTS[resolution]
-    chi = np.r_[np.linspace(0.0, VELOCITY_FRICTION_FINE_END, n_c),
-                np.linspace(VELOCITY_FRICTION_FINE_END, VELOCITY_FRICTION_CREEPAGE_MAX, n_s)[1:]]
+    n_m, n_k, n_c = _VF_COUNTS[resolution]
+    u = np.linspace(0.0, 1.0, n_c + 1)
+    z = np.r_[1.0 - (0.5 * (1.0 + np.cos(np.pi * u))) ** 2, VELOCITY_FRICTION_SLIDING_NODES]
     s = np.linspace(0.0, 1.0, n_k)
-    c = VELOCITY_FRICTION_CREEPAGE_MAX        # nodes uniform in log(1 + c kappa xi_c0)
+    c = 6.0                                   # nodes uniform in log(1 + 6 kappa xi_c0)
     kappa = ((1.0 + c * VELOCITY_FRICTION_KAPPA_MAX) ** s - 1.0) / c
     return [
         Axis("friction_ratio", np.linspace(*VELOCITY_FRICTION_RATIO_RANGE, n_m), "1",
@@ -456,36 +456,74 @@ def _velocity_friction_axes(resolution):
         Axis("kappa_normalised", kappa, "1",
              "kappa xi_c0: decay rate of the law (5.16) in slip velocity over rolling speed, "
              "times Carter's critical creepage xi_c0 = mu_0 a0/R",
-             comment="kappa xi_c0 from 0 (Carter) to 6, nodes uniform in log(1 + 3 kappa "
-                     "xi_c0) (the sliding branch ~ 1/(1 + kappa |xi|) curves most at small "
-                     "kappa and |xi|/xi_c0 up to 3); steeper laws (kappa xi_c0 >> 6) put the peak of the curve at a few "
-                     "percent of xi_c0, which this grid does not resolve, and need many more "
-                     "polynomial terms (the iteration fails for kappa xi_c0 >> degree)"),
-        Axis("creepage_ratio", chi, "1",
-             "|xi|/xi_c0, creepage magnitude over Carter's critical creepage "
-             "xi_c0 = mu_0 a0/R (the table is odd in xi: T(-xi) = -T(xi))",
-             comment="uniform (step 1/15 for the default grid) on [0, 1.4], where the peak and "
-                     "the onset of full sliding lie for this (m, kappa) box (up to ~1.3 for "
-                     "rising laws, m = 1.8), step 0.2 beyond "
-                     "(sliding branch, varying with kappa |xi|) up to 3; beyond the last node "
-                     "the reader raises"),
+             comment="kappa xi_c0 from 0 (Carter) to 6, nodes uniform in log(1 + 6 kappa "
+                     "xi_c0) (the sliding branch ~ 1/(1 + kappa |xi|), |xi|/xi_c0 up to 5, "
+                     "varies fastest in kappa at small kappa); steeper laws (kappa xi_c0 >> 6) put the peak of the curve at a "
+                     "few percent of xi_c0, which this grid does not resolve, and need many "
+                     "more polynomial terms (the iteration fails for kappa xi_c0 >> degree)"),
+        Axis("normalised_creepage", z, "1",
+             "z = |xi|/xi_sat(m, kappa), creepage magnitude over the saturation creepage (the "
+             "creepage at which the stick zone vanishes; z = 1 is the onset of full sliding; "
+             "xi_sat/xi_c0 is the variable saturation_creepage_ratio; the table is odd in xi: "
+             "T(-xi) = -T(xi))",
+             double_knots=(1.0,),
+             comment="nodes z = 1 - ((1 + cos(pi u))/2)^2 (u uniform) on [0, 1] crowd towards "
+                     "the saturation z = 1, where the curve has a jump of its second "
+                     "derivative (double knot: the spline is C1 there, C2 elsewhere, and does "
+                     "not ring past the Coulomb limit); z > 1 is the sliding branch up to z = 6 "
+                     "(|xi|/xi_c0 >= 3.2 everywhere in the box, xi_sat/xi_c0 >= 0.538); beyond "
+                     "the last node the reader raises"),
     ]
 
 
-def velocity_friction_function(points):
-    """T/(mu_0 N) magnitude of :func:`railcontact.friction.velocity_friction_creep_force_normalised`
-    at (m, kappa xi_c0, |xi|/xi_c0) (degree 128, tol 1e-10), sign flipped to be >= 0."""
-    from railcontact.friction import velocity_friction_creep_force_normalised  # noqa: PLC0415
+def _velocity_friction_solver(m, kappa):
+    from railcontact.friction import _NormalisedSolver, _normalised_law  # noqa: PLC0415
 
-    f = velocity_friction_creep_force_normalised(points[:, 2], points[:, 0], points[:, 1],
-                                                 **VELOCITY_FRICTION_SOLVER)
-    return -np.asarray(f, dtype=float)[:, None]
+    g, dg = _normalised_law(m, kappa)
+    return _NormalisedSolver(g, dg, VELOCITY_FRICTION_SOLVER["degree"],
+                             VELOCITY_FRICTION_SOLVER["tol"], 50,
+                             f"friction_ratio = {m:g}, kappa_normalised = {kappa:g}")
+
+
+def velocity_friction_function(points):
+    """|T|/(mu_0 N) and xi_sat/xi_c0 at (m, kappa xi_c0, z = |xi|/xi_sat) for the law (5.16).
+
+    xi_sat, the creepage at which the stick zone vanishes, is the creepage of the Sec. 5.3
+    solution at stick ratio r = 0 (``_NormalisedSolver.at_stick_ratio(0)``, the same solver as
+    :func:`railcontact.friction.velocity_friction_creep_force_normalised`, degree 128,
+    tol 1e-10). Below it the force is the partial-slip solution at creepage z xi_sat (root
+    search on r), above it the full-sliding solution. m = 1 or kappa = 0 is Carter
+    (xi_sat = xi_c0, force 1 - (1 - z)^2, 1 beyond).
+    """
+    out = np.empty((len(points), 2))
+    solvers = {}
+    for i, (m, kap, z) in enumerate(np.asarray(points, dtype=float)):
+        if m == 1.0 or kap == 0.0:
+            out[i] = 1.0 - (1.0 - min(z, 1.0)) ** 2, 1.0
+            continue
+        key = (m, kap)
+        if key not in solvers:
+            solver = _velocity_friction_solver(m, kap)
+            solvers[key] = (solver, solver.at_stick_ratio(0.0))
+        solver, sat = solvers[key]
+        if z == 0.0:
+            force = 0.0
+        elif z == 1.0:
+            force = sat.force
+        elif z > 1.0:
+            force = solver.full_sliding(z * sat.chi).force
+        else:
+            force = solver.at_creepage(z * sat.chi).force
+        out[i] = force, sat.chi
+    return out
 
 
 def _velocity_friction_check(axes, n, rng):
     lo = np.array([a.nodes[0] for a in axes])
     hi = np.array([a.nodes[-1] for a in axes])
     pts = lo + (hi - lo) * rng.random((n, len(axes)))
+    near = rng.random(n) < 0.6          # most points on the curved part z <= 1.5
+    pts[near, 2] = rng.uniform(0.0, 1.5, near.sum())
     return pts[np.lexsort((pts[:, 1], pts[:, 0]))]
 
 
@@ -498,40 +536,160 @@ register(TableSpec(
     variables=[
         Variable("force_ratio", "1",
                  "magnitude of the tangential force over the static Coulomb limit, "
-                 "|T|/(mu_0 N)", error_target=2e-3,
+                 "|T|/(mu_0 N)", error_target=1e-3,
                  comment="T = -force_ratio sign(xi) mu_0 N (on the wheel, opposing the "
-                         "creepage); 0 <= force_ratio <= max(1, m). The curve has a kink "
-                         "(discontinuous higher derivative) at the onset of full sliding, "
-                         "whose creepage depends on (m, kappa) and so is not a grid line: the "
-                         "spline is C2 everywhere (no double knots) and rounds it off (see the "
-                         "global attribute smoothness and max_abs_error); the direct solver "
-                         "itself is accurate to about 1e-3 (railcontact.friction, degree 128)"),
+                         "creepage); 0 <= force_ratio <= max(1, m). The curve's kink at the "
+                         "onset of full sliding (jump of the second derivative) lies on the "
+                         "grid line z = 1, which has a double knot: the spline is C1 there, C2 "
+                         "elsewhere, and does not overshoot the Coulomb limit. The direct "
+                         "solver itself is accurate to about 1e-3 (railcontact.friction, "
+                         "degree 128)"),
+        Variable("saturation_creepage_ratio", "1",
+                 "xi_sat/xi_c0, saturation creepage (stick zone vanishes) over Carter's "
+                 "critical creepage xi_c0 = mu_0 a0/R, a function of (m, kappa xi_c0) only",
+                 error_target=1e-4,
+                 comment="constant along normalised_creepage (stored on the full grid so that "
+                         "the same reader evaluates it; evaluate at any z, e.g. 0): converts "
+                         "|xi|/xi_c0 to the table coordinate z = (|xi|/xi_c0) / "
+                         "saturation_creepage_ratio; 1 for m = 1 or kappa = 0 (Carter)"),
     ],
     references=(f"{THESIS}, Sec. 5.3, Eq. (5.16) and Fig. 5.4 (polynomial approach); "
                 "F.W. Carter, Proc. R. Soc. Lond. A 112 (1926) 151-157 (m = 1 or kappa = 0)"),
-    method=("railcontact.friction.velocity_friction_creep_force_normalised(chi, m, kappa, "
-            "degree=128, tol=1e-10)"),
+    method=("railcontact.friction solver of Sec. 5.3 (the one behind "
+            "velocity_friction_creep_force_normalised, degree=128, tol=1e-10): xi_sat = "
+            "creepage at stick ratio 0, force at z xi_sat (partial slip, z < 1) or full "
+            "sliding (z > 1)"),
     check_points=_velocity_friction_check,
     n_check={"coarse": 100, "default": 500, "fine": 1500},
-    chunk_size=30,
+    chunk_size=31,
     requires=("railcontact.friction",),
     attributes={
         "smoothness": (
-            "cubic B-spline interpolant, C2 on every axis, not-a-knot ends, no double knots: "
-            "the kink of the creep curve at the onset of full sliding moves with (m, kappa) "
-            "and is not on a grid line, so the spline rounds it off there. max_abs_error of "
-            "force_ratio (seeded random off-grid points in the whole box) is below the direct "
-            "solver's own accuracy (about 1e-3 mu_0 N at degree 128); at the build of "
-            "2026-11-22 the largest check-point errors (3e-4 to 5e-4) were near the onset of "
-            "full sliding of steep falling laws (|xi|/xi_c0 = 0.68-1.0, kappa xi_c0 > 2) and "
-            "on the sliding branch at small kappa (4e-4 at kappa xi_c0 = 0.07, |xi|/xi_c0 = "
-            "2.9); an independent re-check on 400 other random points gave 3.9e-4"),
+            "cubic B-spline interpolant, C2 on every axis except C1 at the double knot "
+            "normalised_creepage = 1 (onset of full sliding, where the creep curve's second "
+            "derivative jumps); the spline does not overshoot the Coulomb limit "
+            "max(1, m) (checked on dense random points in tests/test_tablegen_extra.py)"),
         "solver_settings": "degree = 128, tol = 1e-10 (railcontact.friction)",
         "normalisation": (
             "law (5.16) mu(s) = mu_0 [(1 - m)/(1 + kappa s) + m], s the slip velocity over the "
-            "rolling speed; creepage over xi_c0 = mu_0 a0/R, kappa times xi_c0, force over "
-            "mu_0 N: one 3-D table serves every load, radius and mu_0 of the 2-D (Carter) "
-            "contact. Grid box: 0.2 <= m <= 1.8, 0 <= kappa xi_c0 <= 6, 0 <= |xi|/xi_c0 <= 3, "
-            "inside the region where the Sec. 5.3 iteration converges at degree 128"),
+            "rolling speed; kappa times xi_c0 = mu_0 a0/R; creepage over the saturation "
+            "creepage xi_sat(m, kappa) (stick zone vanishes; variable "
+            "saturation_creepage_ratio = xi_sat/xi_c0); force over mu_0 N: one 3-D table "
+            "serves every load, radius and mu_0 of the 2-D (Carter) contact. Grid box: "
+            "0.2 <= m <= 1.8, 0 <= kappa xi_c0 <= 6, 0 <= |xi|/xi_sat <= 6 (covers "
+            "|xi|/xi_c0 <= 3.2 everywhere), inside the region where the Sec. 5.3 iteration "
+            "converges at degree 128"),
     },
+))
+
+
+# --------------------------------------------------------------------------------------------
+# Corrugation and wear: exact nonlinear first harmonics next to the linearised ones (Ch. 4)
+# --------------------------------------------------------------------------------------------
+
+_CX_COUNTS = {"coarse": (5, 13, 5, 7, 5), "default": (10, 37, 9, 15, 9),
+              "fine": (19, 73, 17, 29, 17)}
+CORRUGATION_EXACT_STICK_RANGE = (0.02, 0.98)
+CORRUGATION_EXACT_AMPLITUDE_MAX = 0.8
+CORRUGATION_EXACT_SETTINGS = dict(n_positions=64, n_nodes=64)
+_CX_FIELDS = (("half_width", "half_width", ("real",)),
+              ("patch_shift", "patch_shift", ("imag",)),
+              ("stick_half_width", "stick_half_width", ("real", "imag")),
+              ("tangential_force", "tangential_force", ("real", "imag")),
+              ("wear", "material_point", ("real", "imag")))
+_CX_SMALL = 1e-4        # amplitude used for the (amplitude-independent) mean wear at A = 0
+
+
+def _cx_axes(resolution):
+    n_log, n_lin, n_rlog, n_r, n_a = _CX_COUNTS[resolution]
+    lo, hi = CORRUGATION_EXACT_STICK_RANGE
+    s = np.linspace(0.0, 1.0, n_r)
+    stick = np.r_[np.geomspace(lo, 0.2, n_rlog)[:-1], 0.2 + (hi - 0.2) * np.sin(0.5 * np.pi * s)]
+    ratio = np.r_[np.geomspace(0.01, 0.1, n_log)[:-1], np.linspace(0.1, 1.0, n_lin)]
+    return [
+        Axis("a0_over_wavelength", ratio, "1",
+             "a0/L, contact half-length over corrugation wavelength",
+             comment="a0/L from 0.01 to 1: log-spaced below 0.1, uniform above (as the "
+                     "linearised table corrugation_response, with fewer nodes)"),
+        Axis("stick_ratio", stick, "1",
+             "r_a0 = a0*/a0, mean stick-zone half-width over contact half-width",
+             comment=f"r_a0 from {lo} to {hi} (the exact solver needs 0 < r_a0 < 1): "
+                     "log-spaced below 0.2 (the stick-zone response varies on the scale r_a0 "
+                     "there), 0.2 + 0.78 sin(pi s/2) above (s uniform; crowding towards full "
+                     "stick); beyond the first/last node the reader raises"),
+        Axis("relative_amplitude", np.linspace(0.0, CORRUGATION_EXACT_AMPLITUDE_MAX, n_a),
+             "1",
+             "k^2 R |Z|: corrugation amplitude |Z| times k^2 R (k = 2 pi/L, R the wheel "
+             "radius); condition (4.2) of the exact solution is k^2 R |Z| < 1",
+             comment="0 (the linearised limit, exactly railcontact.wear.linear_response) to "
+                     f"{CORRUGATION_EXACT_AMPLITUDE_MAX}, uniform; the coefficients are even "
+                     "in the amplitude to leading order (O(amplitude^2) corrections)"),
+    ]
+
+
+def corrugation_exact_function(points):
+    """Exact nonlinear first harmonics over the amplitude at (a0/L, r_a0, k^2 R |Z|).
+
+    :func:`railcontact.wear.wear_first_harmonic_exact` with ``relative_amplitude = k^2 R |Z| /
+    (2 pi a0/L)`` (its amplitude is k R |Z| / a0) and phase 0; at zero amplitude the limit,
+    :func:`railcontact.wear.linear_response` (the mean wear from a tiny amplitude, 1e-4).
+    """
+    import warnings  # noqa: PLC0415
+
+    from railcontact.wear import linear_response, wear_first_harmonic_exact  # noqa: PLC0415
+
+    n_var = sum(len(p) for _, _, p in _CX_FIELDS) + 1
+    out = np.empty((len(points), n_var))
+    for i, (ratio, r, amp) in enumerate(np.asarray(points, dtype=float)):
+        kz = 2.0 * np.pi * ratio
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = wear_first_harmonic_exact(ratio, r, max(amp, _CX_SMALL) / kz,
+                                            **CORRUGATION_EXACT_SETTINGS)
+        vals = {k: complex(res[key]) for k, key, _ in _CX_FIELDS}
+        if amp == 0.0:
+            lin = linear_response(ratio, r)
+            vals = {k: complex(getattr(lin, k)) for k, _, _ in _CX_FIELDS}
+        row = [getattr(vals[k], part) for k, _, parts in _CX_FIELDS for part in parts]
+        out[i] = row + [float(np.real(res["mean"]))]
+    return out
+
+
+_CX_VARIABLES = []
+for _f, _key, _parts in _CX_FIELDS:
+    for _part in _parts:
+        _CX_VARIABLES.append(Variable(
+            f"{_f}_{_part}", "1",
+            f"{_part} part of the exact first harmonic of the {_CW_NAMES[_f]} divided by the "
+            "amplitude, normalised as in railcontact.wear.linear_response "
+            "(railcontact.wear.wear_first_harmonic_exact)", error_target=1e-3,
+            comment="equals the linearised coefficient (table corrugation_response) at "
+                    "relative_amplitude = 0"))
+_CX_VARIABLES.append(Variable(
+    "mean_wear", "1", "mean wear per passage W0 R / (K mu^2 N a0) of the exact contact "
+    "(railcontact.wear.wear_first_harmonic_exact, 'mean')", error_target=1e-3))
+
+register(TableSpec(
+    name="corrugation_exact",
+    title="Exact nonlinear corrugation and wear response of the 2-D rolling contact, first "
+          "harmonics per unit amplitude (Nielsen 1998, Ch. 4)",
+    axes=_cx_axes,
+    function=corrugation_exact_function,
+    variables=_CX_VARIABLES,
+    references=(f"{THESIS}, Sec. 4.1-4.3, Eqs. (4.1)-(4.98) (exact normal and stick-zone "
+                "solutions, wear (4.74)) with the errata recorded in railcontact.corrugation "
+                "and railcontact.wear"),
+    method=("railcontact.wear.wear_first_harmonic_exact(a0/L, r_a0, k^2 R |Z| / (2 pi a0/L), "
+            "phase=0, n_positions=64, n_nodes=64); relative_amplitude = 0: "
+            "railcontact.wear.linear_response(a0/L, r_a0)"),
+    n_check={"coarse": 200, "default": 1000, "fine": 3000},
+    chunk_size=207,
+    requires=("railcontact.wear",),
+    attributes={"normalisation": (
+        "exact nonlinear first harmonics (a, Delta, a*, |T|, wear w at a material point) divided "
+        "by the complex surface amplitude, normalised as in railcontact.wear.linear_response, "
+        "so that they equal the linearised table corrugation_response at relative_amplitude "
+        "= 0 (patch_shift_real and half_width_imag vanish and are not stored); the mean wear "
+        "is not divided by the amplitude. The growth factor per passage with the exact wear "
+        "is 1 - 2 wear_number * wear_real")},
 ))

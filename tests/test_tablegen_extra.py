@@ -76,51 +76,88 @@ def test_nonsteady_table_against_direct_function():
 def test_velocity_friction_spec_grid():
     spec = get_spec("velocity_friction")
     axes, pts = spec.grid("default")
-    assert [a.name for a in axes] == ["friction_ratio", "kappa_normalised", "creepage_ratio"]
-    assert pts.shape == (13 * 13 * 30, 3) and spec.chunk_size == 30   # one curve per task
+    assert [a.name for a in axes] == ["friction_ratio", "kappa_normalised", "normalised_creepage"]
+    assert pts.shape == (13 * 17 * 31, 3) and spec.chunk_size == 31   # one curve per task
     assert 1.0 in axes[0].nodes and axes[1].nodes[0] == 0.0 and axes[2].nodes[0] == 0.0
+    assert 1.0 in axes[2].nodes and axes[2].double_knots == (1.0,)
+    assert axes[2].nodes[-1] == 6.0
+
+
+def _saturation_ratio(table, m, kappa):
+    return table("saturation_creepage_ratio", np.column_stack([m, kappa, np.zeros_like(m)]))
 
 
 @pytest.mark.skipif(not FRICTION.exists(), reason="tables/velocity_friction.nc not built")
 def test_velocity_friction_table_against_direct_solver():
+    """Physical creepage |xi|/xi_c0 -> z = chi/chi_sat with the stored saturation creepage,
+    then compared with the public vectorised solver (its own root search at chi)."""
     from railcontact.friction import velocity_friction_creep_force_normalised
 
     table = Table.from_file(default_table_path("velocity_friction"))
-    acc = table.accuracy()["force_ratio"]["max_abs_error"]
-    assert 0.0 < acc <= 1e-3
+    assert table.variables == ["force_ratio", "saturation_creepage_ratio"]
+    acc = table.accuracy()
+    assert 0.0 < acc["force_ratio"]["max_abs_error"] <= 1e-3
+    assert 0.0 < acc["saturation_creepage_ratio"]["max_abs_error"] <= 1e-3
     rng = np.random.default_rng(5316)
     n = 5                                            # each direct call builds a solver (slow)
-    pts = np.column_stack([rng.uniform(0.2, 1.8, n), rng.uniform(0.0, 6.0, n),
-                           rng.uniform(0.0, 3.0, n)])
-    want = -velocity_friction_creep_force_normalised(pts[:, 2], pts[:, 0], pts[:, 1],
-                                                     degree=128, tol=1e-10)
-    got = table("force_ratio", pts)
-    assert np.max(np.abs(got - want)) <= acc, (got, want)
-    with pytest.raises(ValueError, match="creepage_ratio must be in"):
-        table("force_ratio", [[0.5, 1.0, 3.5]])
+    m, kap, chi = rng.uniform(0.2, 1.8, n), rng.uniform(0.0, 6.0, n), rng.uniform(0.0, 3.0, n)
+    z = chi / _saturation_ratio(table, m, kap)
+    want = -velocity_friction_creep_force_normalised(chi, m, kap, degree=128, tol=1e-10)
+    got = table("force_ratio", np.column_stack([m, kap, z]))
+    # the chi -> z conversion adds the error of the interpolated saturation creepage
+    tol = acc["force_ratio"]["max_abs_error"] + 2.0 * acc["saturation_creepage_ratio"][
+        "max_abs_error"]
+    assert np.max(np.abs(got - want)) <= tol, (got, want)
+    with pytest.raises(ValueError, match="normalised_creepage must be in"):
+        table("force_ratio", [[0.5, 1.0, 6.5]])
     with pytest.raises(ValueError, match="kappa_normalised must be in"):
         table("force_ratio", [[0.5, 7.0, 0.5]])
 
 
 @pytest.mark.skipif(not FRICTION.exists(), reason="tables/velocity_friction.nc not built")
-def test_velocity_friction_table_carter_planes_and_coulomb_bound():
-    """m = 1 and kappa = 0 are Carter (independent closed form); |T| <= max(1, m) mu_0 N."""
+def test_velocity_friction_saturation_creepage_is_where_the_stick_zone_vanishes():
+    """Independent meaning of xi_sat: the public solver has a stick zone just below it and
+    none just above it (stick ratio -> 0 at the stored value)."""
+    from railcontact.friction import solve_velocity_friction_normalised
+
     table = Table.from_file(default_table_path("velocity_friction"))
-    acc = table.accuracy()["force_ratio"]["max_abs_error"]
+    rng = np.random.default_rng(77)
+    m, kap = rng.uniform(0.2, 1.8, 3), rng.uniform(0.05, 6.0, 3)
+    sat = _saturation_ratio(table, m, kap)
+    tol = table.accuracy()["saturation_creepage_ratio"]["max_abs_error"]
+    for mm, kk, cs in zip(m, kap, sat):
+        below = solve_velocity_friction_normalised(cs - 3.0 * tol - 1e-6, mm, kk)
+        above = solve_velocity_friction_normalised(cs + 3.0 * tol + 1e-6, mm, kk)
+        assert below.stick_ratio > 0.0 and above.stick_ratio == 0.0, (mm, kk, cs)
+
+
+@pytest.mark.skipif(not FRICTION.exists(), reason="tables/velocity_friction.nc not built")
+def test_velocity_friction_table_carter_planes_and_coulomb_bound():
+    """m = 1 and kappa = 0 are Carter (independent closed form, xi_sat = xi_c0); the
+    interpolated |T|/(mu_0 N) never exceeds max(1, m) (double knot at the saturation line),
+    and on the sliding branch it stays between mu_k and mu_0 (the traction is mu(s) p with
+    mu(s) between them)."""
+    table = Table.from_file(default_table_path("velocity_friction"))
+    knots = np.asarray(table.spline.axes[2]["knots"])
+    assert np.count_nonzero(knots == 1.0) == 2                         # the double knot
     rng = np.random.default_rng(99)
-    chi = rng.uniform(0.0, 3.0, 4000)
-    carter = 1.0 - (1.0 - np.minimum(chi, 1.0)) ** 2
+    z = rng.uniform(0.0, 6.0, 4000)
+    carter = 1.0 - (1.0 - np.minimum(z, 1.0)) ** 2
     for m, kap in ((1.0, rng.uniform(0.0, 6.0, 4000)), (rng.uniform(0.2, 1.8, 4000), 0.0)):
-        pts = np.column_stack(np.broadcast_arrays(m, kap, chi))
-        assert np.max(np.abs(table("force_ratio", pts) - carter)) <= acc
-    # dense random points in the whole box: 0 <= force_ratio <= max(1, m) (to the recorded
-    # accuracy: the C2 spline rounds the full-sliding kink, which is not on a grid line)
-    n = 200_000
+        pts = np.column_stack(np.broadcast_arrays(m, kap, z))
+        assert np.max(np.abs(table("force_ratio", pts) - carter)) <= 1e-12
+        assert np.max(np.abs(table("saturation_creepage_ratio", pts) - 1.0)) <= 1e-12
+    n = 400_000
     pts = np.column_stack([rng.uniform(0.2, 1.8, n), rng.uniform(0.0, 6.0, n),
-                           rng.uniform(0.0, 3.0, n)])
+                           np.where(rng.random(n) < 0.5, rng.uniform(0.0, 6.0, n),
+                                    rng.uniform(0.9, 1.1, n))])     # dense near the kink
     f = table("force_ratio", pts)
-    assert f.min() >= -acc
-    assert np.max(f - np.maximum(1.0, pts[:, 0])) <= acc
+    m = pts[:, 0]
+    assert f.min() >= -1e-12
+    assert np.max(f - np.maximum(1.0, m)) <= 1e-12
+    sliding = pts[:, 2] >= 1.0
+    assert np.max(f[sliding] - np.maximum(1.0, m[sliding])) <= 1e-12
+    assert np.min(f[sliding] - np.minimum(1.0, m[sliding])) >= -1e-12
 
 
 # --------------------------------------------------------------------------------------------
