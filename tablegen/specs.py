@@ -685,7 +685,16 @@ register(TableSpec(
     n_check={"coarse": 200, "default": 1000, "fine": 3000},
     chunk_size=207,
     requires=("railcontact.wear",),
-    attributes={"normalisation": (
+    attributes={"smoothness": (
+        "cubic B-spline interpolant, C2 on every axis. The exact response has a kink surface "
+        "that is not a grid line: where the amplitude is large enough for the stick zone to "
+        "vanish during part of each wave (k^2 R |Z| of order r_a0 times a factor of order 1, "
+        "e.g. k^2 R |Z| = 0.052 at a0/L = 0.2, r_a0 = 0.024), a* is clipped at 0 and the "
+        "first harmonics of a* (and, weaker, of T and the wear) have a slope jump in the "
+        "amplitude. The spline rounds it off: the stick_half_width errors (max ~2.6e-2, RMS "
+        "~1e-3 at the build of 2026-11-22) come from there and miss the target 1e-3 (the file "
+        "says so); half_width and patch_shift do not depend on the stick zone (errors ~4e-6)"),
+        "normalisation": (
         "exact nonlinear first harmonics (a, Delta, a*, |T|, wear w at a material point) divided "
         "by the complex surface amplitude, normalised as in railcontact.wear.linear_response, "
         "so that they equal the linearised table corrugation_response at relative_amplitude "

@@ -1,12 +1,15 @@
-"""Tests of the two tables of issue 5 added to tablegen: ``nonsteady_transfer`` (Nielsen Ch. 7)
-and ``velocity_friction`` (Nielsen Sec. 5.3).
+"""Tests of three tables of issue 5 added to tablegen: ``nonsteady_transfer`` (Nielsen Ch. 7),
+``velocity_friction`` (Nielsen Sec. 5.3) and ``corrugation_exact`` (Nielsen Ch. 4).
 
 Each shipped file in ``tables/`` is compared with the direct function it tabulates
 (:func:`railcontact.nonsteady.nonsteady_amplitude_phase_normalised`,
-:func:`railcontact.friction.velocity_friction_creep_force_normalised`) at seeded random
-off-grid points, to the accuracy recorded in the file; plus independent limits (quasi-static
-H = 1, Carter's closed form 1 - (1 - chi)^2 on the m = 1 and kappa = 0 planes) and the Coulomb
-bound |T|/(mu_0 N) <= max(1, m).
+:func:`railcontact.friction.velocity_friction_creep_force_normalised`,
+:func:`railcontact.wear.wear_first_harmonic_exact`) at seeded random off-grid points, to the
+accuracy recorded in the file; plus independent limits (quasi-static H = 1; Carter's closed form
+1 - (1 - z)^2 on the m = 1 and kappa = 0 planes; the stick zone vanishing at the stored
+saturation creepage; the exact corrugation response at small amplitude against the linearised
+closed forms and the linearised table) and the Coulomb bound |T|/(mu_0 N) <= max(1, m) + 1e-12
+on dense random points (double knot at the saturation line).
 """
 
 import shutil
@@ -161,11 +164,84 @@ def test_velocity_friction_table_carter_planes_and_coulomb_bound():
 
 
 # --------------------------------------------------------------------------------------------
+# corrugation_exact
+# --------------------------------------------------------------------------------------------
+
+CORR_EXACT = tables_directory() / "corrugation_exact.nc"
+_CX_MAP = {"half_width": "half_width", "patch_shift": "patch_shift",
+           "stick_half_width": "stick_half_width", "tangential_force": "tangential_force",
+           "wear": "material_point"}
+
+
+def test_corrugation_exact_spec_grid():
+    spec = get_spec("corrugation_exact")
+    axes, pts = spec.grid("default")
+    assert [a.name for a in axes] == ["a0_over_wavelength", "stick_ratio", "relative_amplitude"]
+    assert axes[2].nodes[0] == 0.0 and axes[2].nodes[-1] == pytest.approx(0.8)
+    assert pts.shape == (46 * 23 * 9, 3)
+
+
+def test_exact_first_harmonic_tends_to_linear_response():
+    """Independent computations: the exact nonlinear solve at a small amplitude against the
+    linearised closed forms (differences O(amplitude^2))."""
+    import warnings
+
+    from railcontact.wear import linear_response, wear_first_harmonic_exact
+
+    rng = np.random.default_rng(4242)
+    for ratio, r in zip(rng.uniform(0.02, 1.0, 6), rng.uniform(0.1, 0.9, 6)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            ex = wear_first_harmonic_exact(ratio, r, 1e-3 / (2.0 * np.pi * ratio))
+        lin = linear_response(ratio, r)
+        for name, key in _CX_MAP.items():
+            want = complex(getattr(lin, name))
+            assert abs(complex(ex[key]) - want) <= 1e-4 * max(1.0, abs(want)), (name, ratio, r)
+
+
+@pytest.mark.skipif(not CORR_EXACT.exists(), reason="tables/corrugation_exact.nc not built")
+def test_corrugation_exact_table_against_direct_function_and_linear_table():
+    from tablegen.specs import corrugation_exact_function
+    from railcontact.wear import linear_response
+
+    table = Table.from_file(default_table_path("corrugation_exact"))
+    acc = table.accuracy()
+    rng = np.random.default_rng(2718)
+    n = 40
+    pts = np.column_stack([rng.uniform(0.01, 1.0, n), rng.uniform(0.02, 0.98, n),
+                           rng.uniform(0.0, 0.8, n)])
+    want = corrugation_exact_function(pts)
+    got = table.spline.evaluate(pts)
+    for k, name in enumerate(table.variables):
+        err = np.max(np.abs(got[:, k] - want[:, k]))
+        assert err <= 2.0 * acc[name]["max_abs_error"] + 1e-12, (name, err)
+    # zero amplitude: the linearised coefficients, against the direct closed forms and the
+    # linearised table (both interpolate the same function on different grids)
+    lin_table = Table.from_file(default_table_path("corrugation_response"))
+    q = np.column_stack([rng.uniform(0.01, 1.0, 200), rng.uniform(0.2, 0.9, 200)])
+    zero = table.spline.evaluate(np.column_stack([q, np.zeros(len(q))]))
+    lin = linear_response(q[:, 0], q[:, 1])
+    lin_tab = lin_table.spline.evaluate(q)
+    for k, name in enumerate(table.variables[:-1]):
+        field, part = name.rsplit("_", 1)
+        direct = getattr(np.asarray(getattr(lin, field), dtype=complex), part)
+        tol = 2.0 * acc[name]["max_abs_error"] + 1e-12
+        assert np.max(np.abs(zero[:, k] - direct)) <= tol, name
+        j = lin_table.variables.index(name)
+        assert np.max(np.abs(zero[:, k] - lin_tab[:, j])) <= tol + lin_table.accuracy()[name][
+            "max_abs_error"], name
+    with pytest.raises(ValueError, match="relative_amplitude must be in"):
+        table("wear_real", [[0.5, 0.5, 0.9]])
+    with pytest.raises(ValueError, match="stick_ratio must be in"):
+        table("wear_real", [[0.5, 0.01, 0.1]])
+
+
+# --------------------------------------------------------------------------------------------
 # Both files: a non-Python reader
 # --------------------------------------------------------------------------------------------
 
 @pytest.mark.skipif(shutil.which("ncdump") is None, reason="ncdump not installed")
-@pytest.mark.parametrize("path", [NONSTEADY, FRICTION], ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [NONSTEADY, FRICTION, CORR_EXACT], ids=lambda p: p.stem)
 def test_ncdump_reads_new_tables(path):
     if not path.exists():
         pytest.skip(f"{path.name} not built")
