@@ -503,3 +503,17 @@ def test_corrugation_table_rechecked_against_linear_response():
         assert err <= 1e-4 and err <= 2.0 * acc[name]["max_abs_error"] + 1e-12, (name, err)
     with pytest.raises(ValueError, match="a0_over_wavelength must be in"):
         table("wear_real", [[1.5, 0.5]])
+
+
+def test_subnormal_friction_coefficient_gives_zero_or_clear_error():
+    """mu ~ 5e-324 makes w_sat underflow to 0: the modified-strip reader returns zero force
+    (|T| <= mu N ~ 1e-319 N), the exact-table reader raises its documented out-of-range
+    ValueError; neither raises ZeroDivisionError (found by the FMU speed work)."""
+    from railcontact.tables import CreepTable, ExactCreepTable, default_table_path
+
+    args = (1e-3, 1e-4, 0.1, 1e5, 6e-3, 9e-3, 210e9, 0.28, 5e-324)
+    strip = CreepTable.from_file(default_table_path("creep_modified_strip"))
+    assert tuple(float(v) for v in strip.creep_force_3d(*args)) == (0.0, 0.0)
+    exact = ExactCreepTable.from_file(default_table_path("creep_exact"))
+    with pytest.raises(ValueError, match="normalised_creepage"):
+        exact.creep_force_3d(*args)

@@ -821,6 +821,8 @@ class CreepTable:
         w_y = c22 * xi_y + _sqrt(a0 * b0) * c23 * phi
         p0 = 1.5 * n_load / (_pi * a0 * b0)
         w_sat = _pi2 * (1.0 + nu) * mu * p0 / e_mod
+        if w_sat <= 0.0:    # mu so small (~1e-320) that w_sat underflows: |T| <= mu N ~ 0
+            return -0.0, -0.0
         mu_n = mu * n_load
         z = _hypot(w_x, w_y) / w_sat
         if z < 1e-6:
@@ -1089,6 +1091,8 @@ class ExactCreepTable:
             return None
         c11, c22, c23 = _kalker_cached(g, nu)
         w_sat = math.pi**2 * (1.0 + nu) * mu * 1.5 * n_load / (math.pi * a0 * b0 * e_mod)
+        if w_sat <= 0.0:    # underflow (mu ~ 1e-320): out of the table, the array path says so
+            return None
         u_x = c11 * xi_x / w_sat
         sig = math.sqrt(a0 * b0) * c23 * phi / w_sat
         sx = -1.0 if u_x < 0.0 else 1.0
