@@ -445,3 +445,26 @@ def test_nonsteady_stick_ratio_limits():
         # H - 1 = O(k a0 r) as r -> 0 (|H - 1| ~ 160 (a0/L) r measured): continuous into r = 0+
         assert np.max(np.abs(h[1e-12] - h[1e-9]) / (1 + waves)) < 1e-6
         assert np.max(np.abs(h[1.0] - h[1 - 1e-9])) < 1e-6
+
+
+@pytest.mark.parametrize("m", [0.5, 1.5])
+def test_ohyama_matches_high_precision_quadrature(m):
+    """Ohyama's force (2/pi)[I(b, 1) + m I(-1, b)] - r^2, b = 1 - 2r, r = 1 - |chi|, evaluated
+    independently by 40-digit mpmath quadrature of sqrt(1 - x^2): the cancellation-free form in
+    friction.py (series for the circle segment at small chi) agrees to 1e-10 relative from
+    chi = 1e-30 to full sliding."""
+    import mpmath as mp
+
+    mp.mp.dps = 40
+
+    def reference(chi):
+        chi = mp.mpf(chi)
+        r = 1 - min(abs(chi), 1)
+        b = 1 - 2 * r
+        seg = lambda u, v: mp.quad(lambda x: mp.sqrt(1 - x * x), [u, v])  # noqa: E731
+        return -((2 / mp.pi) * (seg(b, 1) + m * seg(-1, b)) - r * r)
+
+    for chi in (1e-30, 1e-12, 1e-6, 1e-4, 2e-3, 0.3, 0.9, 1.0, 3.0):
+        got = float(fr.ohyama_creep_force_normalised(chi, m))
+        ref = float(reference(chi))
+        assert got == pytest.approx(ref, rel=1e-10, abs=0), chi
