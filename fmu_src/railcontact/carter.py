@@ -97,12 +97,9 @@ def carter_stick_ratio(creepage, normal_load, radius, youngs_modulus, poisson_ra
         ``xi_c = 0`` (mu = 0 or N = 0) there is no stick zone unless xi = 0: 0 for xi != 0, 1 for
         xi = 0.
     """
-    xi = _creepage(creepage)
-    xi_c = carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
-                                    friction_coefficient)
-    xi, xi_c = np.broadcast_arrays(xi, xi_c)
-    frac = np.divide(np.abs(xi), xi_c, out=np.where(xi == 0.0, 0.0, np.inf), where=xi_c > 0)
-    return np.clip(1.0 - frac, 0.0, 1.0)[()]
+    frac = _sliding_fraction(_creepage(creepage), normal_load, radius, youngs_modulus,
+                             poisson_ratio, friction_coefficient)
+    return (1.0 - frac)[()]
 
 
 def carter_creep_force(creepage, normal_load, radius, youngs_modulus, poisson_ratio,
@@ -143,17 +140,26 @@ def carter_creep_force(creepage, normal_load, radius, youngs_modulus, poisson_ra
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Sec. 2.4.2; F.W. Carter (1926).
     """
     xi = _creepage(creepage)
-    xi_c = carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
-                                    friction_coefficient)
+    # 1 - r^2 written as f (2 - f) with f = 1 - r computed directly: no cancellation at tiny
+    # creepage (1 - r**2 loses all digits below |xi|/xi_c ~ 1e-16).
+    frac = _sliding_fraction(xi, normal_load, radius, youngs_modulus, poisson_ratio,
+                             friction_coefficient)
     mu = np.asarray(friction_coefficient, dtype=float)
     n_load = np.asarray(normal_load, dtype=float)
-    # 1 - r^2 written as f (2 - f) with f = 1 - r = min(|xi|/xi_c, 1), f computed directly: no
-    # cancellation at tiny creepage (1 - r**2 loses all digits below |xi|/xi_c ~ 1e-16).
-    xi_b, xi_c = np.broadcast_arrays(xi, xi_c)
-    frac = np.divide(np.abs(xi_b), xi_c, out=np.where(xi_b == 0.0, 0.0, np.inf),
-                     where=xi_c > 0)
-    frac = np.minimum(frac, 1.0)
     return (-np.sign(xi) * mu * n_load * (frac * (2.0 - frac)))[()]
+
+
+def _sliding_fraction(xi, normal_load, radius, youngs_modulus, poisson_ratio,
+                      friction_coefficient):
+    """``f = 1 - a*/a0 = min(|xi| / xi_c, 1)``, computed directly (not as 1 - r).
+
+    ``xi_c = 0`` (mu = 0 or N = 0): 0 for xi = 0, else 1 (no stick zone).
+    """
+    xi_c = carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
+                                    friction_coefficient)
+    xi, xi_c = np.broadcast_arrays(xi, xi_c)
+    frac = np.divide(np.abs(xi), xi_c, out=np.where(xi == 0.0, 0.0, np.inf), where=xi_c > 0)
+    return np.minimum(frac, 1.0)
 
 
 def _half_ellipse(x, a):
