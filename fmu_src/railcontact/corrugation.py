@@ -639,6 +639,29 @@ wear_depth : ndarray or None
 """
 
 
+def _checked_contact_inputs(normal_load, radius, youngs_modulus, poisson_ratio,
+                            friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
+                            wavelengths):
+    """Range-checked physical inputs of one contact on a corrugated rail (shared by
+    :func:`corrugated_contact` and :func:`contact_distributions`); |creepage| is returned."""
+    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
+    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
+                              lower_closed=False))
+    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
+    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
+                           lower_closed=False))
+    xi = abs(float(check_range("creepage", creepage, "-")))
+    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
+    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
+    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
+                                    lower_closed=False))
+    if not (za.shape == zb.shape == lam.shape) or za.ndim != 1:
+        raise ValueError("amplitudes_cos, amplitudes_sin, wavelengths must be 1-D of equal "
+                         f"length [m]; got shapes {za.shape}, {zb.shape}, {lam.shape}")
+    return n_load, big_r, e_mod, nu, mu, xi, za, zb, lam
+
+
 def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
                        friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
                        wavelengths, *, method="exact", wear_coefficient=None,
@@ -686,21 +709,9 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     """
     from .hertz import hertz_2d
 
-    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
-    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
-    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
-                              lower_closed=False))
-    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
-    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
-                           lower_closed=False))
-    xi = abs(float(check_range("creepage", creepage, "-")))
-    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
-    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
-    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
-                                    lower_closed=False))
-    if not (za.shape == zb.shape == lam.shape) or za.ndim != 1:
-        raise ValueError("amplitudes_cos, amplitudes_sin, wavelengths must be 1-D of equal "
-                         f"length [m]; got shapes {za.shape}, {zb.shape}, {lam.shape}")
+    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = _checked_contact_inputs(
+        normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage,
+        amplitudes_cos, amplitudes_sin, wavelengths)
     if method not in ("exact", "linear"):
         raise ValueError(f"method must be one of ['exact', 'linear']; got {method!r}")
     x = check_range("rail_position", rail_position, "m")
@@ -804,20 +815,9 @@ def contact_distributions(x, rail_position, normal_load, radius, youngs_modulus,
     -------
     ContactDistributions
     """
-    from .hertz import hertz_2d
-
-    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
-    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
-    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
-                              lower_closed=False))
-    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
-    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
-                           lower_closed=False))
-    xi = abs(float(check_range("creepage", creepage, "-")))
-    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
-    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
-    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
-                                    lower_closed=False))
+    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = _checked_contact_inputs(
+        normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage,
+        amplitudes_cos, amplitudes_sin, wavelengths)
     xs_in = check_range("x", x, "m")
     xpos = float(check_range("rail_position", rail_position, "m"))
     k = _TWO_PI / lam
