@@ -414,6 +414,29 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
     return out
 
 
+def _representative_case(a0_over_wavelength, stick_ratio, relative_amplitude, phase):
+    """One physical contact (E = 210 GPa, nu = 0.28, R = 0.5 m, mu = 0.3, a0 = 6 mm) for the
+    normalised inputs of the brute-force wear studies; the results are normalised back, so the
+    choice does not matter. Returns (a0/L, r, eps, E, nu, R, mu, 4(1-nu^2)/(pi E), a0, N, L, k,
+    Z_A, Z_B, xi)."""
+    ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
+                              lower_closed=False))
+    r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
+                          upper_closed=False))
+    eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
+                            lower_closed=False))
+    e_mod, nu, big_r, mu = 2.1e11, 0.28, 0.5, 0.3
+    comp = 4 * (1 - nu * nu) / (np.pi * e_mod)
+    a0 = 0.006
+    n_load = a0 * a0 / (2 * big_r * comp)
+    lam = a0 / ratio
+    k = _TWO_PI / lam
+    amp = eps * a0 / (k * big_r)
+    za, zb = amp * np.cos(phase), amp * np.sin(phase)
+    xi = mu * a0 * (1 - r) / big_r
+    return ratio, r, eps, e_mod, nu, big_r, mu, comp, a0, n_load, lam, k, za, zb, xi
+
+
 def wear_first_harmonic_reference(a0_over_wavelength, stick_ratio, relative_amplitude, *,
                                   phase=0.0, n_positions=16, n_elements=200,
                                   domain_half_width=1.6):
@@ -450,21 +473,8 @@ def wear_first_harmonic_reference(a0_over_wavelength, stick_ratio, relative_ampl
     """
     from .reference.halfspace2d import solve_normal_2d, solve_rolling_2d
 
-    ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
-                              lower_closed=False))
-    r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
-                          upper_closed=False))
-    eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
-                            lower_closed=False))
-    e_mod, nu, big_r, mu = 2.1e11, 0.28, 0.5, 0.3
-    comp = 4 * (1 - nu * nu) / (np.pi * e_mod)
-    a0 = 0.006
-    n_load = a0 * a0 / (2 * big_r * comp)
-    lam = a0 / ratio
-    k = _TWO_PI / lam
-    amp = eps * a0 / (k * big_r)
-    za, zb = amp * np.cos(phase), amp * np.sin(phase)
-    xi = mu * a0 * (1 - r) / big_r
+    (ratio, r, eps, e_mod, nu, big_r, mu, comp, a0, n_load, lam, k, za, zb,
+     xi) = _representative_case(a0_over_wavelength, stick_ratio, relative_amplitude, phase)
     npos = int(check_range("n_positions", n_positions, "-", 4, 100000))
     xc = np.arange(npos) * lam / npos
     first, a_s, d_s, as_s = [], [], [], []
@@ -540,21 +550,8 @@ def wear_first_harmonic_transient(a0_over_wavelength, stick_ratio, relative_ampl
     from .reference.halfspace2d import solve_quasistatic_corrugated_2d, \
         solve_transient_rolling_2d
 
-    ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
-                              lower_closed=False))
-    r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,
-                          upper_closed=False))
-    eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
-                            lower_closed=False))
-    e_mod, nu, big_r, mu = 2.1e11, 0.28, 0.5, 0.3
-    comp = 4 * (1 - nu * nu) / (np.pi * e_mod)
-    a0 = 0.006
-    n_load = a0 * a0 / (2 * big_r * comp)
-    lam = a0 / ratio
-    k = _TWO_PI / lam
-    amp = eps * a0 / (k * big_r)
-    za, zb = amp * np.cos(phase), amp * np.sin(phase)
-    xi = mu * a0 * (1 - r) / big_r
+    (ratio, r, eps, e_mod, nu, big_r, mu, comp, a0, n_load, lam, k, za, zb,
+     xi) = _representative_case(a0_over_wavelength, stick_ratio, relative_amplitude, phase)
     hw = domain_half_width * a0
     dx = 2 * hw / n_elements
     per_period = int(round(lam / dx))
