@@ -86,16 +86,91 @@ FMU_FIXTURES = {"built_fmu", "fmu_path"}
 
 
 def pytest_collection_modifyitems(config, items):
-    """Run every test that loads the FMU into this process in a forked child process.
+    """Mark every test that loads the FMU into this process to run in a forked child process.
 
     PythonFMU's native library, loaded into a Python host (fmpy) and freed again, corrupts the
     host interpreter (upstream NTNU-IHB/PythonFMU#228, #229: invalid reads in
     ``finalizePythonInterpreter``, "free(): corrupted unsorted chunks"). Here that showed as
     segmentation faults later in the test run or at interpreter exit, never inside the FMU
-    tests themselves. A forked child (pytest-forked) confines it: the child exits with
-    ``os._exit`` and the pytest process never loads the library. Users' own co-simulations load
-    the FMU once and exit; the 1e6-step run (benchmarks/bench_long_run.py) checks that case.
+    tests themselves. A forked child confines it: the child exits with ``os._exit`` and the
+    pytest process never loads the library. Users' own co-simulations load the FMU once and
+    exit; the 1e6-step run (benchmarks/bench_long_run.py) checks that case.
     """
     for item in items:
         if FMU_FIXTURES & set(getattr(item, "fixturenames", ())):
-            item.add_marker(pytest.mark.forked)
+            item.add_marker(pytest.mark.isolated)
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "isolated: run the test in a forked child process (tests/conftest.py)")
+
+
+# Why our own fork and not pytest-forked: pytest-forked (barely maintained) marshals its reports
+# with the ``marshal`` module, and pytest 9.2's reports hold objects marshal refuses
+# ("ValueError: unmarshallable object"), so every forked test failed with "EXITED with status
+# 3". pytest-xdist runs many tests in one worker, which does not confine the corruption to one
+# test, and a subprocess per test would re-import numpy/scipy/numba (1-2 s each). The fork
+# below is what pytest-forked does, serialised with pytest's own public report hooks
+# (``pytest_report_to_serializable`` / ``pytest_report_from_serializable``, the ones
+# pytest-xdist relies on) and pickled (plain dicts, lists and tuples between two copies of the
+# same interpreter), so it does not depend on the reports' internals.
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_protocol(item, nextitem):
+    """Run an ``isolated`` test in a forked child; report its phases in this process."""
+    if item.get_closest_marker("isolated") is None or not hasattr(os, "fork"):
+        return None
+    import pickle  # noqa: PLC0415
+
+    from _pytest.reports import TestReport  # noqa: PLC0415
+    from _pytest.runner import runtestprotocol  # noqa: PLC0415
+
+    hook, ihook = item.config.hook, item.ihook
+    ihook.pytest_runtest_logstart(nodeid=item.nodeid, location=item.location)
+    read_end, write_end = os.pipe()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # the child: run setup, call and teardown, send the reports, exit at once
+        os.close(read_end)
+        code = 0
+        try:
+            reports = runtestprotocol(item, log=False, nextitem=None)
+            payload = [hook.pytest_report_to_serializable(config=item.config, report=rep)
+                       for rep in reports]
+            data = pickle.dumps(payload)
+        except BaseException as exc:  # noqa: BLE001 -- reported by the parent
+            data = pickle.dumps({"error": f"{type(exc).__name__}: {exc}"})
+            code = 1
+        with os.fdopen(write_end, "wb") as stream:
+            stream.write(data)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    os.close(write_end)
+    with os.fdopen(read_end, "rb") as stream:
+        data = stream.read()
+    _, status = os.waitpid(pid, 0)
+    try:
+        payload = pickle.loads(data) if data else None
+    except (pickle.UnpicklingError, EOFError, ValueError):
+        payload = None
+    if isinstance(payload, list):
+        reports = [hook.pytest_report_from_serializable(config=item.config, data=d)
+                   for d in payload]
+    else:
+        why = (payload or {}).get("error") or (
+            f"the forked child died: {_describe_status(status)}")
+        reports = [TestReport(item.nodeid, item.location,
+                              {k: 1 for k in item.keywords}, "failed", why, "???")]
+    for rep in reports:
+        ihook.pytest_runtest_logreport(report=rep)
+    ihook.pytest_runtest_logfinish(nodeid=item.nodeid, location=item.location)
+    return True
+
+
+def _describe_status(status):
+    if os.WIFSIGNALED(status):
+        return f"signal {os.WTERMSIG(status)}"
+    return f"exit status {os.WEXITSTATUS(status)}"
