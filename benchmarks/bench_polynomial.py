@@ -33,14 +33,16 @@ E, NU, N, MU = 2.1e11, 0.28, 2e5, 0.3
 
 def pv_mpmath(coef, s, dps=40):
     with mp.workdps(dps):
-        c = [mp.mpf(float(v)) for v in coef][::-1]
+        c = [mp.mpf(float(v)) for v in coef]   # ascending powers
         s = mp.mpf(s)
         if abs(s) > 1:
-            return mp.quad(lambda t: mp.polyval(c, mp.cos(t)) / (s - mp.cos(t)), [0, mp.pi])
+            return mp.quad(lambda t: mp.polyval(c, mp.cos(t), asc=True) / (s - mp.cos(t)),
+                           [0, mp.pi])
         t0 = mp.acos(s)
 
         def g(t):
-            return mp.polyval(c, mp.cos(t)) / (mp.sin((t + t0) / 2) * mp.sinc((t - t0) / 2))
+            return (mp.polyval(c, mp.cos(t), asc=True)
+                    / (mp.sin((t + t0) / 2) * mp.sinc((t - t0) / 2)))
 
         g0 = g(t0)
         return (mp.quad(lambda t: (g(t) - g0) / (t - t0), [0, t0, mp.pi])
@@ -68,7 +70,7 @@ def accuracy_vs_degree(degrees):
         err_lit = abs(literal - ref_out) / scale
         gamma = P.base_change_matrix(n, 1.0) @ b
         with mp.workdps(60):
-            exact = float(mp.polyval([mp.mpf(v) for v in b[::-1]], mp.mpf(-0.5) + 1))
+            exact = float(mp.polyval([mp.mpf(v) for v in b], mp.mpf(-0.5) + 1, asc=True))
         err_d = abs(np.polynomial.polynomial.polyval(-0.5, gamma) - exact) / scale
         print(f"{n:5d} {ident:10.2e} {cond:9.2e} {err_in:9.2e} {err_out:9.2e} {err_lit:11.2e} "
               f"{err_d:9.2e}")

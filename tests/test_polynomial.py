@@ -47,7 +47,7 @@ def pv_mpmath(coef, s, dps=40):
         s = mp.mpf(s)
 
         def f(t):
-            return mp.polyval(c[::-1], mp.cos(t))
+            return mp.polyval(c, mp.cos(t), asc=True)
 
         if abs(s) > 1:
             return float(mp.quad(lambda t: f(t) / (s - mp.cos(t)), [0, mp.pi]))
@@ -176,7 +176,7 @@ def test_base_change_conditioning(degree, tol):
     gamma = P.base_change_matrix(degree, 1.0) @ g
     x = np.linspace(-1, 0, 7)
     with mp.workdps(50):
-        exact = np.array([float(mp.polyval([mp.mpf(v) for v in g[::-1]], mp.mpf(xx) + 1))
+        exact = np.array([float(mp.polyval([mp.mpf(v) for v in g], mp.mpf(xx) + 1, asc=True))
                           for xx in x])
     err = np.abs(np.polynomial.polynomial.polyval(x, gamma) - exact).max() / np.abs(g).sum()
     assert err < tol
