@@ -169,25 +169,30 @@ def build(dest=ROOT, validate=True):
         script, project_files = _stage(stage, digest)
         if validate:
             _check_isolation(stage, digest)
-        partial = dest / f".{MODEL_NAME}.{os.getpid()}.fmu"
+        # a private folder beside the target: pythonfmu < 0.7 takes ``dest`` as a folder only,
+        # 0.7 also as a file name; both return the path of the FMU they wrote
+        partial_dir = dest / f".{MODEL_NAME}.{os.getpid()}.build"
         try:
-            FmuBuilder.build_FMU(script, dest=partial, project_files=project_files,
-                                 canGetAndSetFMUstate=True, canSerializeFMUstate=True)
+            try:
+                partial = Path(FmuBuilder.build_FMU(
+                    script, dest=partial_dir, project_files=project_files,
+                    canGetAndSetFMUstate=True, canSerializeFMUstate=True))
+            finally:
+                module_name, package_name = bundle_names(digest)
+                for name in [m for m in sys.modules
+                             if m == module_name or m.split(".")[0] == package_name]:
+                    del sys.modules[name]
+                if str(stage) in sys.path:
+                    sys.path.remove(str(stage))
+            if validate:
+                from fmpy.validation import validate_fmu
+                problems = validate_fmu(str(partial))
+                if problems:
+                    raise RuntimeError("fmpy validate found problems in the model description:\n"
+                                       + "\n".join(problems))
+            os.replace(partial, target)
         finally:
-            module_name, package_name = bundle_names(digest)
-            for name in [m for m in sys.modules
-                         if m == module_name or m.split(".")[0] == package_name]:
-                del sys.modules[name]
-            if str(stage) in sys.path:
-                sys.path.remove(str(stage))
-        if validate:
-            from fmpy.validation import validate_fmu
-            problems = validate_fmu(str(partial))
-            if problems:
-                partial.unlink()
-                raise RuntimeError("fmpy validate found problems in the model description:\n"
-                                   + "\n".join(problems))
-        os.replace(partial, target)
+            shutil.rmtree(partial_dir, ignore_errors=True)
     return target
 
 

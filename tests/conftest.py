@@ -166,6 +166,9 @@ def pytest_runtest_protocol(item, nextitem):
                               {k: 1 for k in item.keywords}, "failed", why, "???")]
     for rep in reports:
         ihook.pytest_runtest_logreport(report=rep)
+    # The child tore its own copies down; here, tear down what earlier tests of this process
+    # set up and the next test does not share (a module left on the stack for this item).
+    item.session._setupstate.teardown_exact(nextitem)
     ihook.pytest_runtest_logfinish(nodeid=item.nodeid, location=item.location)
     return True
 
