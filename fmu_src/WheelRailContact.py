@@ -319,6 +319,13 @@ class WheelRailContact(Fmi2Slave):
             self._warned.add(key)
             self.log(message, Fmi2Status.warning)
 
+    def setup_experiment(self, start_time, stop_time=None, tolerance=None):
+        """Nothing to set up: the master owns start and stop time, and the slave no tolerance.
+
+        Overridden so that every pythonfmu release the project allows calls it alike: 0.6.x's
+        Python base class takes ``start_time`` only, while its native library passes all three.
+        """
+
     def exit_initialization_mode(self):
         try:
             self._build(self._parameter_values())
