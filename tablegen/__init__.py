@@ -4,5 +4,6 @@
 are in :mod:`railcontact.tables` (the FMU ships only railcontact).
 """
 
-from .spec import REGISTRY, Axis, TableSpec, Variable, get_spec, register  # noqa: F401
+from .registry import REGISTRY, get_spec, register  # noqa: F401
+from .spec import Axis, TableSpec, Variable  # noqa: F401
 from .build import build_table  # noqa: F401

@@ -26,11 +26,11 @@ import argparse
 import shlex
 import sys
 
-from .spec import REGISTRY, RESOLUTIONS
+from .registry import REGISTRY
+from .spec import RESOLUTIONS
 
 
 def main(argv=None):
-    from . import specs  # noqa: F401,PLC0415  (registers the built-in specs)
     from .build import build_table  # noqa: PLC0415
 
     parser = argparse.ArgumentParser(prog="python -m tablegen",

@@ -26,7 +26,7 @@ import numpy as np
 from railcontact.tables import bspline_knots, fit_tensor_bspline, TensorSpline
 
 from .netcdf import write_table
-from .spec import get_spec
+from .registry import get_spec
 
 __all__ = ["build_table", "check_table", "evaluate_chunk", "default_workdir"]
 

@@ -162,23 +162,3 @@ class TableSpec:
         lo = np.array([a.nodes[0] for a in axes])
         hi = np.array([a.nodes[-1] for a in axes])
         return lo + (hi - lo) * rng.random((n, len(axes)))
-
-
-REGISTRY: dict[str, TableSpec] = {}
-
-
-def register(spec):
-    """Add a spec to :data:`REGISTRY` (name must be new) and return it."""
-    if spec.name in REGISTRY:
-        raise ValueError(f"table spec {spec.name!r} is already registered")
-    REGISTRY[spec.name] = spec
-    return spec
-
-
-def get_spec(name):
-    """The registered spec ``name`` (ValueError listing the known names otherwise)."""
-    from . import specs  # noqa: F401,PLC0415  (registers the built-in specs)
-
-    if name not in REGISTRY:
-        raise ValueError(f"table name must be one of {sorted(REGISTRY)}; got {name!r}")
-    return REGISTRY[name]

@@ -9,7 +9,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from .spec import Axis, TableSpec, Variable, register
+from .spec import Axis, TableSpec, Variable
+
+#: The built-in specs, in registration order (``tablegen.registry`` looks them up by name).
+SPECS: list[TableSpec] = []
+
+
+def register(spec):
+    """Add a built-in spec to :data:`SPECS` and return it."""
+    SPECS.append(spec)
+    return spec
 
 THESIS = ("J.B. Nielsen, New Developments in the Theory of Wheel/Rail Contact Mechanics, "
           "IMM-PHD-1998-51, DTU, 1998")

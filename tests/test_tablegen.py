@@ -6,7 +6,8 @@ import pytest
 import tablegen
 from tablegen.__main__ import main
 from tablegen.build import build_table
-from tablegen.spec import REGISTRY, Axis, get_spec
+from tablegen.registry import REGISTRY, get_spec
+from tablegen.spec import Axis
 from tablegen.specs import selftest_function
 from railcontact.tables import Table
 

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from railcontact.tables import Table, default_table_path, tables_directory
-from tablegen.spec import get_spec
+from tablegen.registry import get_spec
 
 NONSTEADY = tables_directory() / "nonsteady_transfer.nc"
 FRICTION = tables_directory() / "velocity_friction.nc"
