@@ -1,5 +1,5 @@
 #!/usr/bin/env python
-r"""Long FMU run through the hard regions: no NaN, no error, no memory growth (issue 8).
+r"""Long FMU run through the hard regions: no NaN, no error, no memory growth.
 
     python benchmarks/bench_long_run.py [--steps 1e6] [--scene creep_only_analytic ...]
                                         [--fmu PATH]

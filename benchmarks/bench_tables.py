@@ -1,4 +1,4 @@
-"""Speed and size of the smooth tables (issue 5). Prints figures; asserts nothing.
+"""Speed and size of the smooth tables. Prints figures; asserts nothing.
 
     python benchmarks/bench_tables.py            # lookups, sizes, direct-model ratios
     python benchmarks/bench_tables.py --build    # also: 1 -> 2 workers (coarse creep_exact)

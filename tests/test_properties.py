@@ -1,6 +1,6 @@
 """Property tests (hypothesis) over the documented input domains: solvers, tables and the FMU.
 
-Issue 8. For every model the same questions, asked of randomly drawn valid inputs:
+For every model the same questions, asked of randomly drawn valid inputs:
 
 * the outputs are finite;
 * the tangential force obeys the Coulomb bound ``|T| <= mu N``;

@@ -202,7 +202,7 @@ def test_friction_knobs_as_fmu_parameters():
     assert (opts["series_degree"], opts["tolerance"]) == (40, 1e-9)
 
 
-# ---------------------------------------------------------------- table sources (issue 6)
+# ---------------------------------------------------------------- table sources
 _LINE = "[geometry]\nkind = 'line'\n[effects.creep]\nmethod = 'carter'\n"
 _CORR = "[effects.corrugation]\nwavelengths = [0.05]\namplitudes_cos = [1e-6]\n"
 _VF = "[effects.velocity_friction]\nkinetic_friction_coefficient = 0.2\nkappa = 10\n"

@@ -1,4 +1,4 @@
-"""Tests of three tables of issue 5 added to tablegen: ``nonsteady_transfer`` (Nielsen Ch. 7),
+"""Tests of three table specs of tablegen: ``nonsteady_transfer`` (Nielsen Ch. 7),
 ``velocity_friction`` (Nielsen Sec. 5.3) and ``corrugation_exact`` (Nielsen Ch. 4).
 
 Each shipped file in ``tables/`` is compared with the direct function it tabulates
