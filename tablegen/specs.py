@@ -567,7 +567,7 @@ register(TableSpec(
             "cubic B-spline interpolant, C2 on every axis except C1 at the double knot "
             "normalised_creepage = 1 (onset of full sliding, where the creep curve's second "
             "derivative jumps); the spline does not overshoot the Coulomb limit "
-            "max(1, m) (checked on dense random points in tests/test_tablegen_extra.py)"),
+            "max(1, m) (checked on dense random points in tests/test_tablegen_specs.py)"),
         "solver_settings": "degree = 128, tol = 1e-10 (railcontact.friction)",
         "normalisation": (
             "law (5.16) mu(s) = mu_0 [(1 - m)/(1 + kappa s) + m], s the slip velocity over the "
