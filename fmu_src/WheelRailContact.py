@@ -480,7 +480,8 @@ def _release_interpreter_guard_at_exit(resources, stage):
     the heap's state that corrupts glibc's free lists and the process aborts after all its work
     is done ("corrupted double-linked list"). Where PythonFMU started Python (a non-Python
     host), finalising the interpreter from that static destructor is worse: the static
-    destructors of the C++ extension modules loaded since (scipy, llvmlite) have already run.
+    destructors of the C++ extension modules loaded since have already run (valgrind: reads of
+    memory scipy's ``_uarray`` freed, inside ``Py_Finalize``; a segfault in 1 of 3 exits).
 
     Registering ``finalizePythonInterpreter`` itself with ``__cxa_atexit`` (what ``atexit()``
     does; no argument, no DSO, so it runs at exit only) puts it *before* both: exit handlers
