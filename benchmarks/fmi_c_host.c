@@ -40,7 +40,10 @@ static void *symbol(void *library, const char *name)
 
 int main(int argc, char **argv)
 {
-    if (argc < 4) { fprintf(stderr, "usage: %s LIBRARY GUID RESOURCE_URI [SCENE]\n", argv[0]); return 2; }
+    if (argc < 4) {
+        fprintf(stderr, "usage: %s LIBRARY GUID RESOURCE_URI [SCENE [VR]]\n", argv[0]);
+        return 2;
+    }
     void *library = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
     if (!library) { fprintf(stderr, "%s\n", dlerror()); return 2; }
     Callbacks callbacks = {logger, calloc, free, NULL, NULL};
