@@ -18,9 +18,11 @@ parameter or input is logged first (visible with debug logging on, e.g. ``fmpy s
 --debug-logging`` or ``simulate_fmu(..., debug_logging=True)``). No NaN is ever returned.
 """
 
+import ctypes
 import importlib
 import json
 import math
+import os
 import sys
 from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
@@ -179,6 +181,7 @@ class WheelRailContact(Fmi2Slave):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         self._bundle_dir = _repoint_bundle(self.resources)
+        _release_interpreter_guard_at_exit(self.resources, "instantiated")
         self.version = getattr(_rc, "__version__", "unknown")
         self.default_experiment = DefaultExperiment(start_time=0.0, stop_time=1.0,
                                                     step_size=1e-3)
@@ -341,6 +344,7 @@ class WheelRailContact(Fmi2Slave):
             self.log(f"invalid input (start value): {exc}", Fmi2Status.error)
             raise
         self._evaluate()
+        _release_interpreter_guard_at_exit(self.resources, "initialised")
 
     # ---------------------------------------------------------------------------------------
     # stepping
@@ -465,6 +469,67 @@ def _repoint_bundle(resources):
             if isinstance(path, list):
                 path[:] = [str(root.joinpath(*name.split(".")[1:]))]
     return root
+
+
+def _release_interpreter_guard_at_exit(resources, stage):
+    """Have the C library's exit handlers reset PythonFMU's interpreter guard in time (Linux).
+
+    PythonFMU 0.7's native library (``binaries/linux64/*.so``) holds its interpreter guard in
+    a namespace-scope ``std::shared_ptr<PyState> pyState``, and also resets it from an
+    ``__attribute__((destructor))`` function (``onLibraryUnload`` -> the exported
+    ``finalizePythonInterpreter``). The library cannot be unloaded (it defines STB_GNU_UNIQUE
+    symbols, so ``dlclose`` keeps it), so both run at process exit, in this order: ``exit()``
+    runs the C++ static destructor, which frees the shared_ptr's control block (and, when
+    PythonFMU started Python itself, finalises the interpreter from there); ``_dl_fini`` then
+    calls ``finalizePythonInterpreter``, which decrements the use count inside the freed block,
+    a write into freed heap memory (valgrind: "Invalid read of size 4 at
+    finalizePythonInterpreter ... by _dl_fini", upstream NTNU-IHB/PythonFMU#229). Depending on
+    the heap's state that corrupts glibc's free lists and the process aborts after all its work
+    is done ("corrupted double-linked list"). Where PythonFMU started Python (a non-Python
+    host), finalising the interpreter from that static destructor is worse: the static
+    destructors of the C++ extension modules loaded since have already run (valgrind: reads of
+    memory scipy's ``_uarray`` freed, inside ``Py_Finalize``; a segfault in 1 of 3 exits).
+
+    Registering ``finalizePythonInterpreter`` itself with ``__cxa_atexit`` (what ``atexit()``
+    does; no argument, no DSO, so it runs at exit only) puts it *before* both: exit handlers
+    run in reverse order of registration, and this one is registered after the library and the
+    extension modules were loaded. It then destroys ``PyState`` while everything is alive
+    (where PythonFMU started Python, its thread finalises the interpreter at that moment;
+    where the host started it, ``PyState`` owns nothing and its thread has long ended), leaves
+    ``pyState`` empty, and the two later calls do nothing. docs/fmu_lifecycle.md has the
+    measurements.
+
+    The library is found next to ``resources/`` (FMI 2.0 layout) and opened with
+    ``RTLD_NOLOAD`` (only the copy the importer already loaded; the handle is kept, so that
+    copy stays mapped until exit). Registered once per library copy and ``stage``: at
+    instantiation, and again after the first initialisation (which may load more C
+    libraries, e.g. netCDF4 for the tables; the later registration runs first). Anything
+    unexpected (another layout, no such symbol) leaves things as they are.
+    """
+    if not sys.platform.startswith("linux") or not resources:
+        return
+    for path in (Path(resources).parent / "binaries" / "linux64").glob("*.so"):
+        try:
+            library = ctypes.CDLL(str(path), mode=os.RTLD_NOW | os.RTLD_NOLOAD)
+            release = ctypes.cast(library.finalizePythonInterpreter, ctypes.c_void_p).value
+            libc = ctypes.CDLL(None)
+            register = libc["__cxa_atexit"]
+        except (OSError, AttributeError):
+            continue
+        if (release, stage) in _EXIT_RELEASES:
+            continue
+        register.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+        register.restype = ctypes.c_int
+        if register(release, None, None) == 0:
+            _EXIT_RELEASES[(release, stage)] = library
+
+
+# PythonFMU's findClass executes this file a second time in the module's globals (with fresh
+# locals), once per instantiation: create the registry only once.
+try:
+    _EXIT_RELEASES
+except NameError:
+    _EXIT_RELEASES = {}   # (address of finalizePythonInterpreter, stage) -> library handle
 
 
 def _name_parameter(message):
