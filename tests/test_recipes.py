@@ -59,3 +59,13 @@ def test_fmpy_and_libcosim_recipes_agree_with_the_api(built_fmu):
     assert fx_fmpy == pytest.approx(want, abs=0.05)       # printed to 0.1 N
     assert fx_cosim == pytest.approx(want, abs=0.05)
     assert -0.3 * 100e3 < want < 0.0
+
+
+def test_readme_api_snippet_runs():
+    """The README's Python API block runs as printed and gives the recipe's Hertz contact."""
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"```python\n(import railcontact as rc\n.*?)```", text, re.S).group(1)
+    scope = {}
+    exec(compile(block, "README.md", "exec"), scope)      # noqa: S102 -- our own README
+    assert 1e3 * scope["a0"] == pytest.approx(7.503, abs=5e-4)
+    assert -0.3 * 100e3 < scope["tx"] < 0.0 and scope["ty"] == 0.0
