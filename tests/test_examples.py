@@ -1,0 +1,97 @@
+"""The README's recipes (scripts in ``examples/``) run as written, and the C table reader
+``examples/table_reader.c`` agrees with the Python evaluator.
+
+The C program is compiled with gcc and the netCDF C library (Debian: ``gcc libnetcdf-dev``,
+installed by ``.ci/run``); where either is missing the test is skipped and says which.
+"""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from railcontact.tables import Table
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+TABLES = sorted((ROOT / "tables").glob("*.nc"))
+
+
+def _run_example(script, *args, cwd, timeout=600):
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "fmu_src"), str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.run([sys.executable, str(EXAMPLES / script), *map(str, args)], cwd=cwd,
+                          capture_output=True, text=True, timeout=timeout, env=env)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return proc.stdout
+
+
+# --------------------------------------------------------------------------------------------
+# Tables from C
+# --------------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def table_reader(tmp_path_factory):
+    """examples/table_reader.c compiled against the system netCDF C library."""
+    if shutil.which("gcc") is None:
+        pytest.skip("gcc not found (Debian: apt-get install gcc); the C table reader is not "
+                    "compiled")
+    if shutil.which("nc-config") is None:
+        pytest.skip("nc-config not found: the netCDF C development files are not installed "
+                    "(Debian: apt-get install libnetcdf-dev)")
+    flags = subprocess.run(["nc-config", "--cflags", "--libs"], capture_output=True,
+                           text=True).stdout.split()
+    exe = tmp_path_factory.mktemp("table_reader") / "table_reader"
+    proc = subprocess.run(["gcc", "-O2", "-Wall", "-Wextra", "-Werror", "-o", str(exe),
+                           str(EXAMPLES / "table_reader.c"), *flags, "-lm"],
+                          capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    return exe
+
+
+@pytest.mark.parametrize("path", TABLES, ids=[p.stem for p in TABLES])
+def test_c_table_reader_agrees_with_python_evaluator(table_reader, path):
+    """Value and every first derivative, every variable, at 200 seeded random points inside
+    the grid (and the corner nodes), to 1e-12 relative to max(1, |value|) and to the
+    derivative's scale (max |dV/dx| over the points, times the axis length)."""
+    table = Table.from_file(path)
+    rng = np.random.default_rng(20261125)
+    lower = np.array([a["nodes"][0] for a in table.axes])
+    upper = np.array([a["nodes"][-1] for a in table.axes])
+    points = np.vstack([lower, upper, lower + (upper - lower) * rng.random((200, len(lower)))])
+    text = "\n".join(" ".join(f"{v:.17g}" for v in p) for p in points) + "\n"
+    ndim = len(table.axes)
+    for k, name in enumerate(table.variables):
+        proc = subprocess.run([str(table_reader), str(path), name], input=text,
+                              capture_output=True, text=True, timeout=120)
+        assert proc.returncode == 0, proc.stderr
+        got = np.loadtxt(proc.stdout.splitlines(), ndmin=2)
+        assert got.shape == (len(points), 1 + ndim)
+        want = table.spline.evaluate(points)[:, k]
+        np.testing.assert_allclose(got[:, 0], want, rtol=0,
+                                   atol=1e-12 * max(1.0, np.abs(want).max()),
+                                   err_msg=f"{path.name}: {name}")
+        for d in range(ndim):
+            order = np.zeros(ndim, dtype=int)
+            order[d] = 1
+            dwant = table.spline.evaluate(points, derivative=order)[:, k]
+            scale = max(1.0, np.abs(dwant).max() * (upper[d] - lower[d]))
+            np.testing.assert_allclose(got[:, 1 + d] * (upper[d] - lower[d]),
+                                       dwant * (upper[d] - lower[d]), rtol=0,
+                                       atol=1e-12 * scale,
+                                       err_msg=f"{path.name}: d{name}/d{table.axes[d]['name']}")
+
+
+def test_c_table_reader_refuses_a_file_without_the_format_attribute(table_reader, tmp_path):
+    netCDF4 = pytest.importorskip("netCDF4")
+    path = tmp_path / "not_a_table.nc"
+    with netCDF4.Dataset(path, "w") as ds:
+        ds.title = "no railcontact_table_format attribute"
+    proc = subprocess.run([str(table_reader), str(path), "x"], input="", capture_output=True,
+                          text=True, timeout=60)
+    assert proc.returncode != 0
+    assert "railcontact_table_format" in proc.stderr or "Attribute not found" in proc.stderr
