@@ -95,3 +95,29 @@ def test_c_table_reader_refuses_a_file_without_the_format_attribute(table_reader
                           text=True, timeout=60)
     assert proc.returncode != 0
     assert "railcontact_table_format" in proc.stderr or "Attribute not found" in proc.stderr
+
+
+# --------------------------------------------------------------------------------------------
+# The README's Python recipes
+# --------------------------------------------------------------------------------------------
+
+def test_api_recipe_runs(tmp_path):
+    out = _run_example("quickstart_api.py", cwd=tmp_path)
+    # the table and the closed form print the same creep curve (table error 2e-7 of mu N)
+    lines = dict(line.split(":", 1) for line in out.splitlines() if ":" in line)
+    closed = np.array(lines["Tx [kN]       "].strip(" []").split(), float)
+    table = np.array(lines["Tx table [kN] "].strip(" []").split(), float)
+    np.testing.assert_allclose(table, closed, atol=1e-3)
+    assert np.all(np.abs(closed) <= 0.3 * 100.0)          # |Tx| <= mu N [kN]
+    assert "valid: [ True False]" in out
+
+
+def test_fmpy_recipe_runs(built_fmu, tmp_path):
+    out = _run_example("fmu_fmpy.py", built_fmu, cwd=tmp_path)
+    assert "101 rows; Fx from 20000 N to -20000 N" in out, out
+
+
+def test_libcosim_recipe_runs(built_fmu, tmp_path):
+    pytest.importorskip("libcosimpy")
+    out = _run_example("fmu_libcosim.py", built_fmu, cwd=tmp_path)
+    assert "after 100 steps: Fx = -20000 N, Fy = 0 N" in out, out
