@@ -1,18 +1,17 @@
 """Recipe 2: drive WheelRailContact.fmu from your own fmpy script (README, "Use the FMU").
 
 Run: python examples/fmu_fmpy.py [WheelRailContact.fmu]
-(without an argument the checkout's FMU is used, built first if missing: python build_fmu.py)
 """
 import sys
 
 import numpy as np
 from fmpy import simulate_fmu
 
-if len(sys.argv) > 1:
-    fmu = sys.argv[1]
-else:
-    from railcontact.run import locate_fmu   # builds WheelRailContact.fmu if it is missing
-    fmu = str(locate_fmu())
+from railcontact.run import locate_fmu
+
+# the FMU: the checkout's WheelRailContact.fmu (set-up command 1 built it; locate_fmu rebuilds
+# it if the sources changed), or a path given on the command line
+fmu = sys.argv[1] if len(sys.argv) > 1 else str(locate_fmu())
 
 # Your inputs, as a structured array: time, then the six input variables (fmpy warns about any
 # it is not given). Here a longitudinal creepage ramp at 80 kN and 30 m/s.

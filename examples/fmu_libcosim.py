@@ -12,11 +12,11 @@ from libcosimpy.CosimManipulator import CosimManipulator
 from libcosimpy.CosimObserver import CosimObserver
 from libcosimpy.CosimSlave import CosimLocalSlave
 
-if len(sys.argv) > 1:
-    fmu = sys.argv[1]
-else:
-    from railcontact.run import locate_fmu   # builds WheelRailContact.fmu if it is missing
-    fmu = str(locate_fmu())
+from railcontact.run import locate_fmu
+
+# the FMU: the checkout's WheelRailContact.fmu (set-up command 1 built it; locate_fmu rebuilds
+# it if the sources changed), or a path given on the command line
+fmu = sys.argv[1] if len(sys.argv) > 1 else str(locate_fmu())
 
 log_output_level(CosimLogLevel.WARNING)                      # libcosim logs debug by default
 step = 0.01                                                  # [s]
