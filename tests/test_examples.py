@@ -167,3 +167,19 @@ def test_readme_is_short():
     """A newcomer reads it in about five minutes: under 1400 words, about half of them the recipes."""
     words = len(README.read_text(encoding="utf-8").split())
     assert words < 1400, words
+
+
+def test_api_guide_tour_runs(tmp_path):
+    """The first code block of docs/api_guide.md (the tour) runs as written."""
+    import re  # noqa: PLC0415
+    text = (ROOT / "docs" / "api_guide.md").read_text(encoding="utf-8")
+    tour = re.findall(r"```python\n(.*?)```", text, re.S)[0]
+    assert "(...)" not in tour
+    script = tmp_path / "tour.py"
+    script.write_text(tour + "\nprint('tour ok', sol.within_validity)\n", encoding="utf-8")
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "fmu_src"), str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300, env=env)
+    assert proc.returncode == 0, proc.stderr
+    assert "tour ok True" in proc.stdout
