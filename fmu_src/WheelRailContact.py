@@ -39,11 +39,14 @@ _effects = importlib.import_module(_PACKAGE + ".effects")
 
 #: Outputs: name -> (unit, description, ContactPoint field).
 OUTPUTS = {
-    "Fx": ("N", "Longitudinal tangential contact force on the wheel (opposes the longitudinal "
-                "creepage; |(Fx, Fy)| <= mu N)", "Fx"),
-    "Fy": ("N", "Lateral tangential contact force on the wheel (0 for a line contact: "
-                "Carter's theory is 2-D)", "Fy"),
-    "Mz": ("N.m", "Spin moment on the wheel about the contact centre: Kalker's exact theory "
+    "Fx": ("N", "Longitudinal tangential contact force on the wheel, positive along +x (the "
+                "rolling direction); it opposes the longitudinal creepage; |(Fx, Fy)| <= mu N",
+           "Fx"),
+    "Fy": ("N", "Lateral tangential contact force on the wheel, positive along +y; it "
+                "opposes the lateral creepage (0 for a line contact: Carter's theory is 2-D)",
+           "Fy"),
+    "Mz": ("N.m", "Spin moment on the wheel about the contact normal +z at the contact "
+                  "centre (right-handed: x rolling, y lateral): Kalker's exact theory "
                   "(creep_method = 'exact', table) only; 0 for the other methods, which give "
                   "none", "Mz"),
     "a0": ("m", "Hertz semi-axis in the rolling direction (line contact: Hertz half-width)",
@@ -64,7 +67,8 @@ OUTPUTS = {
                                 "corrugated contact's a (Nielsen Ch. 4.2), or the rough "
                                 "contact's a (Table 6.1; 0 without contact)",
                            "contact_half_width"),
-    "patch_shift": ("m", "Shift Delta of the patch centre from the wheel axis on a corrugated "
+    "patch_shift": ("m", "Shift Delta of the patch centre from the wheel axis along x (the "
+                         "rolling direction, Nielsen Ch. 4 sign) on a corrugated "
                          "rail (0 on a smooth rail); on a rough rail the gap minimum's shift "
                          "plus the asperity shift Delta of Table 6.1", "patch_shift"),
     "wear_depth_per_passage": ("m", "Wear depth per wheel passage at the rail point under the "
@@ -149,6 +153,58 @@ BOOLEAN_OUTPUTS = {
                               "creep_within_validity"),
 }
 
+#: Bounds and scales the physics gives: name -> {"min", "max", "nominal"} (written into the
+#: modelDescription; FMI bounds are inclusive, so a strict "> 0" is declared as min = 0).
+#: Nominal values are typical magnitudes of a wheel/rail contact (for importers' error norms).
+LIMITS = {
+    # parameters
+    "youngs_modulus": {"min": 0.0, "nominal": 2.1e11},
+    "poisson_ratio": {"min": 0.0, "max": 0.5, "nominal": 0.3},
+    "curvature_longitudinal": {"min": 0.0, "nominal": 1.0},
+    "curvature_lateral": {"min": 0.0, "nominal": 1.0},
+    "semi_axis_longitudinal": {"min": 0.0, "nominal": 5e-3},
+    "semi_axis_lateral": {"min": 0.0, "nominal": 5e-3},
+    "radius": {"min": 0.0, "nominal": 0.3},
+    "contact_width": {"min": 0.0, "nominal": 0.02},
+    "friction_coefficient": {"min": 0.0, "nominal": 0.3},
+    "kinetic_friction_coefficient": {"min": 0.0, "nominal": 0.2},
+    "friction_kappa": {"min": 0.0},
+    "friction_series_degree": {"min": 8, "max": 2048},
+    "friction_tolerance": {"min": 0.0, "max": 1e-2},
+    "wear_coefficient": {"min": 0.0},
+    "wear_section_length": {"min": 0.0, "nominal": 1.0},
+    "nonsteady_pseudo_width_ratio": {"min": 2.0, "nominal": 20.0},
+    # inputs
+    "normal_force": {"min": 0.0, "nominal": 1e5},
+    "creepage_longitudinal": {"nominal": 1e-3},
+    "creepage_lateral": {"nominal": 1e-3},
+    "spin": {"nominal": 0.1},
+    "rolling_speed": {"min": 0.0, "nominal": 30.0},
+    # outputs
+    "Fx": {"nominal": 1e4},
+    "Fy": {"nominal": 1e4},
+    "a0": {"min": 0.0, "nominal": 5e-3},
+    "b0": {"min": 0.0, "nominal": 5e-3},
+    "p0": {"min": 0.0, "nominal": 1e9},
+    "stick_area_fraction": {"min": 0.0, "max": 1.0},
+    "stick_width_ratio": {"min": 0.0, "max": 1.0},
+    "r_a0": {"min": 0.0, "max": 1.0},
+    "contact_half_width": {"min": 0.0, "nominal": 5e-3},
+    "corrugation_amplitude": {"min": 0.0},
+    "corrugation_growth_rate": {"min": -1.0},
+    "friction_iteration_residual": {"min": -1.0},
+    "corrugation_series_error_estimate": {"min": -1.0},
+    "relaxation_length": {"min": 0.0},
+    "critical_creepage": {"min": 0.0},
+    "creep_table_error_estimate": {"min": -1.0},
+    "friction_table_error_estimate": {"min": -1.0},
+}
+
+def _described(description, unit):
+    """The description with its unit in brackets (``[1]`` = dimensionless)."""
+    return f"{description} [{unit}]" if unit else description
+
+
 #: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
          "corrugation_growth_rate", "Mz", "corrugation_series_error_estimate"}
@@ -206,7 +262,7 @@ class WheelRailContact(Fmi2Slave):
                    "boolean": Boolean}[spec.kind]
             self.register_variable(cls(spec.name, causality=Fmi2Causality.parameter,
                                        variability=Fmi2Variability.fixed,
-                                       description=spec.description))
+                                       description=_described(spec.description, spec.unit)))
             if spec.unit:
                 self._units[spec.name] = spec.unit
 
@@ -215,7 +271,7 @@ class WheelRailContact(Fmi2Slave):
             setattr(c, name, float(_scene.INPUT_DEFAULTS[name]))
             self.register_variable(Real(
                 name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
-                description=desc, getter=(lambda n=name: getattr(c, n)),
+                description=_described(desc, unit), getter=(lambda n=name: getattr(c, n)),
                 setter=(lambda v, n=name: setattr(c, n, v))))
             self._units[name] = unit
         for name, (unit, desc, field) in OUTPUTS.items():
@@ -223,7 +279,8 @@ class WheelRailContact(Fmi2Slave):
                       else (lambda f=field: getattr(c, f)))
             self.register_variable(Real(
                 name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
-                initial=Fmi2Initial.calculated, description=desc, getter=getter))
+                initial=Fmi2Initial.calculated, description=_described(desc, unit),
+                getter=getter))
             self._units[name] = unit
         for name, (desc, field) in BOOLEAN_OUTPUTS.items():
             self.register_variable(Boolean(
@@ -249,6 +306,9 @@ class WheelRailContact(Fmi2Slave):
             real = node.find("Real")
             if unit is not None and real is not None:
                 real.set("unit", unit)
+            typed = real if real is not None else node.find("Integer")
+            for key, value in LIMITS.get(node.get("name"), {}).items():
+                typed.set(key, f"{value:.16g}")
         structure = root.find("ModelStructure")
         initial = SubElement(structure, "InitialUnknowns")
         for index, var in enumerate(self.vars.values(), start=1):

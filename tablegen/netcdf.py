@@ -11,6 +11,12 @@ Layout (``railcontact_table_format = 1``), for axes ``A1..AD`` and variables ``V
 * ``V_bspline_coefficients`` (dims ``A1_bspline..AD_bspline``): tensor-product B-spline
   coefficients, so that ``V(x) = sum c[i1..iD] B_i1(x1) ... B_iD(xD)`` with the cubic B-splines
   of the knot vectors (de Boor 1978).
+
+These attributes alone are enough to evaluate a table in another language:
+``examples/table_reader.c`` and ``examples/table_reader.f90`` use nothing else (global
+``table_axes``, ``spline_degree``, ``railcontact_table_format``; per axis ``spline_knots``; per
+variable ``bspline_coefficients``), and ``tests/test_examples.py`` checks them against the
+Python reader. Keep these names when changing the writer.
 """
 
 from __future__ import annotations

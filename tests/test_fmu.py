@@ -365,6 +365,29 @@ def test_every_variable_has_description_and_unit(fmu_path):
     assert md.coSimulation.canGetAndSetFMUstate and md.coSimulation.canSerializeFMUstate
 
 
+def test_descriptions_state_unit_and_sign_and_bounds_come_from_the_physics(fmu_path):
+    md = read_model_description(str(fmu_path))
+    by_name = {v.name: v for v in md.modelVariables}
+    for v in md.modelVariables:
+        if v.type == "Real":
+            assert v.description.endswith(f"[{v.unit}]"), v.name
+    # signed quantities say which way is positive (docs/conventions.md)
+    for name in ("Fx", "Fy", "creepage_longitudinal", "creepage_lateral"):
+        assert "+x" in by_name[name].description or "+y" in by_name[name].description, name
+    for name in ("Mz", "spin"):
+        assert "+z" in by_name[name].description, name
+    assert "opposes" in by_name["Fx"].description and "opposes" in by_name["Fy"].description
+    # bounds the physics gives (FMI bounds are inclusive)
+    expected = {"poisson_ratio": ("0", "0.5"), "normal_force": ("0", None),
+                "rolling_speed": ("0", None), "r_a0": ("0", "1"),
+                "stick_area_fraction": ("0", "1"), "friction_coefficient": ("0", None),
+                "friction_series_degree": ("8", "2048"), "creep_table_error_estimate": ("-1", None)}
+    for name, (lo, hi) in expected.items():
+        v = by_name[name]
+        assert v.min == lo and v.max == hi, (name, v.min, v.max)
+    assert float(by_name["Fx"].nominal) == 1e4 and float(by_name["p0"].nominal) == 1e9
+
+
 def test_bundled_names_cannot_collide(fmu_path):
     import zipfile
     with zipfile.ZipFile(fmu_path) as zf:

@@ -1,53 +1,54 @@
-"""railcontact.run: the plot's layout (inputs apart from outputs, constants listed, the validity
-flag shown where it drops), without an FMU: synthetic results of a creep scene."""
+"""The run plot's layout (railcontact.run.plot_layout, plot_results) on synthetic results."""
+
+from pathlib import Path
 
 import numpy as np
 
 from railcontact.run import VALIDITY_NOTE, plot_layout, plot_results
-from railcontact.scene import INPUTS, parse_scene
+from railcontact.scene import INPUTS, load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = ROOT / "examples" / "scenes" / "creep_only_table.toml"
 
 
-def _data():
-    t = np.linspace(0.0, 1.0, 101)
-    inputs = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in INPUTS])
-    inputs["time"] = t
-    inputs["normal_force"] = 80e3 + 20e3 * np.sin(2 * np.pi * t)
-    inputs["creepage_longitudinal"] = -8e-3 + 16e-3 * t
-    inputs["spin"] = 0.05
-    inputs["rolling_speed"] = 30.0
-    names = ["Fx", "Fy", "a0", "p0", "wear_depth_per_passage", "friction_iteration_residual",
-             "creep_table_error_estimate", "creep_within_validity"]
-    result = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in names])
+def _synthetic(valid):
+    scene = load_scene(SCENE)
+    inputs = scene.input_signals()
+    t = inputs["time"]
+    fields = ["Fx", "Fy", "a0", "contact_half_width", "Mz", "creep_within_validity"]
+    result = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in fields])
     result["time"] = t
-    result["Fx"] = -2e4 * np.tanh(inputs["creepage_longitudinal"] / 2e-3)
-    result["a0"] = 6e-3 + 1e-3 * np.sin(2 * np.pi * t)
-    result["p0"] = 1.1e9 + 1e8 * np.sin(2 * np.pi * t)
-    result["friction_iteration_residual"] = -1.0          # "not in use": left out
-    result["creep_table_error_estimate"] = 2e-7           # constant: listed
-    result["creep_within_validity"] = np.where(np.abs(t - 0.5) < 0.021, 0.0, 1.0)
-    return inputs, result
+    result["Fx"] = -1e4 * np.sin(t)
+    result["a0"] = 6e-3 + 1e-4 * np.cos(t)
+    result["contact_half_width"] = result["a0"]
+    result["creep_within_validity"] = valid
+    return scene, result, inputs
 
 
-def test_layout_separates_inputs_outputs_and_lists_constants():
-    inputs, result = _data()
-    layout = plot_layout(parse_scene(""), result, inputs, units={"Fx": "N", "a0": "m"})
-    in_titles = [p[0] for p in layout["inputs"]]
-    out_titles = [p[0] for p in layout["outputs"]]
-    assert in_titles == ["normal force", "creepages"]          # varying inputs only
-    assert ("creepage_longitudinal", 1.0) in layout["inputs"][1][1]
-    assert out_titles == ["forces on the wheel", "contact size", "peak pressure"]
-    assert layout["outputs"][0][1] == [("Fx", 1e-3)]           # Fy is 0 throughout: not drawn
-    assert "spin = 0.05 1/m" in layout["constants"]
-    assert "rolling_speed = 30 m/s" in layout["constants"]
-    assert "creep_table_error_estimate = 2e-07" in layout["constants"]
-    assert not any(c.startswith(("Fy", "wear_depth", "friction_iteration"))
-                   for c in layout["constants"])
-    (t0, t1), = layout["invalid_spans"]
-    assert t0 == 0.48 and t1 == 0.53
+def test_layout_separates_varying_from_constant_and_groups_equal_outputs():
+    scene, result, inputs = _synthetic(valid=1.0)
+    layout = plot_layout(scene, result, inputs)
+    # creep_only_table drives N, xi_x, xi_y (vary) and rail_position (travel); spin and V fixed
+    assert layout["inputs"] == ["normal_force", "creepage_longitudinal", "creepage_lateral",
+                                "rail_position"]
+    assert layout["constant_inputs"] == {"spin": 0.05, "rolling_speed": 30.0}
+    assert layout["outputs"] == ["Fx", "Fy", "a0"]          # Fy stays: Fx, Fy always shown
+    assert layout["same_as"] == {"contact_half_width": "a0"}
+    assert layout["constant_outputs"] == {"Mz": 0.0, "creep_within_validity": True}
+    assert layout["invalid"] == []
+    assert set(layout["inputs"]) | set(layout["constant_inputs"]) <= set(INPUTS)
 
 
-def test_plot_writes_png_with_the_validity_note(tmp_path):
-    inputs, result = _data()
-    path = plot_results(tmp_path / "run.png", parse_scene(""), result, inputs)
-    assert path.stat().st_size > 10_000
+def test_layout_finds_the_intervals_where_validity_drops(tmp_path):
+    scene, result, inputs = _synthetic(valid=1.0)
+    t = result["time"]
+    result["creep_within_validity"][(t >= 0.2) & (t < 0.3)] = 0.0
+    result["creep_within_validity"][t >= 0.9] = 0.0
+    layout = plot_layout(scene, result, inputs)
+    assert "creep_within_validity" not in layout["constant_outputs"]
+    (a0, a1), (b0, b1) = layout["invalid"]
+    assert np.isclose(a0, 0.2) and np.isclose(a1, 0.3)
+    assert np.isclose(b0, 0.9) and b1 == t[-1]
     assert "spin coefficient > 1" in VALIDITY_NOTE
+    path = plot_results(tmp_path / "p.png", scene, result, inputs, units={"Fx": "N"})
+    assert path.stat().st_size > 1000

@@ -1,5 +1,36 @@
 r"""railcontact: wheel/rail rolling-contact mechanics after J.B. Nielsen (1998).
 
+Map of the package (``railcontact.__all__`` lists the public names of this top level)
+--------------------------------------------------------------------------------------
+Top level: Hertz contact and the 3-D creep theories (chapter 2)
+    hertz_2d, hertz_3d, Hertz2D, Hertz3D           Hertz semi-axes and peak pressure
+    curvature_ratio_from_axis_ratio,               B'/A' <-> a0/b0
+    axis_ratio_from_curvature_ratio
+    carter_creep_force, carter_critical_creepage,  Carter's 2-D rolling contact
+    carter_stick_ratio, carter_traction, carter_slip
+    kalker_coefficients, KalkerCoefficients        Kalker's C11, C22, C23 (C2-smooth)
+    creep_force_3d, creep_solution_3d,             3-D creep forces: linear, SHE, strip,
+    CreepForce3D, CreepSolution3D                  modified strip (+ stick zone, validity)
+    spin_coefficient, saturation_creepage_3d,      pieces of the modified strip theory
+    normalised_creepage_3d, strip_force_function
+Submodules, one per model family (``railcontact.<name>``; each lists its own ``__all__``)
+    polynomial    ch. 3: the polynomial approach, non-Hertzian 2-D normal and tangential contact
+    corrugation   ch. 4.2: contact on a corrugated rail
+    wear          ch. 4.3: wear per passage (wear models, linear response)
+    evolution     ch. 4.4: corrugation growth over many passages
+    filters       ch. 4.5: Remington and Hempelmann contact filters
+    friction      ch. 5: velocity-dependent friction
+    roughness     ch. 6: one asperity, two patches, rough rail
+    nonsteady     ch. 7: non-steady 2-D rolling, relaxation
+    kalker        Kalker's coefficient table and asymptotes
+    tables        the C2 lookup tables (Table, CreepTable, ExactCreepTable, default_table_path)
+    reference     independent discretised half-space solvers (halfspace2d, rolling3d);
+                  used by tests and the accuracy report, never by the FMU
+    scene, effects, run   the FMU's scenes, its effect pipeline, and
+                  ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
+Submodules other than polynomial, roughness, friction and nonsteady are imported on first
+attribute access (``railcontact.wear``) or with ``import railcontact.wear``.
+
 Conventions (one set, used by every function, table and the FMU)
 -----------------------------------------------------------------
 * SI units everywhere: N, m, Pa, s. 2-D functions take loads per unit length [N/m].
@@ -15,19 +46,55 @@ Conventions (one set, used by every function, table and the FMU)
   with that sign flipped where they are implemented.
 * Friction: |T| <= mu N always (Coulomb bound), with mu the friction coefficient.
 * r_a0 = a*/a0: stick-zone half-width over contact half-width (1 = full stick, 0 = full slip).
+
+More: README.md (recipes) and docs/conventions.md (nomenclature: symbol -> API name -> unit).
 """
 
-from ._validation import check_range  # noqa: F401
-from .hertz import (Hertz2D, Hertz3D, hertz_2d, hertz_3d,  # noqa: F401
+import importlib as _importlib
+
+from ._validation import check_range  # noqa: F401  (used by the FMU slave; not public API)
+from .hertz import (Hertz2D, Hertz3D, hertz_2d, hertz_3d,
                     curvature_ratio_from_axis_ratio, axis_ratio_from_curvature_ratio)
-from .carter import (carter_creep_force, carter_critical_creepage,  # noqa: F401
+from .carter import (carter_creep_force, carter_critical_creepage,
                      carter_stick_ratio, carter_traction, carter_slip)
-from .kalker import KalkerCoefficients, kalker_coefficients  # noqa: F401
-from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,  # noqa: F401
+from .kalker import KalkerCoefficients, kalker_coefficients
+from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,
                       creep_solution_3d, spin_coefficient, saturation_creepage_3d,
                       normalised_creepage_3d, strip_force_function)
-from . import polynomial  # noqa: F401
-from . import roughness  # noqa: F401
-from . import friction, nonsteady  # noqa: F401
+from . import polynomial
+from . import roughness
+from . import friction, nonsteady
 
 __version__ = "0.1.0"
+
+#: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
+#: pays for at load time).
+_LAZY_SUBMODULES = ("corrugation", "wear", "evolution", "filters", "kalker", "tables",
+                    "reference", "scene", "effects", "run")
+
+__all__ = [
+    # chapter 2: Hertz, Carter, Kalker, 3-D creep
+    "Hertz2D", "Hertz3D", "hertz_2d", "hertz_3d", "curvature_ratio_from_axis_ratio",
+    "axis_ratio_from_curvature_ratio",
+    "carter_creep_force", "carter_critical_creepage", "carter_stick_ratio", "carter_traction",
+    "carter_slip",
+    "KalkerCoefficients", "kalker_coefficients",
+    "CreepForce3D", "CreepSolution3D", "creep_force_3d", "creep_solution_3d",
+    "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
+    "strip_force_function",
+    # submodules
+    "polynomial", "corrugation", "wear", "evolution", "filters", "friction", "roughness",
+    "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run",
+]
+
+
+def __getattr__(name):
+    if name in _LAZY_SUBMODULES:
+        module = _importlib.import_module(f"{__name__}.{name}")
+        globals()[name] = module
+        return module
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY_SUBMODULES))

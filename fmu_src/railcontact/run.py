@@ -29,7 +29,7 @@ import numpy as np
 from .scene import INPUTS, SceneError, load_scene
 
 __all__ = ["locate_fmu", "simulate_scene", "write_results", "output_units", "plot_layout",
-           "plot_results", "main"]
+           "plot_results", "VALIDITY_NOTE", "main"]
 
 _SOURCE_ROOT = Path(__file__).resolve().parents[2]   # the checkout (editable install)
 _STATUS = {0: "ok", 1: "warning", 2: "discard", 3: "error", 4: "fatal", 5: "pending"}
@@ -132,128 +132,138 @@ def output_units(fmu_path=None):
             for v in md.modelVariables if v.causality == "output"}
 
 
-#: Outputs drawn together in one panel: (title, names, scale, unit shown).
-OUTPUT_GROUPS = (
-    ("forces on the wheel", ("Fx", "Fy"), 1e-3, "kN"),
-    ("spin moment", ("Mz",), 1.0, "N.m"),
-    ("contact size", ("a0", "b0", "contact_half_width"), 1e3, "mm"),
-    ("peak pressure", ("p0",), 1e-6, "MPa"),
-    ("stick zone", ("stick_area_fraction", "stick_width_ratio", "r_a0"), 1.0, "1"),
-    ("relaxed creepages", ("relaxed_creepage_longitudinal", "relaxed_creepage_lateral"), 1.0,
-     "1"),
-)
-#: Inputs drawn together (creepages share a panel and a unit).
-INPUT_GROUPS = (
-    ("normal force", ("normal_force",), 1e-3, "kN"),
-    ("creepages", ("creepage_longitudinal", "creepage_lateral"), 1.0, "1"),
-    ("spin", ("spin",), 1.0, "1/m"),
-    ("rolling speed", ("rolling_speed",), 1.0, "m/s"),
-    ("rail position", ("rail_position",), 1.0, "m"),
-)
-#: Flags shown as shaded time spans on the forces panel, not as panels.
-VALIDITY_NOTE = ("creep_within_validity = 0: the creep theory is used outside its range (spin "
-                 "pole inside the contact, spin coefficient > 1, Nielsen Eq. (2.98)); the "
-                 "forces there are the theory's formulas, not verified")
+#: Where ``creep_within_validity`` drops, the plot says why (the FMU variable's description).
+VALIDITY_NOTE = ("creep_within_validity = false: the creep theory is outside its range here "
+                 "(spin pole inside the contact, spin coefficient > 1, Eq. (2.98); linear "
+                 "theory: |T| > mu N; line contact: lateral creepage or spin ignored). The "
+                 "forces shown are still bounded by mu N.")
 
 
-def plot_layout(scene, result, inputs, units=None):
-    """What :func:`plot_results` draws: input panels, output panels, constants, flag spans.
+def plot_layout(scene, result, inputs):
+    """What the run plot shows: panels for what changes, a list for what does not.
 
-    Returns a dict with ``inputs`` and ``outputs`` (lists of ``(title, [(name, scale)],
-    unit)``: only quantities that change during the run), ``constants`` (``name = value unit``
-    strings of the inputs and outputs that stay constant, the always-constant "not in use"
-    outputs left out) and ``invalid_spans`` (``(t0, t1)`` where ``creep_within_validity`` is 0).
+    Returns
+    -------
+    dict
+        ``inputs``: the driven inputs that vary (always at least one: ``normal_force``);
+        ``outputs``: the outputs that vary, Fx and Fy always; ``constant_inputs`` and
+        ``constant_outputs``: name -> value of those that do not vary (listed under the plot,
+        no panel); ``invalid``: list of (t_start, t_end) where ``creep_within_validity`` is
+        false (empty when it is true throughout or not an output); ``same_as``: output name
+        -> the plotted output it equals at every sample (no panel of its own).
     """
-    units = units or {}
-    t = np.asarray(result["time"], dtype=float)
-
     def varies(values):
-        values = np.asarray(values, dtype=float)
-        return np.ptp(values) > 1e-12 * max(1e-300, float(np.abs(values).max()))
+        return bool(np.ptp(np.asarray(values, dtype=float)) > 0)
 
-    def panels(groups, data, names, unit_of):
-        out, used = [], set()
-        for title, members, scale, unit in groups:
-            shown = [(n, scale) for n in members if n in names and varies(data[n])]
-            used.update(n for n in members if n in names)
-            if shown:
-                out.append((title, shown, unit))
-        for n in names:
-            if n not in used and varies(data[n]):
-                out.append((n.replace("_", " "), [(n, 1.0)], unit_of(n)))
-        return out
+    driven = [n for n in INPUTS if n in scene.inputs and varies(inputs[n])]
+    constant_inputs = {n: float(inputs[n][0]) for n in INPUTS
+                       if n in scene.inputs and n not in driven}
+    if not driven:
+        driven = ["normal_force"]
+        constant_inputs.pop("normal_force", None)
+    names = [n for n in result.dtype.names if n != "time"]
+    outputs = [n for n in names if n != "creep_within_validity"
+               and (n in ("Fx", "Fy") or varies(result[n]))]
+    constant_outputs = {n: result[n][0] for n in names
+                        if n not in outputs and n != "creep_within_validity"}
+    # an output equal to one already shown throughout (e.g. contact_half_width = a0 on a
+    # smooth rail) gets no panel of its own
+    same_as = {}
+    for k, name in enumerate(outputs):
+        for other in outputs[:k]:
+            if other not in same_as and np.array_equal(result[name], result[other]):
+                same_as[name] = other
+                break
+    outputs = [n for n in outputs if n not in same_as]
+    invalid = []
+    if "creep_within_validity" in names:
+        valid = np.asarray(result["creep_within_validity"], dtype=bool)
+        if valid.all():
+            constant_outputs["creep_within_validity"] = True
+        else:
+            t = np.asarray(result["time"], dtype=float)
+            edges = np.diff(np.concatenate(([0], (~valid).astype(np.int8), [0])))
+            for i, j in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)):
+                # a sample holds until the next one: shade [t_i, t_j) (to the end at the end)
+                invalid.append((float(t[i]), float(t[min(j, len(t) - 1)])))
+    return dict(inputs=driven, outputs=outputs, constant_inputs=constant_inputs,
+                constant_outputs=constant_outputs, same_as=same_as, invalid=invalid)
 
-    in_names = [n for n in INPUTS if n in inputs.dtype.names]
-    out_names = [n for n in result.dtype.names if n not in ("time", "creep_within_validity")]
-    constants = [f"{n} = {float(inputs[n][0]):.4g} {INPUTS[n][0]}" for n in in_names
-                 if not varies(inputs[n])]
-    constants += [f"{n} = {float(result[n][0]):.4g} {units.get(n) or ''}".rstrip()
-                  for n in out_names if not varies(result[n])
-                  and float(result[n][0]) not in (0.0, -1.0)]
-    spans = []
-    if "creep_within_validity" in result.dtype.names:
-        bad = np.asarray(result["creep_within_validity"], dtype=float) < 0.5
-        edges = np.flatnonzero(np.diff(np.r_[0, bad.astype(int), 0]))
-        spans = [(t[i], t[min(j, len(t) - 1)]) for i, j in zip(edges[::2], edges[1::2])]
-    return {"inputs": panels(INPUT_GROUPS, inputs, in_names, lambda n: INPUTS[n][0]),
-            "outputs": panels(OUTPUT_GROUPS, result, out_names, lambda n: units.get(n) or ""),
-            "constants": constants, "invalid_spans": spans}
+
+def _format_constants(values, units):
+    parts = []
+    for name, value in values.items():
+        unit = units.get(name)
+        text = str(value) if isinstance(value, (bool, np.bool_)) else f"{float(value):.4g}"
+        parts.append(f"{name} = {text}" + (f" {unit}" if unit and unit != "1" else ""))
+    return parts
 
 
 def plot_results(path, scene, result, inputs, units=None):
-    """Plot the inputs (grey, left) and the outputs (colour, right) against time into a PNG.
+    """Plot the driven inputs and the outputs against time into a PNG file.
 
-    Quantities that stay constant are listed under the title instead of drawn; related outputs
-    share a panel with a legend (:data:`OUTPUT_GROUPS`); where ``creep_within_validity`` drops
-    to 0 the forces panel is shaded and the legend says why (:data:`VALIDITY_NOTE`).
+    Inputs (set by the scene) are drawn in grey, outputs (computed by the FMU) in blue, under
+    two headings, with a legend. Inputs and outputs that stay constant get no panel; they are
+    listed with their values under the plot. Where ``creep_within_validity`` is false the output
+    panels are shaded and the legend says what that means (:data:`VALIDITY_NOTE`).
+
     ``units``: output name -> unit for the axis labels (e.g. :func:`output_units`)."""
     import textwrap
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 
-    layout = plot_layout(scene, result, inputs, units)
-    n_rows = max(len(layout["inputs"]), len(layout["outputs"]), 1)
-    fig, axes = plt.subplots(n_rows, 2, sharex=True, figsize=(12, 1.9 * n_rows + 2.0),
-                             squeeze=False)
-    columns = (("inputs (set by the scene)", layout["inputs"], inputs, True),
-               ("outputs of the FMU", layout["outputs"], result, False))
-    for col, (heading, panels, data, grey) in enumerate(columns):
-        axes[0, col].set_title(heading, fontsize=10, fontweight="bold")
-        for row in range(n_rows):
-            ax = axes[row, col]
-            if row >= len(panels):
-                ax.set_visible(False)
-                continue
-            title, members, unit = panels[row]
-            for k, (name, scale) in enumerate(members):
-                colour = ("0.35", "0.65")[k % 2] if grey else f"C{k}"
-                ax.plot(data["time"], np.asarray(data[name], dtype=float) * scale,
-                        color=colour, label=name)
-            ax.set_ylabel(f"{title}\n[{unit}]" if unit else title, fontsize=8)
-            if len(members) > 1:
-                ax.legend(fontsize=7, loc="best")
-            if not grey and title == "forces on the wheel":
-                for k, (t0, t1) in enumerate(layout["invalid_spans"]):
-                    ax.axvspan(t0, t1, color="tab:red", alpha=0.15,
-                               label="creep_within_validity = 0 (note below)" if k == 0
-                               else None)
-                if layout["invalid_spans"]:
-                    ax.legend(fontsize=7, loc="best")
-        visible = [axes[r, col] for r in range(min(len(panels), n_rows))]
-        if visible:
-            visible[-1].set_xlabel("time [s]")
-            visible[-1].xaxis.set_tick_params(labelbottom=True)
-    constants = "; ".join(layout["constants"]) or "none"
-    fig.suptitle(f"scene {scene.name}: {scene.description}\n"
-                 + textwrap.fill(f"constant during the run: {constants}", 150), fontsize=9)
-    bottom = 0.0
-    if layout["invalid_spans"]:
-        fig.text(0.5, 0.01, "shaded: " + textwrap.fill(VALIDITY_NOTE, 150), ha="center",
-                 va="bottom", fontsize=8, color="tab:red")
-        bottom = 0.45 / fig.get_figheight()
-    fig.tight_layout(rect=(0.0, bottom, 1.0, 1.0 - 0.55 / fig.get_figheight()))
+    units = dict(units or {})
+    units.update({n: INPUTS[n][0] for n in INPUTS})
+    layout = plot_layout(scene, result, inputs)
+    driven, outputs = layout["inputs"], layout["outputs"]
+    constants = (_format_constants(layout["constant_inputs"], units)
+                 + _format_constants(layout["constant_outputs"], units))
+    footer = []
+    if layout["same_as"]:
+        constants += [f"{n} = {m} throughout" for n, m in layout["same_as"].items()]
+    if constants:
+        footer = textwrap.wrap("no panel (constant during the run, or equal to a plotted "
+                               "output): " + ", ".join(constants),
+                               110)
+    if layout["invalid"]:
+        footer += [""] + textwrap.wrap(VALIDITY_NOTE, 110)
+    rows = len(driven) + len(outputs)
+    extra = 0.9 + 0.16 * len(footer)
+    fig, axes = plt.subplots(rows, 1, sharex=True, figsize=(8, 1.5 * rows + 1 + extra))
+    axes = np.atleast_1d(axes)
+    for ax, name in zip(axes, driven):
+        ax.plot(inputs["time"], inputs[name], color="tab:gray")
+        ax.set_facecolor("#f4f4f4")
+        ax.set_ylabel(f"{name}\n[{units[name]}]", fontsize=8)
+    axes[0].set_title("inputs (set by the scene)", fontsize=9, loc="left")
+    for ax, name in zip(axes[len(driven):], outputs):
+        ax.plot(result["time"], result[name], color="tab:blue")
+        for t0, t1 in layout["invalid"]:
+            ax.axvspan(t0, t1, color="tab:red", alpha=0.15, lw=0)
+        unit = units.get(name)
+        ax.set_ylabel(f"{name}\n[{unit}]" if unit else name, fontsize=8)
+    axes[len(driven)].set_title("outputs (computed by the FMU)", fontsize=9, loc="left")
+    axes[-1].set_xlabel("time [s]")
+    handles = [Line2D([], [], color="tab:gray", label="input"),
+               Line2D([], [], color="tab:blue", label="output")]
+    if layout["invalid"]:
+        handles.append(Patch(color="tab:red", alpha=0.15,
+                             label="creep_within_validity = false (see note below)"))
+    height = fig.get_figheight()
+    fig.suptitle(f"scene {scene.name}: {scene.description}", fontsize=9, x=0.02, ha="left",
+                 y=1.0 - 0.1 / height)
+    fig.legend(handles=handles, loc="upper right", bbox_to_anchor=(0.98, 1.0 - 0.3 / height),
+               fontsize=8, ncol=len(handles), frameon=False)
+    if footer:
+        fig.text(0.02, 0.01, "\n".join(footer), fontsize=7, va="bottom", ha="left")
+    # leave room for the title and legend on top and the list of constants below
+    top = 1.0 - 0.6 / height
+    bottom = (0.12 + 0.13 * len(footer)) / height
+    fig.tight_layout(rect=(0.0, bottom, 1.0, top))
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return path

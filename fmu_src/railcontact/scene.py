@@ -220,10 +220,14 @@ SOURCES = ("analytic", "table")
 #: FMU inputs: name -> (unit, description).
 INPUTS = {
     "normal_force": ("N", "Normal contact force N pressing wheel and rail together, >= 0"),
-    "creepage_longitudinal": ("1", "Longitudinal creepage xi_x = (V_x1 - V_x2)/V_m, wheel "
-                                   "relative to rail (Nielsen Eq. (2.15))"),
-    "creepage_lateral": ("1", "Lateral creepage xi_y = (V_y1 - V_y2)/V_m"),
-    "spin": ("1/m", "Spin creepage phi = (Omega_z1 - Omega_z2)/V_m"),
+    "creepage_longitudinal": ("1", "Longitudinal creepage xi_x = (V_x1 - V_x2)/V_m, rigid "
+                                   "velocity of the wheel (1) relative to the rail (2) along "
+                                   "+x, the rolling direction (Nielsen Eq. (2.15)); > 0 when "
+                                   "the wheel surface moves faster than the rail's"),
+    "creepage_lateral": ("1", "Lateral creepage xi_y = (V_y1 - V_y2)/V_m, wheel relative to "
+                              "rail along +y (lateral)"),
+    "spin": ("1/m", "Spin creepage phi = (Omega_z1 - Omega_z2)/V_m, wheel relative to rail "
+                    "about the contact normal +z (right-handed x, y, z)"),
     "rolling_speed": ("m/s", "Mean rolling speed V_m of the contact along the rail, >= 0"),
     "rail_position": ("m", "Position of the wheel axis along the rail (corrugated rail "
                            "surface; completed passages for wear_evolve)"),
