@@ -26,6 +26,8 @@ from .kalker import KalkerCoefficients, kalker_coefficients  # noqa: F401
 from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,  # noqa: F401
                       creep_solution_3d, spin_coefficient, saturation_creepage_3d,
                       normalised_creepage_3d, strip_force_function)
+from .creep3d import ExactCreepSolution3D  # noqa: F401
+from .errors import RollingConvergenceError  # noqa: F401
 from . import polynomial  # noqa: F401
 from . import roughness  # noqa: F401
 from . import friction, nonsteady  # noqa: F401

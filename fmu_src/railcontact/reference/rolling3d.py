@@ -90,6 +90,7 @@ from numba import njit
 from scipy.special import elliprd, elliprf
 
 from .._validation import check_range
+from ..errors import RollingConvergenceError
 
 __all__ = [
     "Rolling3DResult",
@@ -101,8 +102,6 @@ __all__ = [
 ]
 
 
-class RollingConvergenceError(RuntimeError):
-    """The tangential Gauss-Seidel iteration did not reach the tolerance."""
 
 
 @dataclass(frozen=True)
