@@ -89,6 +89,7 @@ import numpy as np
 from numba import njit
 from scipy.special import elliprd, elliprf
 
+from .. import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from .._validation import check_range
 from ..errors import RollingConvergenceError
 
