@@ -124,9 +124,11 @@ def frontier(tolerance=1e-6, settings=SETTINGS, cold=True):
                     rolling3d._kernels.cache_clear()
                 t0 = time.process_time()
                 fx = fy = 0.0
+                r = None
                 for (mx, my), w in zip(grids, weights):
+                    # the coarse grid's solution, prolongated, starts the fine grid
                     r = solve_rolling_3d(**args, mx=mx, my=my, tolerance=tolerance,
-                                         max_iterations=1000)
+                                         max_iterations=1000, initial_guess=r)
                     fx += w * r.tx / mu_n
                     fy += w * r.ty / mu_n
                     if _ == 1:

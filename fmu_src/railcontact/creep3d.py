@@ -677,7 +677,7 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         fine = one
         if extrapolate:  # one Richardson step in the rolling-direction element size
             fine = solve_rolling_3d(x_, y_, p_, n_, a_, b_, e_, v_, m_, mx=2 * mx, my=my,
-                                    initial_guess=None, **kw)
+                                    initial_guess=one, **kw)  # prolongated coarse start
         w_c, w_f = (-1.0, 2.0) if extrapolate else (0.0, 1.0)
         tx[idx] = w_f * fine.tx + w_c * one.tx
         ty[idx] = w_f * fine.ty + w_c * one.ty

@@ -515,27 +515,21 @@ def _row_newton(e_x, e_y, rbx, rby, pn, px, py, tab_s, tab_mu, tol_p, max_newton
 
 
 @njit(cache=True)
-def _sweep_solver(cix, ciy, row_start, wx, wy, pn, bxx, bxy, byy, mx, my, tab_s, tab_mu,
+def _sweep_solver(cix, ciy, row_start, sx, sy, pn, bxx, bxy, byy, mx, my, tab_s, tab_mu,
                   px, py, tolerance, max_iterations, max_newton, forcing, history):
     """Block Gauss-Seidel over lines along the rolling direction (one block per y-row).
 
     Contact elements are stored row by row (``row_start``), each row leading edge first.
-    The slip of all elements is kept up to date: after a row's tractions change, the slip of
-    every element is corrected by the row's influence. Returns (iterations, residual, sx, sy).
+    ``sx, sy`` hold the slip of the start tractions and are kept up to date in place: after a
+    row's tractions change, the slip of every element is corrected by the row's influence
+    (the caller recomputes the final slip by FFT, which removes the accumulated round-off).
+    Returns (iterations, residual).
     """
     nc = cix.shape[0]
     nrow = row_start.shape[0] - 1
     tbxx = np.ascontiguousarray(bxx.T)
     tbxy = np.ascontiguousarray(bxy.T)
     tbyy = np.ascontiguousarray(byy.T)
-    sx = wx.copy()
-    sy = wy.copy()
-    for k in range(nc):  # initial tractions (warm start)
-        for m in range(nc):
-            i = cix[k] - cix[m] + mx - 1
-            j = ciy[k] - ciy[m] + my - 1
-            sx[k] += bxx[i, j] * px[m] + bxy[i, j] * py[m]
-            sy[k] += bxy[i, j] * px[m] + byy[i, j] * py[m]
     gmax = 0.0
     for k in range(nc):
         gmax = max(gmax, pn[k] * tab_mu[0])
@@ -605,18 +599,7 @@ def _sweep_solver(cix, ciy, row_start, wx, wy, pn, bxx, bxy, byy, mx, my, tab_s,
             break
         if residual < tolerance:
             break
-    # recompute the slip from scratch (removes accumulated round-off)
-    for k in range(nc):
-        ax = wx[k]
-        ay = wy[k]
-        for m in range(nc):
-            i = cix[k] - cix[m] + mx - 1
-            j = ciy[k] - ciy[m] + my - 1
-            ax += bxx[i, j] * px[m] + bxy[i, j] * py[m]
-            ay += bxy[i, j] * px[m] + byy[i, j] * py[m]
-        sx[k] = ax
-        sy[k] = ay
-    return it, residual, sx, sy
+    return it, residual
 
 
 # ----------------------------------------------------------------------------------------------
@@ -653,7 +636,21 @@ def _normal_solution(mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson
     pn, approach = solve_normal_3d(h, kern[0], normal_load, dx * dy)
     for arr in (x, y, pn):
         arr.setflags(write=False)
-    return x, y, dx, dy, pn, approach, kern
+    # FFT products for the slip of given tractions (steady-state kernels bxx, bxy, byy)
+    conv = tuple(_Convolver(k, mx, my) for k in kern[1:])
+    return x, y, dx, dy, pn, approach, kern, conv
+
+
+def _slip(conv, px, py, cix, ciy, mx, my, wx, wy):
+    """Slip ``w + B p`` of the contact elements by FFT products (O(n log n), not O(nc^2))."""
+    cxx, cxy, cyy = conv
+    pxa = np.zeros((mx, my))
+    pya = np.zeros((mx, my))
+    pxa[cix, ciy] = px
+    pya[cix, ciy] = py
+    ux = cxx(pxa) + cxy(pya)
+    uy = cxy(pxa) + cyy(pya)
+    return wx + ux[cix, ciy], wy + uy[cix, ciy]
 
 
 def _linearised_sensitivity(cix, ciy, xc, yc, px, py, sx, sy, gbound, stick, bxx, bxy, byy,
@@ -712,7 +709,7 @@ def _linearised_sensitivity(cix, ciy, xc, yc, px, py, sx, sy, gbound, stick, bxx
 def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, table,
                 mx, my, scale, tolerance, max_iterations, spin_offset, initial=None,
                 sensitivities=False):
-    x, y, dx, dy, pn, approach, kern = _normal_solution(
+    x, y, dx, dy, pn, approach, kern, conv = _normal_solution(
         mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio)
     _, bxx, bxy, byy = kern
     contact = pn > 0
@@ -741,10 +738,26 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
     wy = eta + phi * (xc + spin_offset * dx)
     pnc = pn[cix, ciy].astype(float)
     tab_s, tab_mu = table
-    if initial is not None and initial.px.shape == (mx, my):
-        # warm start from a neighbouring case, clipped to the friction bound
-        px = np.array(initial.px[cix, ciy], dtype=float)
-        py = np.array(initial.py[cix, ciy], dtype=float)
+    if initial is not None:
+        if initial.px.shape == (mx, my):
+            # warm start from a neighbouring case on the same grid
+            px = np.array(initial.px[cix, ciy], dtype=float)
+            py = np.array(initial.py[cix, ciy], dtype=float)
+        else:
+            # prolongation from another grid: each element takes the traction of the element
+            # of that grid holding its centre, scaled by the ratio of the pressures (so the
+            # ratio traction / friction bound is carried over)
+            dxc = initial.x[1] - initial.x[0]
+            dyc = initial.y[1] - initial.y[0]
+            ic = np.clip(np.floor((xc - initial.x[0] + dxc / 2) / dxc).astype(int), 0,
+                         initial.x.size - 1)
+            jc = np.clip(np.floor((yc - initial.y[0] + dyc / 2) / dyc).astype(int), 0,
+                         initial.y.size - 1)
+            pn_c = initial.pn[ic, jc]
+            ratio = np.where(pn_c > 0, pnc / np.where(pn_c > 0, pn_c, 1.0), 0.0)
+            px = initial.px[ic, jc] * ratio
+            py = initial.py[ic, jc] * ratio
+        # clipped to the friction bound
         bound = tab_mu[0] * pnc
         mag = np.hypot(px, py)
         fac = np.where(mag > bound, bound / np.where(mag > 0, mag, 1.0), 1.0)
@@ -753,9 +766,14 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
     else:
         px = np.zeros(cix.shape[0])
         py = np.zeros(cix.shape[0])
-    iters, residual, sx, sy = _sweep_solver(cix, ciy, row_start, wx, wy, pnc, bxx, bxy, byy,
+    if initial is not None:
+        sx, sy = _slip(conv, px, py, cix, ciy, mx, my, wx, wy)
+    else:  # zero start tractions: the slip is the rigid slip
+        sx, sy = wx.copy(), wy.copy()
+    iters, residual = _sweep_solver(cix, ciy, row_start, sx, sy, pnc, bxx, bxy, byy,
                                             mx, my, tab_s, tab_mu, px, py, tolerance,
                                             max_iterations, _MAX_NEWTON, _NEWTON_FORCING, _HISTORY)
+    sx, sy = _slip(conv, px, py, cix, ciy, mx, my, wx, wy)  # from scratch: no round-off
     if not (residual < tolerance):
         raise RollingConvergenceError(
             f"3-D rolling solver did not converge: residual {residual:.3g} > tolerance="
@@ -847,8 +865,11 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         centre, differs from CONTACT by up to 1e-2 of mu N at 30x30, halving with each grid
         refinement: an O(dx) difference that vanishes in the continuum limit). [-]
     initial_guess : Rolling3DResult, optional
-        Solution of a neighbouring case on the same grid (e.g. the previous point of a creep
-        curve or table); its tractions, clipped to the friction bound, start the iteration.
+        Solution of a neighbouring case (e.g. the previous point of a creep curve or table)
+        or of the same case on another grid over the same area (a coarse solve as the fine
+        grid's start: each element takes the traction of the element holding its centre,
+        scaled by the pressure ratio); its tractions, clipped to the friction bound, start
+        the iteration.
         Only the number of sweeps changes, not the converged solution (to the tolerance).
     sensitivities : bool
         Also compute ``d(tx, ty, mz)/d(xi, eta, phi)`` (``Rolling3DResult.sensitivity``) by
@@ -908,8 +929,9 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                          initial_guess, sensitivities)
     if not richardson:
         return coarse
+    # the coarse solution, prolongated, starts the fine grid
     fine = _solve_grid(*args, 2 * mx, 2 * my, scale, tolerance, max_iterations, spin_offset,
-                       initial_guess, sensitivities)
+                       coarse, sensitivities)
     return Rolling3DResult(
         tx=2 * fine.tx - coarse.tx, ty=2 * fine.ty - coarse.ty, mz=2 * fine.mz - coarse.mz,
         normal_load=fine.normal_load, px=fine.px, py=fine.py, pn=fine.pn,
