@@ -204,7 +204,9 @@ def test_first_order_convergence_and_richardson():
     rich = solve_rolling_3d(**args, mx=30, my=30, richardson=True).tx / mu_n
     e1, e2 = coarse - ref, fine - ref
     assert 1.7 < e1 / e2 < 2.6
-    assert rich == pytest.approx(2 * fine - coarse, abs=1e-12)
+    # (the fine grid of the Richardson step starts from the prolongated coarse solution, so
+    # it agrees with the cold fine solve to the iteration tolerance, not to round-off)
+    assert rich == pytest.approx(2 * fine - coarse, abs=1e-7)
     # the 240x60 value has its own first-order error (~1e-3 estimated from 120x60 vs 240x60)
     assert abs(rich - ref) < 0.35 * abs(e2)
 
