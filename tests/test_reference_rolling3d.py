@@ -439,14 +439,14 @@ def _assert_complementarity(r, mu=0.3):
 def test_opposite_spin_converges_on_moderate_grid(a0, b0, eta, phi):
     r = solve_rolling_3d(0.0, eta, phi, **_opposite_spin_case(a0, b0), mx=80, my=40)
     assert r.residual < 1e-6
-    assert r.iterations <= 30  # was 22-29 sweeps with one Newton step per line; now 18-25
+    assert r.iterations <= 35  # measured 22-29
     _assert_complementarity(r)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("a0,b0,eta,phi", _OPPOSITE_SPIN)
 def test_opposite_spin_converges_on_contacts_fine_grid(a0, b0, eta, phi):
-    # CONTACT's 120x60 grid: 142 sweeps / no convergence in 300 sweeps before; now 22-31
+    # CONTACT's 120x60 grid: 142 sweeps / no convergence in 300 sweeps before; now 25-35
     r = solve_rolling_3d(0.0, eta, phi, **_opposite_spin_case(a0, b0), mx=120, my=60,
                          max_iterations=60)
     assert r.iterations <= 40
