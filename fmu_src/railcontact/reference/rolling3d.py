@@ -65,7 +65,12 @@ Method
   switch (measured): 15, 22, 23, 25, 28 sweeps at 40x20, 80x40, 100x50, 120x60, 160x80 for
   the first case, 19, 29, 32, 35, 40 and 15, 23, 25, 27, 33 for the others; solving every
   line to convergence from the start converges too but costs 1.4-1.6x more per case on the
-  ordinary cases (40x20: 26 instead of 17 ms). For a line the block
+  ordinary cases (40x20: 26 instead of 17 ms). The switch on stagnation follows the idea of
+  CONTACT's tangential driver (eve70a/CONTACT, ``src/m_solvpt.f90``, ``tang_solver``: a cheap
+  solver, GDsteady, restarts with SteadyGS when it detects stagnation); CONTACT's element
+  solves (``plstrc``) iterate Newton on the slip equations with relaxation factors
+  (``omegah``, ``omegas``), which this solver does not need once its line blocks are solved
+  (read for the idea; no code taken). For a line the block
   solve makes the choice between tractions and traction increments immaterial. Designed from
   the published descriptions of the method family (Kalker 1990; Vollebregt 2013 and CONTACT's
   user guide) and the measurements above; not a transcription of SteadyGS, and no code of any
@@ -674,7 +679,9 @@ def _linearised_sensitivity(cix, ciy, xc, yc, px, py, sx, sy, gbound, stick, bxx
     ``s = w + B p`` and ``dw/d(xi, eta, phi) = (1, 0), (0, 1), (-y, x + spin_offset dx)``,
     a sticking element keeps ``ds = 0``; a slipping one keeps ``p = -g s/|s|``, so
     ``dp = -(g/|s|) (I - n n^T) ds`` with ``n = s/|s|``. One dense linear system of
-    ``2 nc`` unknowns (nc contact elements), three right-hand sides. The partition is assumed
+    ``2 nc`` unknowns (nc contact elements), three right-hand sides (CONTACT's ``sens_tang``,
+    ``src/m_solvpt.f90``, instead re-solves with perturbed creepages to about 1 %).
+    The partition is assumed
     not to change under the perturbation (true almost everywhere; the derivative is one-sided
     where an element sits exactly on the stick/slip boundary).
     """
