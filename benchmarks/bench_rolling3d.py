@@ -1,18 +1,23 @@
 """Speed and accuracy of the 3-D exact steady rolling solver (railcontact.reference.rolling3d).
 
-Single thread, one case per call. For each grid the CPU time (``time.process_time``; the shared
-machine's wall time is inflated by other processes, it is printed too) of one solve (best of
-``--repeat``,
-after a warm-up call that fills the influence-matrix and normal-solution caches and the numba
-cache) and the error of Fx, Fy against the finest-grid CONTACT value (240x60, the continuum
-proxy of tests/data/contact_hertz3d_grid_convergence.csv; that value has its own first-order
-error, about 1e-3 of mu N) are printed, in units of mu N.
+Default: the accuracy-per-cost frontier. For each setting (a grid, or one Richardson step
+``2 F(2 mx, my) - F(mx, my)`` whose fine grid starts from the prolongated coarse solution) the
+CPU time per case (``time.process_time``, one core) with the set-up (influence coefficients,
+normal problem: caches cleared) and with it cached for the contact, and the max and RMS error
+of (Fx, Fy) in % of mu N over the 21 cases of tests/data/contact_hertz3d_grid_convergence.csv
+against the converged exact theory, estimated by one Richardson step from CONTACT's 120x60 and
+240x60 rows (the error is first order in the rolling-direction element size; the solver
+reproduces CONTACT to 1e-7 of mu N on the same grid). CONTACT's points from the issue are
+printed beside (note: those are one case, a/b = 0.5, against CONTACT's finest grid, not over
+these 21 cases against the continuum).
 
-Run:  python benchmarks/bench_rolling3d.py [--repeat 3] [--cases all] [--tolerance 1e-6]
+Measured (shared 2-core machine, one core; ms cold / warm, max / RMS % mu N):
+20x10 15 / 1.8, 2.2 / 1.5; 40x20 27 / 17, 0.86 / 0.61; 80x40 334 / 298, 0.57 / 0.37;
+R 30x20->60x20 62 / 38, 0.45 / 0.19; R 40x20->80x20 95 / 63, 0.33 / 0.19.
 
-Reference figures (issue 9): a scratch implementation 40x20 15 ms (0.9 % max error against the
-continuum), 40x40 67 ms, Richardson 40x20 -> 80x40 0.23-0.38 s (0.4-0.5 %); CONTACT 38 ms at
-35x35 and 478 ms at 64x64.
+Run:  python benchmarks/bench_rolling3d.py [--tolerance 1e-6]
+      python benchmarks/bench_rolling3d.py --detail [--repeat 3] [--cases all]
+(``--detail``: per case and grid, errors against CONTACT's 240x60 row.)
 """
 
 from __future__ import annotations

@@ -381,13 +381,13 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         spin up to pure spin), against the converged exact theory (Richardson of CONTACT's
         120x60 and 240x60; ``benchmarks/bench_rolling3d.py``), ms per case with the
         set-up (influence coefficients, normal problem) / with it cached for the contact,
-        error max / RMS in % of mu N: (20, 10) 17 / 3 ms, 2.2 / 1.5 %; (40, 20) (default)
-        38 / 28 ms, 0.86 / 0.61 %; (80, 40) 470 / 430 ms, 0.57 / 0.37 %.
+        error max / RMS in % of mu N: (20, 10) 15 / 2 ms, 2.2 / 1.5 %; (40, 20) (default)
+        27 / 17 ms, 0.86 / 0.61 %; (80, 40) 330 / 300 ms, 0.57 / 0.37 %.
     extrapolate : bool, keyword-only
         ``method="exact"`` only: one Richardson step in the rolling direction,
-        ``2 F(2 mx, my) - F(mx, my)``. With ``grid=(40, 20)``: 180 / 150 ms per case,
-        0.33 / 0.19 % of mu N (max / RMS); with ``grid=(30, 20)``: 105 / 82 ms,
-        0.45 / 0.19 %.
+        ``2 F(2 mx, my) - F(mx, my)``, the fine grid started from the coarse solution. With
+        ``grid=(40, 20)``: 95 / 63 ms per case, 0.33 / 0.19 % of mu N (max / RMS); with
+        ``grid=(30, 20)``: 62 / 38 ms, 0.45 / 0.19 %.
     tolerance : float, keyword-only
         ``method="exact"`` only: relative change of the tractions per Gauss-Seidel sweep at
         which the iteration stops, in (0, 0.1]. [-]
