@@ -343,7 +343,7 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
-                   *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-6):
+                   *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-4):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -390,7 +390,10 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         ``grid=(30, 20)``: 62 / 38 ms, 0.45 / 0.19 %.
     tolerance : float, keyword-only
         ``method="exact"`` only: relative change of the tractions per Gauss-Seidel sweep at
-        which the iteration stops, in (0, 0.1]. [-]
+        which the iteration stops, in (0, 0.1]. The default 1e-4 changes the forces by at most
+        5e-6 of mu N against 1e-8 (measured on the 21 cases at 40x20 and 80x20) and saves
+        about 30 % of the time against 1e-6; the times quoted above are for 1e-6 (at 1e-4:
+        (40, 20) 23 / 13 ms; extrapolated (30, 20) 49 / 24 ms, (40, 20) 73 / 41 ms). [-]
 
     Returns
     -------
@@ -425,7 +428,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
                       method="modified_strip", *, grid=EXACT_DEFAULT_GRID, extrapolate=False,
-                      tolerance=1e-6, sensitivities=False, fields=False):
+                      tolerance=1e-4, sensitivities=False, fields=False):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
