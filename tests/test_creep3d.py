@@ -624,3 +624,8 @@ def test_exact_non_convergence_raises_rolling_convergence_error(monkeypatch):
                         functools.partial(rolling3d.solve_rolling_3d, max_iterations=2))
     with pytest.raises(RollingConvergenceError, match="did not converge"):
         creep_force_3d(1e-3, 0.0, 0.0, *rest, method="exact")
+
+
+def test_unknown_method_lists_exact():
+    with pytest.raises(ValueError, match="method must be one of .*'exact'"):
+        creep_force_3d(1e-3, 0.0, 0.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3, method="exakt")

@@ -283,7 +283,7 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
            friction_coefficient, method):
-    check_choice("method", method, METHODS)
+    check_choice("method", method, METHODS + ("exact",))  # "exact": dispatched earlier
     xi_x = check_range("creepage_longitudinal", xi_x, "-")
     xi_y = check_range("creepage_lateral", xi_y, "-")
     phi = check_range("spin", phi, "1/m")
