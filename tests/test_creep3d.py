@@ -495,3 +495,137 @@ def test_scalar_spin_coefficient_equals_array_path():
     assert _spin_coefficient_scalar(0.0, 0.0, 0.5, 3e-3, 4e-3) == np.inf
     assert _spin_coefficient_scalar(3e-3, -4e-3, -2.0, 3e-3, 4e-3) == pytest.approx(2.0,
                                                                                     rel=4 * EPS)
+
+
+# --------------------------------------------------------------------------------------------
+# method="exact": the discretised exact theory, against CONTACT (tests/data)
+# --------------------------------------------------------------------------------------------
+def _contact_grid_rows():
+    import csv
+
+    path = Path(__file__).parent / "data" / "contact_hertz3d_grid_convergence.csv"
+    with open(path) as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+_GRID_ROWS = _contact_grid_rows()
+
+
+def _row_inputs(row):
+    g, nu = float(row["G_Pa"]), float(row["nu"])
+    return (float(row["cksi"]), float(row["ceta"]), float(row["cphi_per_m"]), float(row["Fn_N"]),
+            float(row["a_m"]), float(row["b_m"]), 2 * g * (1 + nu), nu, float(row["mu"]))
+
+
+def _converged(a_over_b, case):
+    """Richardson of CONTACT's 120x60 and 240x60 rows (first order in mx) [mu N]."""
+    rows = {r["mx"] + "x" + r["my"]: r for r in _GRID_ROWS
+            if r["a_over_b"] == a_over_b and r["case"] == case}
+    return rows["240x60"], tuple(2 * float(rows["240x60"][k]) - float(rows["120x60"][k])
+                                 for k in ("fx_over_mu_fn", "fy_over_mu_fn"))
+
+
+_ROWS_30 = [r for r in _GRID_ROWS if r["mx"] == "30" and r["my"] == "30"]
+
+
+@pytest.mark.parametrize("row", _ROWS_30, ids=[f"{r['a_over_b']}-{r['case']}" for r in _ROWS_30])
+def test_exact_reproduces_contact_on_its_grid(row):
+    # CONTACT's 30x30 output (EPS = 1e-5): the same discretisation, so agreement to its
+    # printed digits (5 decimals of mu N) and its tolerance
+    args = _row_inputs(row)
+    f = creep_force_3d(*args, method="exact", grid=(30, 30))
+    mu_n = args[3] * args[8]
+    assert f.tx / mu_n == pytest.approx(float(row["fx_over_mu_fn"]), abs=2e-4)
+    assert f.ty / mu_n == pytest.approx(float(row["fy_over_mu_fn"]), abs=2e-4)
+
+
+@pytest.mark.parametrize("a_over_b,case", [("1", "comb k1"), ("0.2", "long k1"),
+                                           ("5", "lat k1"), ("1", "lat k1 Phi1")])
+def test_exact_default_and_extrapolated_against_converged_theory(a_over_b, case):
+    row, (fx, fy) = _converged(a_over_b, case)
+    args = _row_inputs(row)
+    mu_n = args[3] * args[8]
+    default = creep_force_3d(*args, method="exact")
+    # measured over all 21 cases: max 0.86 % of mu N at the default grid (40, 20)
+    assert abs(default.tx / mu_n - fx) < 0.009 and abs(default.ty / mu_n - fy) < 0.009
+    extrapolated = creep_force_3d(*args, method="exact", extrapolate=True)
+    # measured: max 0.33 % of mu N with one Richardson step 40x20 -> 80x20
+    assert abs(extrapolated.tx / mu_n - fx) < 0.004 and abs(extrapolated.ty / mu_n - fy) < 0.004
+
+
+def test_exact_solution_fields_stick_moment_and_broadcasting():
+    args = (np.array([0.0, 5e-4, 2e-2]), 0.0, 0.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
+    sol = creep_solution_3d(*args, method="exact", fields=True)
+    force = creep_force_3d(*args, method="exact")
+    np.testing.assert_array_equal(sol.tx, force.tx)
+    assert sol.tx[0] == 0.0 and sol.stick_area_fraction[0] == pytest.approx(1.0, abs=0.05)
+    assert 0.0 < sol.stick_area_fraction[1] < 1.0
+    assert sol.stick_area_fraction[2] == 0.0 and sol.stick_width_ratio[2] == 0.0
+    # full sliding: |T| -> mu N from below (the elastic part of the slip turns the slip
+    # direction of the lateral edges slightly: 0.9999 mu N at xi = 0.02, measured)
+    assert 0.999 * 0.3e5 < abs(sol.tx[2]) <= 0.3e5
+    # the traction field integrates to the force; the moment is its first moment
+    r = sol.fields[1]
+    area = (r.x[1] - r.x[0]) * (r.y[1] - r.y[0])
+    assert r.px.sum() * area == pytest.approx(sol.tx[1], rel=1e-12)
+    assert np.all(sol.within_validity) and sol.sensitivity is None
+    # spin: the moment opposes the spin (longitudinal creepage gives none by symmetry)
+    spin = creep_solution_3d(0.0, 0.0, 2.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3, method="exact")
+    assert spin.spin_moment < 0.0 and abs(sol.spin_moment[1]) < 1e-6 * abs(spin.spin_moment)
+
+
+def test_exact_sensitivities_match_finite_differences():
+    base = [8e-4, -4e-4, 1.5]
+    rest = (1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
+    sol = creep_solution_3d(*base, *rest, method="exact", sensitivities=True, tolerance=1e-10)
+    assert sol.sensitivity.shape == (3, 3)
+    for j, h in enumerate((1e-7, 1e-7, 1e-4)):
+        up, down = list(base), list(base)
+        up[j] += h
+        down[j] -= h
+        fp = creep_solution_3d(*up, *rest, method="exact", tolerance=1e-10)
+        fm = creep_solution_3d(*down, *rest, method="exact", tolerance=1e-10)
+        fd = np.array([fp.tx - fm.tx, fp.ty - fm.ty, fp.spin_moment - fm.spin_moment]) / (2 * h)
+        assert sol.sensitivity[:, j] == pytest.approx(fd, rel=2e-4, abs=2e-4 * np.abs(fd).max())
+
+
+def test_exact_zero_load_or_friction_gives_zero_like_the_other_methods():
+    for n_load, mu in ((0.0, 0.3), (1e5, 0.0)):
+        f = creep_force_3d(1e-3, 0.0, 0.0, n_load, 6e-3, 5e-3, 210e9, 0.28, mu, method="exact")
+        assert (f.tx, f.ty) == (0.0, 0.0)
+
+
+def test_exact_bad_input_names_parameter():
+    rest = (1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
+    with pytest.raises(ValueError, match="creepage_longitudinal"):
+        creep_force_3d(1.5, 0.0, 0.0, *rest, method="exact")
+    with pytest.raises(ValueError, match="spin must be in"):
+        creep_force_3d(0.0, 0.0, 400.0, *rest, method="exact")
+    with pytest.raises(ValueError, match="normal_load"):
+        creep_force_3d(1e-3, 0.0, 0.0, -1.0, *rest[1:], method="exact")
+    with pytest.raises(ValueError, match=r"grid must be a pair \(mx, my\)"):
+        creep_force_3d(1e-3, 0.0, 0.0, *rest, method="exact", grid=(2, 20))
+    with pytest.raises(ValueError, match="tolerance"):
+        creep_force_3d(1e-3, 0.0, 0.0, *rest, method="exact", tolerance=0.0)
+    with pytest.raises(ValueError, match="need method='exact'"):
+        creep_solution_3d(1e-3, 0.0, 0.0, *rest, sensitivities=True)
+
+
+def test_exact_non_convergence_raises_rolling_convergence_error(monkeypatch):
+    import functools
+
+    from railcontact import RollingConvergenceError
+    from railcontact.reference import rolling3d
+
+    rest = (1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
+    assert issubclass(RollingConvergenceError, RuntimeError)
+    # a sweep limit too small for the tolerance: an error, never the unconverged forces
+    monkeypatch.setattr(rolling3d, "solve_rolling_3d",
+                        functools.partial(rolling3d.solve_rolling_3d, max_iterations=2))
+    with pytest.raises(RollingConvergenceError, match="did not converge"):
+        creep_force_3d(1e-3, 0.0, 0.0, *rest, method="exact")
+
+
+def test_unknown_method_lists_exact():
+    with pytest.raises(ValueError, match="method must be one of .*'exact'"):
+        creep_force_3d(1e-3, 0.0, 0.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3, method="exakt")

@@ -204,7 +204,9 @@ def test_first_order_convergence_and_richardson():
     rich = solve_rolling_3d(**args, mx=30, my=30, richardson=True).tx / mu_n
     e1, e2 = coarse - ref, fine - ref
     assert 1.7 < e1 / e2 < 2.6
-    assert rich == pytest.approx(2 * fine - coarse, abs=1e-12)
+    # (the fine grid of the Richardson step starts from the prolongated coarse solution, so
+    # it agrees with the cold fine solve to the iteration tolerance, not to round-off)
+    assert rich == pytest.approx(2 * fine - coarse, abs=1e-7)
     # the 240x60 value has its own first-order error (~1e-3 estimated from 120x60 vs 240x60)
     assert abs(rich - ref) < 0.35 * abs(e2)
 
@@ -324,7 +326,9 @@ def test_pure_spin_and_spin_pole_inside_patch():
     phi = 0.5 / a0 * 0.02  # rigid slip 1 % at the edge: large slip area
     pure = solve_rolling_3d(0, 0, phi, **case)
     assert pure.residual < 1e-6
-    assert abs(pure.tx) < 1e-9 * case["normal_load"]
+    # symmetric about y = 0: tx vanishes to the iteration tolerance (1e-6 relative traction
+    # change per sweep; the sweep visits the rows in y order, so the symmetry is not exact)
+    assert abs(pure.tx) < 1e-7 * case["normal_load"]
     # pole of the rigid slip at x = 0.4 a0 (inside): eta = -phi * 0.4 a0
     pole = solve_rolling_3d(0, -phi * 0.4 * a0, phi, **case)
     assert pole.residual < 1e-6
@@ -396,3 +400,111 @@ def test_warm_start_gives_the_same_solution():
     assert warm.tx == pytest.approx(cold.tx, abs=1e-7 * 0.3 * case["normal_load"])
     assert warm.ty == pytest.approx(cold.ty, abs=1e-7 * 0.3 * case["normal_load"])
     assert warm.iterations <= cold.iterations
+
+
+# ------------------------------------------------------------------------------------------
+# Convergence on fine grids: lateral creepage with spin of the opposite sign (the slip
+# direction turns through the patch). These stalled with one Newton step per line and sweep.
+# ------------------------------------------------------------------------------------------
+# (a0, b0, eta, phi); p0 = 1 GPa, mu = 0.3, nu = 0.28, G = 82 GPa (CONTACT's data set A set-up)
+_OPPOSITE_SPIN = [(3.5e-3, 7e-3, 2.533e-3, -0.6472), (7e-3, 7e-3, 1.034e-3, -0.2089),
+                  (3.5e-3, 7e-3, 1.266e-3, -0.3236)]
+
+
+def _opposite_spin_case(a0, b0):
+    return dict(normal_load=2.0 / 3.0 * math.pi * a0 * b0 * 1e9, a0=a0, b0=b0,
+                youngs_modulus=E, poisson_ratio=NU, friction_coefficient=0.3)
+
+
+def _assert_complementarity(r, mu=0.3):
+    """Coulomb's law on every element, checked on the returned slip and tractions."""
+    contact = r.pn > 0
+    g = mu * r.pn[contact]
+    p = np.hypot(r.px, r.py)[contact]
+    s = np.hypot(r.slip_x, r.slip_y)[contact]
+    stick = r.adhesion[contact]
+    smax = s.max()
+    assert np.all(p <= g * (1 + 1e-9) + 1e-12 * g.max())
+    # sticking elements: no slip (relative to the largest slip in the patch)
+    assert np.all(s[stick] <= 1e-4 * smax)
+    # slipping elements: traction at the bound and opposite to the slip
+    ps = (r.px * r.slip_x + r.py * r.slip_y)[contact][~stick]
+    cosine = ps / np.maximum(p[~stick] * s[~stick], 1e-300)
+    big = s[~stick] > 1e-3 * smax  # direction well defined
+    assert np.all(cosine[big] < -0.999)
+    assert np.allclose(p[~stick], g[~stick], rtol=1e-6)
+
+
+@pytest.mark.parametrize("a0,b0,eta,phi", _OPPOSITE_SPIN)
+def test_opposite_spin_converges_on_moderate_grid(a0, b0, eta, phi):
+    r = solve_rolling_3d(0.0, eta, phi, **_opposite_spin_case(a0, b0), mx=80, my=40)
+    assert r.residual < 1e-6
+    assert r.iterations <= 35  # measured 22-29
+    _assert_complementarity(r)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("a0,b0,eta,phi", _OPPOSITE_SPIN)
+def test_opposite_spin_converges_on_contacts_fine_grid(a0, b0, eta, phi):
+    # CONTACT's 120x60 grid: 142 sweeps / no convergence in 300 sweeps before; now 25-35
+    r = solve_rolling_3d(0.0, eta, phi, **_opposite_spin_case(a0, b0), mx=120, my=60,
+                         max_iterations=60)
+    assert r.iterations <= 40
+    _assert_complementarity(r)
+    coarse = solve_rolling_3d(0.0, eta, phi, **_opposite_spin_case(a0, b0), mx=60, my=30)
+    # first-order grid error: halving the element size changes Fy by well under 1 % of mu N
+    assert abs(r.ty - coarse.ty) < 0.01 * 0.3 * _opposite_spin_case(a0, b0)["normal_load"]
+
+
+_SWEEP = [(ab, d, s) for ab in (0.2, 1.0, 5.0) for d in ("long", "lat", "comb")
+          for s in (-1.0, 1.0)]
+
+
+def _sweep_case(a_over_b, direction, spin_sign, mx, my):
+    case = _hertz_case(a_over_b)
+    xi, eta = {"long": (1e-3, 0.0), "lat": (0.0, 1.5e-3), "comb": (8e-4, -8e-4)}[direction]
+    phi = spin_sign * 0.3 / max(case["a0"], case["b0"])  # rigid spin slip 0.3/1000 at the edge
+    return solve_rolling_3d(xi, eta, phi, **case, mx=mx, my=my, max_iterations=80)
+
+
+@pytest.mark.parametrize("a_over_b,direction,spin_sign", _SWEEP)
+def test_sweep_over_shapes_directions_and_spin_signs(a_over_b, direction, spin_sign):
+    r = _sweep_case(a_over_b, direction, spin_sign, 40, 20)
+    assert r.iterations <= 40
+    _assert_complementarity(r)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("a_over_b,direction,spin_sign", _SWEEP)
+def test_sweep_over_shapes_directions_and_spin_signs_fine(a_over_b, direction, spin_sign):
+    r = _sweep_case(a_over_b, direction, spin_sign, 120, 60)
+    assert r.iterations <= 60
+    _assert_complementarity(r)
+
+
+@pytest.mark.parametrize("creepages", [(1e-3, 5e-4, 0.5), (0.0, 2.5e-3, -0.7), (2e-4, 0.0, 0.0)],
+                         ids=["combined", "opposite_spin", "nearly_stuck"])
+def test_sensitivities_match_central_differences(creepages):
+    case = dict(normal_load=1e5, a0=6e-3, b0=6e-3, youngs_modulus=E, poisson_ratio=NU,
+                friction_coefficient=0.3)
+    r = solve_rolling_3d(*creepages, **case, sensitivities=True, tolerance=1e-10)
+    fd = np.zeros((3, 3))
+    for j, h in enumerate((1e-7, 1e-7, 1e-4)):  # steps: [-], [-], [1/m]
+        up, down = list(creepages), list(creepages)
+        up[j] += h
+        down[j] -= h
+        rp = solve_rolling_3d(*up, **case, tolerance=1e-10)
+        rm = solve_rolling_3d(*down, **case, tolerance=1e-10)
+        fd[:, j] = [(rp.tx - rm.tx) / (2 * h), (rp.ty - rm.ty) / (2 * h),
+                    (rp.mz - rm.mz) / (2 * h)]
+    # per column, relative to the column's largest entry (units differ between rows)
+    scale_col = np.abs(fd).max(axis=0)
+    assert np.all(np.abs(r.sensitivity - fd) <= 2e-4 * scale_col)
+    # measured: 0.2 s for the linearised solve, 6 converged solves for the differences
+
+
+def test_sensitivities_need_constant_friction():
+    case = _hertz_case(1.0)
+    case["friction_coefficient"] = lambda s: 0.3 + 0.0 * s
+    with pytest.raises(ValueError, match="constant friction_coefficient"):
+        solve_rolling_3d(1e-3, 0, 0, **case, sensitivities=True)

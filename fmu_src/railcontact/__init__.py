@@ -10,7 +10,10 @@ Top level: Hertz contact and the 3-D creep theories (chapter 2)
     carter_stick_ratio, carter_traction, carter_slip
     kalker_coefficients, KalkerCoefficients        Kalker's C11, C22, C23 (C2-smooth)
     creep_force_3d, creep_solution_3d,             3-D creep forces: linear, SHE, strip,
-    CreepForce3D, CreepSolution3D                  modified strip (+ stick zone, validity)
+    CreepForce3D, CreepSolution3D                  modified strip (+ stick zone, validity),
+    ExactCreepSolution3D                           and Kalker's exact theory (method="exact":
+                                                   + spin moment, sensitivities, fields)
+    RollingConvergenceError                        the exact solver did not converge
     spin_coefficient, saturation_creepage_3d,      pieces of the modified strip theory
     normalised_creepage_3d, strip_force_function
 Submodules, one per model family (``railcontact.<name>``; each lists its own ``__all__``)
@@ -61,6 +64,8 @@ from .kalker import KalkerCoefficients, kalker_coefficients
 from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,
                       creep_solution_3d, spin_coefficient, saturation_creepage_3d,
                       normalised_creepage_3d, strip_force_function)
+from .creep3d import ExactCreepSolution3D
+from .errors import RollingConvergenceError
 from . import polynomial
 from . import roughness
 from . import friction, nonsteady
@@ -81,7 +86,7 @@ __all__ = [
     "KalkerCoefficients", "kalker_coefficients",
     "CreepForce3D", "CreepSolution3D", "creep_force_3d", "creep_solution_3d",
     "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
-    "strip_force_function",
+    "strip_force_function", "ExactCreepSolution3D", "RollingConvergenceError",
     # submodules
     "polynomial", "corrugation", "wear", "evolution", "filters", "friction", "roughness",
     "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run",

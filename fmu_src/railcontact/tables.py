@@ -49,6 +49,7 @@ import numpy as np
 from numba import njit
 from scipy.interpolate import make_interp_spline
 
+from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from ._validation import check_range
 
 __all__ = [
