@@ -216,18 +216,13 @@ def _value(m, e):
         return np.ldexp(m, np.clip(e, -4000, 4000).astype(np.int32))
 
 
-def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23):
+def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23, parts=False):
     """The Kalker-weighted creepage w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) without
-    overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e)."""
+    overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e); with
+    ``parts`` also (ux, uy, top), w = (ux, uy) 2^top."""
     t1 = _scaled((c11, xi_x))
     t2 = _scaled((c22, xi_y))
-    with np.errstate(over="ignore", under="ignore"):
-        ab = a0 * b0
-    # sqrt(a0 b0) as the scalar paths compute it where a0 b0 is a normal float
-    root = np.where((ab >= np.finfo(float).tiny) & (ab < np.inf), np.sqrt(ab), 1.0)
-    t3 = np.where((ab >= np.finfo(float).tiny) & (ab < np.inf), 1.0, np.sqrt(a0))
-    t3 = _scaled((np.where(t3 == 1.0, root, t3), np.where(t3 == 1.0, 1.0, np.sqrt(b0)), c23,
-                  phi))
+    t3 = _scaled((_root_ab(a0, b0), c23, phi))
     ey = np.maximum(t2[1], t3[1])
     wy_m = _value(t2[0], t2[1] - ey) + _value(t3[0], t3[1] - ey)    # |.| <= 2
     wy_m, wy_e = np.frexp(wy_m)
@@ -241,7 +236,8 @@ def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23):
     dx = np.where(nonzero, ux / safe, 0.0)
     dy = np.where(nonzero, uy / safe, 0.0)
     m, e = np.frexp(u_abs)
-    return dx, dy, m, np.where(nonzero, top + e.astype(np.int64), _NO_EXP)
+    out = dx, dy, m, np.where(nonzero, top + e.astype(np.int64), _NO_EXP)
+    return out + (ux, uy, top) if parts else out
 
 
 def _saturation_scaled(n_load, a0, b0, e_mod, nu, mu):
@@ -305,13 +301,25 @@ def spin_coefficient(creepage_longitudinal, creepage_lateral, spin, a0, b0):
 
 
 def _hypot_scaled(x, y):
-    """hypot(x, y) as (m, e) (see _scaled), without overflow for any finite x, y."""
-    _, ex = np.frexp(x)
-    _, ey = np.frexp(y)
-    top = np.maximum(ex, ey).astype(np.int64)
-    h = np.hypot(_value(x, -top), _value(y, -top))
+    """hypot(x, y) as (m, e) (see _scaled), without overflow for any finite x, y; x and y may
+    be (m, e) pairs."""
+    mx, ex = x if isinstance(x, tuple) else _scaled((x,))
+    my, ey = y if isinstance(y, tuple) else _scaled((y,))
+    top = np.maximum(ex, ey)
+    top = np.where(top == _NO_EXP, 0, top)
+    h = np.hypot(_value(mx, ex - top), _value(my, ey - top))
     m, e = np.frexp(h)
     return m, np.where(m == 0.0, _NO_EXP, top + e.astype(np.int64))
+
+
+def _root_ab(a0, b0):
+    """sqrt(a0 b0) as (m, e): ``np.sqrt(a0 * b0)`` (the scalar paths' rounding) where a0 b0 is
+    a normal float, sqrt(a0) sqrt(b0) where it would overflow or underflow."""
+    with np.errstate(over="ignore", under="ignore"):
+        ab = a0 * b0
+    ok = (ab >= np.finfo(float).tiny) & (ab < np.inf)
+    return _scaled((np.where(ok, np.sqrt(np.where(ok, ab, 1.0)), np.sqrt(a0)),
+                    np.where(ok, 1.0, np.sqrt(b0))))
 
 
 def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
@@ -426,46 +434,55 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
     else:
         mu_n = _check_coulomb_limit(mu, n_load)
     c11, c22, c23 = _coefficients(a0, b0, nu, "strip" if method == "strip" else "modified_strip")
-    # All in (mantissa, exponent) form (see _scaled): no intermediate overflows or underflows.
-    d_x, d_y, w_m, w_e = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23)
+    # All in (mantissa, exponent) form (see _scaled): no intermediate overflows or underflows,
+    # and the same operations in the same order as the scalar path (_creep_solution_scalar),
+    # so the two agree bit for bit wherever its plain floats stay in the normal range.
+    d_x, d_y, w_m, w_e, u_x, u_y, top = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22,
+                                                         c23, parts=True)
     w_abs = _value(w_m, w_e)
     s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
     w_sat = _value(s_m, s_e)
     has_force = (mu_n > 0.0) & (s_m > 0.0)
     # z = |w| / w_sat (inf: no contact with creepage, or beyond the float range: sliding)
-    z = np.where(s_m > 0.0, _value(w_m / np.where(s_m > 0.0, s_m, 1.0), w_e - s_e),
+    s_safe = (np.where(s_m > 0.0, s_m, 1.0), s_e)
+    z = np.where(s_m > 0.0, _value(*_scaled(((w_m, w_e),), (s_safe,))),
                  np.where(w_m > 0.0, np.inf, 0.0))
-    # G a0 b0 |w| = E a0 b0 |w| / (2 (1 + nu)): the linear theory's force magnitude [N]
-    lin_m, lin_e = _scaled((_scaled((e_mod,), (2.0 * (1.0 + nu),)), a0, b0, (w_m, w_e)))
+    stiffness = _scaled((e_mod / (2.0 * (1.0 + nu)), a0, b0))       # G a0 b0 [N]
+    w_safe = (np.where(w_m > 0.0, w_m, 1.0), w_e)
+    mun_safe = np.where(mu_n > 0.0, mu_n, 1.0)
 
     if method == "linear":
-        t_mag = _value(lin_m, lin_e)
-        if not np.all(np.isfinite(t_mag)):
-            i = np.flatnonzero(~np.isfinite(t_mag))[0]
-            args = ", ".join(f"{n} = {v.flat[i]:g}" for n, v in (
-                ("creepage_longitudinal", xi_x), ("creepage_lateral", xi_y), ("spin", phi),
-                ("a0", a0), ("b0", b0), ("youngs_modulus", e_mod)))
-            raise ValueError(f"the linear theory's force G a0 b0 |w| must be in "
-                             f"[0, {np.finfo(float).max:g}] [N] (no Coulomb limit); got inf "
-                             f"(overflow at {args})")
+        f_m, f_e = stiffness
     elif method == "she":
-        # u = |T_lin| / (mu N); T = -mu N S(u) w/|w|, S(u) = u (1 - u/3 + u^2/27) up to u = 3
-        mun_m, mun_e = _scaled((mu, n_load))
-        pos = mun_m > 0.0
-        u = np.where(pos, _value(lin_m / np.where(pos, mun_m, 1.0), lin_e - mun_e), np.inf)
+        t_lin = _scaled((stiffness, (w_m, w_e)))
+        u = np.where(mu_n > 0.0, _value(*_scaled((t_lin,), (mun_safe,))),
+                     np.where(t_lin[0] > 0.0, np.inf, 0.0))
         small = u <= 3.0
         u_c = np.minimum(u, 3.0)
-        t_small = _value(lin_m * (1.0 - u_c / 3.0 + u_c * u_c / 27.0), lin_e)
-        t_mag = np.where(has_force, np.where(small, t_small, mu_n), 0.0)
+        f_small = _scaled((stiffness, 1.0 - u_c / 3.0 + u_c * u_c / 27.0))
+        f_big = _scaled((mun_safe,), (w_safe,))
+        f_m = np.where(small, f_small[0], np.where(w_m > 0.0, f_big[0], 0.0))
+        f_e = np.where(small, f_small[1], f_big[1])
+        f_m = np.where(has_force | (w_m == 0.0), f_m, 0.0)
     else:
-        # T = -mu N F(z) w/|w|; for z <= 1, mu N F(z) = mu N z (F(z)/z) = (G a0 b0 |w|)
-        # (4 / (3 pi)) (F(z)/z) (mu and N cancel: no overflow of mu N z)
+        # T = -mu N F(z) w/|w| = -(mu N / w_sat) (F(z)/z) w   (z <= 1),  -mu N w/|w|  (z > 1)
         below = z <= 1.0
         zc = np.minimum(z, 1.0)
-        t_small = _value(lin_m * (4.0 / (3.0 * np.pi)) * _f_over_z(zc), lin_e)
-        t_mag = np.where(has_force, np.where(below, np.minimum(t_small, mu_n), mu_n), 0.0)
-    tx = -t_mag * d_x
-    ty = -t_mag * d_y
+        f_small = _scaled((_scaled((mun_safe,), (s_safe,)), _f_over_z(zc)))
+        f_big = _scaled((mun_safe,), (w_safe,))
+        f_m = np.where(below, f_small[0], np.where(w_m > 0.0, f_big[0], 0.0))
+        f_e = np.where(below, f_small[1], f_big[1])
+        f_m = np.where(has_force, f_m, 0.0)
+    tx = -_value(f_m * u_x, f_e + top)
+    ty = -_value(f_m * u_y, f_e + top)
+    if method == "linear" and not (np.all(np.isfinite(tx)) and np.all(np.isfinite(ty))):
+        i = np.flatnonzero(~(np.isfinite(tx) & np.isfinite(ty)))[0]
+        args = ", ".join(f"{n} = {v.flat[i]:g}" for n, v in (
+            ("creepage_longitudinal", xi_x), ("creepage_lateral", xi_y), ("spin", phi),
+            ("a0", a0), ("b0", b0), ("youngs_modulus", e_mod)))
+        raise ValueError(f"the linear theory's force G a0 b0 |w| must be in "
+                         f"[0, {np.finfo(float).max:g}] [N] (no Coulomb limit); got inf "
+                         f"(overflow at {args})")
     if method != "linear":
         # full sliding: |T| = mu N up to rounding of the unit vector; never above mu N
         t_abs = np.hypot(tx, ty)

@@ -400,23 +400,22 @@ class Creep3D(_Effect):
             args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
                     c.b0, self._e, self._nu, c.friction_coefficient)
             out = self._force(*args)
-            if out is None:                # exact table only: out of its range
-                out = self._exact_fallback(args)
-                c.creep_table_error_estimate = NOT_ESTIMATED
+            if out is None:                # exact table only: out of its range (or extreme)
+                out, analytic = self._exact_fallback(args)
+                if analytic:
+                    c.creep_table_error_estimate = NOT_ESTIMATED
             c.Fx, c.Fy = float(out[0]), float(out[1])
             self._aux_args = args
 
     def _exact_fallback(self, args):
-        try:                               # the reader's own message for the warning
-            self._table.creep_force_3d(*args)
-        except ValueError as exc:
+        try:    # the fast path declines extreme magnitudes too: the array path takes those
+            return self._table.creep_force_3d(*args), False
+        except ValueError as exc:          # out of the table: the reader's own message
             reason = str(exc)
-        else:                              # pragma: no cover - fast path declined, slow path ok
-            reason = "fast path declined"
         self._warn("creep-exact-range",
                    f"creep table {self._table.table.path.name}: input outside the table "
                    f"({reason}); the analytic modified strip theory is used there (Mz = 0)")
-        return self._force_analytic(*args, "modified_strip")
+        return self._force_analytic(*args, "modified_strip"), True
 
     def auxiliary(self, c):
         """Fill the stick measures and the validity flag of the last table step (lazily)."""
@@ -1346,6 +1345,9 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
     slope0, half_curv0, z_max = table._slope0, 0.5 * table._curv0, table._z_max
     breaks, coefs = table._pp_breaks, table._pp_coefs
     guard = 1.0 - 2.0**-51
+    creep3d = _import("creep3d", "creep (table)")
+    lo, hi = creep3d.MODERATE_MIN, creep3d.MODERATE_MAX
+    e_ok = lo <= e_mod <= hi
     memo = {}
     memo_get = memo.get
 
@@ -1380,6 +1382,19 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
         # CreepTable._scalar(table, xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu), n > 0 here
         if a0 <= 0.0 or b0 <= 0.0 or mu <= 0.0:
             c.Fx, c.Fy = 0.0, 0.0
+            creep._aux_args = (xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
+            return True
+        if not (e_ok and lo <= n <= hi and lo <= mu <= hi and lo <= a0 <= hi
+                and lo <= b0 <= hi and (xi_x == 0.0 or lo <= abs(xi_x) <= hi)
+                and (xi_y == 0.0 or lo <= abs(xi_y) <= hi)
+                and (phi == 0.0 or lo <= abs(phi) <= hi)):
+            # extreme magnitudes (railcontact.creep3d._moderate): as CreepTable._scalar, the
+            # overflow-safe array path, which raises a ValueError naming a bad input
+            try:
+                c.Fx, c.Fy = table._scalar(xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
+            except ValueError as exc:
+                on_error(current_time, exc)
+                raise
             creep._aux_args = (xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
             return True
         g = a0 / b0
