@@ -229,6 +229,13 @@ class _Effect:
         self.calls = int(state["calls"])
 
 
+#: Logged (once per FMU instance, category Warning) at the first evaluation with creepage but
+#: without a normal force (e.g. the input normal_force left at its start value 0).
+NO_NORMAL_FORCE_MESSAGE = (
+    "normal_force = 0 N with non-zero creepage: no contact, so every force output is 0 (the "
+    "input's start value is 0 N; set or connect normal_force)")
+
+
 class NormalContact(_Effect):
     r"""Hertz contact ellipse from the normal force (always on).
 
@@ -244,8 +251,9 @@ class NormalContact(_Effect):
 
     name = "normal"
 
-    def __init__(self, scene, mu_source=None):
+    def __init__(self, scene, mu_source=None, warn=None):
         super().__init__()
+        self._warn = warn if warn is not None else (lambda key, msg: None)
         geo = scene.geometry
         self._line = geo["kind"] == "line"
         if self._line:
@@ -272,6 +280,8 @@ class NormalContact(_Effect):
         # (a change here must be made in _normal_table_creep too: the fused FMU step)
         self.calls += 1
         n = c.normal_force
+        if n <= 0.0 and (c.creepage_longitudinal or c.creepage_lateral or c.spin):
+            self._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
         if self._line:
             scale = math.sqrt(n / self._width)
             c.a0, c.b0, c.p0 = self._a1 * scale, 0.5 * self._width, self._p1 * scale
@@ -1351,11 +1361,11 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
     memo = {}
     memo_get = memo.get
 
-    def step(c, current_time=0.0, step_size=0.0, _isfinite=math.isfinite):
+    def step(c, current_time=0.0, step_size=0.0, _isfinite=math.isfinite, _inf=math.inf):
         n, v = c.normal_force, c.rolling_speed
         xi_x, xi_y, phi = c.creepage_longitudinal, c.creepage_lateral, c.spin
         if not (_isfinite(n + xi_x + xi_y + phi + v + c.rail_position) and n >= 0.0
-                and v >= 0.0):
+                and v >= 0.0 and 0.0 <= step_size < _inf):
             return otherwise(current_time, step_size)
         # NormalContact.step
         normal.calls += 1
@@ -1370,6 +1380,8 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
         creep.calls += 1
         c.creep_table_error_estimate = estimate
         if n <= 0.0:
+            if xi_x or xi_y or phi:                  # (NormalContact.step)
+                normal._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
             c.Fx = c.Fy = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
             c.creep_within_validity = True
@@ -1470,7 +1482,7 @@ def build_pipeline(scene, tables_dir=None, warn=None):
     """
     from pathlib import Path
 
-    effects = {"normal": NormalContact(scene)}
+    effects = {"normal": NormalContact(scene, warn=warn)}
     for name in scene.effects:
         if name not in ("creep", "corrugation", "wear", "velocity_friction", "nonsteady",
                         "roughness"):
