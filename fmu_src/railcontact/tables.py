@@ -306,6 +306,10 @@ class TensorSpline:
         self._knot_start = np.cumsum([0] + [len(a["knots"]) for a in self.axes[:-1]]).astype(np.int64)
         self._lower = np.array([a["nodes"][0] for a in self.axes])
         self._upper = np.array([a["nodes"][-1] for a in self.axes])
+        for a in self.axes:
+            if a.get("out_of_range", "error") not in OUT_OF_RANGE_CHOICES:
+                raise ValueError(f"out_of_range of axis {a.get('name')!r} must be one of "
+                                 f"{list(OUT_OF_RANGE_CHOICES)}; got {a['out_of_range']!r}")
         self._hold = np.array([a.get("out_of_range", "error") == "hold" for a in self.axes])
         self._zero = np.zeros(self.ndim, dtype=np.int64)
         self._strides, self._offset = _offsets(self._shape)
@@ -454,6 +458,35 @@ def _read_netcdf(path):
     return attrs, variables
 
 
+#: The out-of-grid behaviours an axis may state (attribute ``out_of_range``).
+OUT_OF_RANGE_CHOICES = ("error", "hold")
+
+
+def _as_int(value):
+    """An integer attribute (e.g. ``spline_degree``); None if it is not one (the caller then
+    reports the file, the attribute and the value)."""
+    try:
+        number = float(np.asarray(value).item()) if np.ndim(value) == 0 else None
+    except (TypeError, ValueError):
+        return None
+    return int(number) if number is not None and number.is_integer() else None
+
+
+def _fmt_attr(value):
+    """An attribute value for a message: numbers plain, text quoted."""
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def _check_float64(where, name, values):
+    """Table data must be float64: the B-spline coefficients reproduce the node values to
+    ~1e-15 only in double precision (a float32 copy misfits by ~1e-8)."""
+    if np.asarray(values).dtype != np.float64:
+        raise TableFileError(
+            f"{where}: variable {name!r} is stored as {np.asarray(values).dtype} where float64 "
+            "is expected (a converted copy?); the spline needs double precision: use the "
+            "original file or rebuild it with `python -m tablegen build`")
+
+
 def _attr_list(value):
     arr = np.atleast_1d(np.asarray(value))
     if arr.dtype.kind in "US":
@@ -519,18 +552,19 @@ class Table:
         if version is None:
             raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
                                  "not written by tablegen")
-        if int(version) != TABLE_FORMAT_VERSION:
+        if _as_int(version) != TABLE_FORMAT_VERSION:
             raise TableFileError(
-                f"{where} has table format version {version}, this reader understands version "
-                f"{TABLE_FORMAT_VERSION}; rebuild it with `python -m tablegen build`")
+                f"{where} has table format version {_fmt_attr(version)}, this reader understands "
+                f"version {TABLE_FORMAT_VERSION}; rebuild it with `python -m tablegen build`")
         if expected_name is not None and attrs.get("table_name") != expected_name:
             raise TableFileError(f"{where} holds table {attrs.get('table_name')!r}, expected "
                                  f"{expected_name!r}")
         for key in ("table_axes", "table_variables", "spline_degree"):
             if key not in attrs:
                 raise TableFileError(f"{where} lacks the global attribute {key!r}")
-        if int(attrs["spline_degree"]) != SPLINE_DEGREE:
-            raise TableFileError(f"{where}: spline_degree {attrs['spline_degree']} is not 3")
+        if _as_int(attrs["spline_degree"]) != SPLINE_DEGREE:
+            raise TableFileError(f"{where}: attribute spline_degree must be {SPLINE_DEGREE}; got "
+                                 f"{attrs['spline_degree']!r}")
         axis_names = str(attrs["table_axes"]).split()
         var_names = str(attrs["table_variables"]).split()
         axes = []
@@ -540,13 +574,25 @@ class Table:
                     raise TableFileError(f"{where} lacks the variable {needed!r}")
             _, nodes, a = ncvars[name]
             _, knots, _ = ncvars[f"{name}_knots"]
+            for vname, arr in ((name, nodes), (f"{name}_knots", knots)):
+                _check_float64(where, vname, arr)
             if len(knots) != len(nodes) + 4 or not np.all(np.diff(nodes) > 0):
                 raise TableFileError(f"{where}: axis {name!r} has inconsistent nodes/knots")
+            try:
+                double_knots = _attr_list(a.get("double_knots", []))
+            except ValueError:
+                raise TableFileError(
+                    f"{where}: attribute {name}:double_knots must be a list of numbers; got "
+                    f"{a.get('double_knots')!r}") from None
+            out_of_range = str(a.get("out_of_range", "error"))
+            if out_of_range not in OUT_OF_RANGE_CHOICES:
+                raise TableFileError(
+                    f"{where}: attribute {name}:out_of_range must be one of "
+                    f"{list(OUT_OF_RANGE_CHOICES)}; got {out_of_range!r}")
             axes.append(dict(name=name, nodes=np.asarray(nodes, float),
                              knots=np.asarray(knots, float), units=str(a.get("units", "1")),
                              long_name=str(a.get("long_name", name)),
-                             double_knots=_attr_list(a.get("double_knots", [])),
-                             out_of_range=str(a.get("out_of_range", "error"))))
+                             double_knots=double_knots, out_of_range=out_of_range))
         values, coefs, vattrs = {}, [], {}
         shape = tuple(len(a["nodes"]) for a in axes)
         for name in var_names:
@@ -559,6 +605,8 @@ class Table:
             if val.shape != shape or coef.shape != shape:
                 raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
                                      f"expected {shape} (truncated?)")
+            _check_float64(where, name, val)
+            _check_float64(where, cname, coef)
             values[name] = np.asarray(val, float)
             coefs.append(np.asarray(coef, float))
             vattrs[name] = a
@@ -662,6 +710,15 @@ def _fast_scalars_ok(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
             and 0.0 < e_mod < math.inf and 0.0 <= nu < 0.5 and 0.0 <= mu < math.inf)
 
 
+def _variable_indices(table, names):
+    """Positions of ``names`` in the table's variables (attribute ``table_variables``)."""
+    missing = [n for n in names if n not in table.variables]
+    if missing:
+        raise TableFileError(f"table file {str(table.path)!r}: attribute table_variables "
+                             f"({' '.join(table.variables)!r}) lacks {missing}")
+    return [table.variables.index(n) for n in names]
+
+
 def _creep_force_type():
     global _CreepForce3D
     if _CreepForce3D is None:
@@ -700,8 +757,7 @@ class CreepTable:
         self.kind = kind
         self._spline = table.spline
         self._z_max = float(table.axes[0]["nodes"][-1])
-        self._i_f = table.variables.index("force_ratio")
-        self._i_s = table.variables.index("stick_area_fraction")
+        self._i_f, self._i_s = _variable_indices(table, ("force_ratio", "stick_area_fraction"))
         d1 = self._spline.evaluate_point([0.0], [1])
         d2 = self._spline.evaluate_point([0.0], [2])
         self._slope0 = float(d1[self._i_f])     # F'(0) of the table (3 pi / 4 exactly in theory)
@@ -1072,10 +1128,12 @@ class ExactCreepTable:
                                  "the exact creep table 'creep_exact'")
         self.table = table
         self._spline = table.spline
-        self._idx = [table.variables.index(v) for v in ("force_ratio_parallel",
-                                                         "force_ratio_perpendicular",
-                                                         "spin_moment_ratio",
-                                                         "stick_area_fraction")]
+        self._idx = _variable_indices(table, ("force_ratio_parallel",
+                                              "force_ratio_perpendicular",
+                                              "spin_moment_ratio", "stick_area_fraction"))
+        if "poisson_ratio_range" not in table.attrs:
+            raise TableFileError(f"table file {str(table.path)!r} lacks the global attribute "
+                                 "'poisson_ratio_range'")
         # forces only (half the work of all four variables): creep_force_3d and the fast path
         sp = table.spline
         self._force_spline = TensorSpline(
