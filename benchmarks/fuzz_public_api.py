@@ -11,7 +11,8 @@ Each outcome is counted as
 
 * ``finite``: every output finite, and for the creep forces of a theory with a Coulomb limit
   ``|T| <= mu N`` (4 ulp margin, see tests/test_properties.py);
-* ``ValueError``: the documented refusal (the message names the parameter);
+* ``ValueError``: the documented refusal, its message in the house style ("<parameter> must
+  be ..."; one that is not counts as ``other``);
 * ``other``: anything else -- a NaN or inf output, another exception, a Coulomb violation.
   The first few are printed. The goal is zero.
 
@@ -72,7 +73,7 @@ def perturbed(rng, base, extra=None):
     """``base`` (list of values) with 1-3 entries replaced by extreme values; sometimes one
     entry is an array of an extreme and the physical value (the array paths)."""
     args = list(base)
-    for i in rng.choice(len(args), size=rng.integers(1, 4), replace=False):
+    for i in rng.choice(len(args), size=rng.integers(1, min(3, len(args)) + 1), replace=False):
         args[i] = extreme(rng)
     if extra is not None and rng.random() < 0.25:
         i = rng.integers(len(args))
@@ -219,9 +220,10 @@ def fmu_call(slaves):
             if not errors:
                 raise RuntimeError("ValueError without an error log line") from None
             raise
-        mu_n = c.friction_coefficient * c.normal_force
+        LAST.extend([f"scene {stem}, step size {h:g}", ("Fx", c.Fx), ("Fy", c.Fy),
+                     ("a0", c.a0), ("b0", c.b0), ("p0", c.p0), ("mu", c.friction_coefficient)])
         return finite(c.Fx, c.Fy, c.a0, c.b0, c.p0) and coulomb(c.Fx, c.Fy, c.friction_coefficient,
-                                                                c.normal_force) or mu_n == 0
+                                                                c.normal_force)
     return call
 
 
@@ -249,7 +251,9 @@ def main(argv=None):
                 outcome = "finite" if cases[name](rng) else "other"
                 detail = "non-finite output or |T| > mu N"
             except ValueError as exc:
-                outcome, detail = "ValueError", str(exc)
+                # the house style names the parameter: "<name> must be in <range> ..."
+                outcome = "ValueError" if " must " in str(exc) else "other"
+                detail = f"ValueError not in the house style: {exc}"
             except Exception as exc:  # noqa: BLE001 - counted and shown
                 outcome, detail = "other", f"{type(exc).__name__}: {exc}"
             counts["calls"] += 1

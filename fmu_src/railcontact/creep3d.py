@@ -76,6 +76,7 @@ from collections import namedtuple
 import numpy as np
 
 from ._validation import check_choice, check_range
+from ._floats import _NO_EXP, _TINY_SUBNORMAL, _hypot_scaled, _root_ab, _scaled, _value
 from .kalker import A0_OVER_B0_MAX, _coefficients_cached, kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "METHODS", "creep_force_3d", "creep_solution_3d",
@@ -174,48 +175,6 @@ def _saturation_w(n_load, a0, b0, e_mod, nu, mu):
     return np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
 
 
-# --------------------------------------------------------------------------------------------
-# Overflow-safe arithmetic: products and quotients of many factors as (mantissa, exponent)
-# --------------------------------------------------------------------------------------------
-# Every quantity of the creep theories is a product or quotient of the inputs (w = C xi,
-# w_sat ~ mu N / (a0 b0 E), G a0 b0 |w|, ...). With inputs anywhere in the float range such a
-# product overflows or underflows although the force it leads to (bounded by mu N) does not.
-# Each value is therefore carried as x = m 2^e (np.frexp: 0.5 <= |m| < 1 or m = 0, integer e):
-# multiplying and dividing mantissas and adding exponents is exact up to the usual rounding of
-# the mantissa products, so results agree with the plain expressions to a few ulp wherever
-# those do not overflow. Only the final value is rounded into the float range (np.ldexp:
-# inf or 0 where it really is out of range).
-
-_TINY_SUBNORMAL = float(np.nextafter(0.0, 1.0))
-_NO_EXP = -(2**40)          # exponent of an exact zero (below every other)
-
-
-def _scaled(factors, divisors=()):
-    """prod(factors) / prod(divisors), evaluated left to right, as (m, e) with
-    0.5 <= |m| < 1 (or m = 0); an item may itself be an (m, e) pair. No divisor may be 0.
-
-    The mantissas carry the same rounding as the plain left-to-right expression (scaling by
-    powers of two is exact), so the result equals it bit for bit wherever that expression
-    stays in the normal range."""
-    m, e = 1.0, np.int64(0)
-    for items, sign in ((factors, 1), (divisors, -1)):
-        for f in items:
-            if isinstance(f, tuple):
-                fm, fe = f
-            else:
-                fm, fe = np.frexp(f)
-            m = m * fm if sign > 0 else m / fm
-            m, de = np.frexp(m)
-            e = e + de.astype(np.int64) + sign * np.asarray(fe).astype(np.int64)
-    return m, np.where(m == 0.0, _NO_EXP, e)
-
-
-def _value(m, e):
-    """m 2^e rounded into the float range (inf on overflow, 0 on underflow, sign kept)."""
-    with np.errstate(over="ignore", under="ignore"):
-        return np.ldexp(m, np.clip(e, -4000, 4000).astype(np.int32))
-
-
 def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23, parts=False):
     """The Kalker-weighted creepage w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) without
     overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e); with
@@ -298,28 +257,6 @@ def spin_coefficient(creepage_longitudinal, creepage_lateral, spin, a0, b0):
     den = d_m > 0.0
     ratio = _value(num_m / np.where(den, d_m, 1.0), n_e + p_e.astype(np.int64) - d_e)
     return np.where(den, ratio, np.where(num_m > 0.0, np.inf, 0.0))[()]
-
-
-def _hypot_scaled(x, y):
-    """hypot(x, y) as (m, e) (see _scaled), without overflow for any finite x, y; x and y may
-    be (m, e) pairs."""
-    mx, ex = x if isinstance(x, tuple) else _scaled((x,))
-    my, ey = y if isinstance(y, tuple) else _scaled((y,))
-    top = np.maximum(ex, ey)
-    top = np.where(top == _NO_EXP, 0, top)
-    h = np.hypot(_value(mx, ex - top), _value(my, ey - top))
-    m, e = np.frexp(h)
-    return m, np.where(m == 0.0, _NO_EXP, top + e.astype(np.int64))
-
-
-def _root_ab(a0, b0):
-    """sqrt(a0 b0) as (m, e): ``np.sqrt(a0 * b0)`` (the scalar paths' rounding) where a0 b0 is
-    a normal float, sqrt(a0) sqrt(b0) where it would overflow or underflow."""
-    with np.errstate(over="ignore", under="ignore"):
-        ab = a0 * b0
-    ok = (ab >= np.finfo(float).tiny) & (ab < np.inf)
-    return _scaled((np.where(ok, np.sqrt(np.where(ok, ab, 1.0)), np.sqrt(a0)),
-                    np.where(ok, 1.0, np.sqrt(b0))))
 
 
 def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,

@@ -49,6 +49,8 @@ class EffectUnavailable(SceneError):
     """The scene asks for an effect whose model is not part of this build."""
 
 
+_FLOAT_MAX = 1.7976931348623157e308
+
 #: Sentinel of the accuracy outputs for "not estimated" (no table in use, no iteration run).
 NOT_ESTIMATED = -1.0
 
@@ -283,7 +285,12 @@ class NormalContact(_Effect):
         if n <= 0.0 and (c.creepage_longitudinal or c.creepage_lateral or c.spin):
             self._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
         if self._line:
-            scale = math.sqrt(n / self._width)
+            n_line = n / self._width
+            if n_line == math.inf:
+                raise ValueError(f"normal_force / contact_width (load per unit length) must be "
+                                 f"in [0, {_FLOAT_MAX:g}] [N/m]; got inf (normal_force = "
+                                 f"{n:g} N, contact_width = {self._width:g} m)")
+            scale = math.sqrt(n_line)
             c.a0, c.b0, c.p0 = self._a1 * scale, 0.5 * self._width, self._p1 * scale
             c.contact_half_width = c.a0
             return
@@ -506,7 +513,11 @@ class Creep2D(_Effect):
         n_line = c.normal_force / self._width
         force, c.r_a0 = self._scalar(c.creepage_longitudinal, n_line, self._radius, self._e,
                                      self._nu, c.friction_coefficient)
-        c.Fx = force * self._width
+        fx = force * self._width
+        mu_n = c.friction_coefficient * c.normal_force
+        if abs(fx) > mu_n:       # (subnormal N: (mu N / w) w rounds a few ulp above mu N)
+            fx = math.copysign(mu_n, fx)
+        c.Fx = fx
         c.stick_area_fraction = c.r_a0
         c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
 

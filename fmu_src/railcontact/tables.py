@@ -1175,6 +1175,7 @@ class ExactCreepTable:
             xi_x, xi_y, phi, safe(n_load), safe(a0), safe(b0), e_mod, nu, safe(mu))
         rho = np.where(contact, rho, 0.0)
         sig = np.where(contact, sig, 0.0)
+        theta = np.where(contact, theta, 0.0)     # (NaN without contact: inf - inf)
         where = f"range of table file {str(self.table.path)!r}"
         check_range("normalised_creepage", rho, "1", 0.0, self._rho_max,
                     condition="|(C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)| / w_sat, " + where)
