@@ -89,11 +89,13 @@ def _overflow_error(what, unit, values, names):
                       f"(overflow at {at})")
 
 
-def _finite_or_scaled(plain, scaled):
-    """``plain`` where it is a normal (or zero) finite float, else ``scaled()`` there (the
-    overflow-safe evaluation, computed only if needed): plain results stay bit for bit."""
+def _finite_or_scaled(plain, scaled, exact_zero):
+    """``plain`` where it is a normal finite float (or 0 where ``exact_zero``: a zero factor),
+    else ``scaled()`` there (the overflow-safe evaluation, computed only if needed): plain
+    results stay bit for bit."""
     plain = np.asarray(plain, dtype=float)
-    ok = np.isfinite(plain) & ((plain == 0.0) | (np.abs(plain) >= np.finfo(float).tiny))
+    ok = np.isfinite(plain) & (((plain == 0.0) & exact_zero)
+                               | (np.abs(plain) >= np.finfo(float).tiny))
     if np.all(ok):
         return plain
     return np.where(ok, plain, scaled())

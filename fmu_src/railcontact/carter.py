@@ -80,7 +80,8 @@ def carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
     a0, _, mu, r = _inputs(normal_load, radius, youngs_modulus, poisson_ratio,
                            friction_coefficient)
     with np.errstate(over="ignore", under="ignore"):
-        xi_c = _finite_or_scaled(mu * a0 / r, lambda: _value(*_scaled((mu, a0), (r,))))
+        xi_c = _finite_or_scaled(mu * a0 / r, lambda: _value(*_scaled((mu, a0), (r,))),
+                                 (mu == 0.0) | (a0 == 0.0))
     if not np.all(np.isfinite(xi_c)):
         raise _overflow_error("critical creepage mu a0 / R", "-", xi_c,
                               dict(friction_coefficient=mu, normal_load=normal_load,

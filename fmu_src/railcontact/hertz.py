@@ -105,9 +105,9 @@ def hertz_2d(normal_load, radius, youngs_modulus, poisson_ratio):
     # products beyond the float range (e.g. N R ~ 1e600 with E ~ 1e300): the same expressions
     # in (mantissa, exponent) form; a result that itself overflows is a ValueError
     a0 = _finite_or_scaled(a0, lambda: _root(_scaled(
-        (8.0 * (1.0 - nu**2), r, n_load), (_scaled((np.pi, e_mod)),)), 2))
+        (8.0 * (1.0 - nu**2), r, n_load), (_scaled((np.pi, e_mod)),)), 2), n_load == 0.0)
     p0 = _finite_or_scaled(p0, lambda: _root(_scaled(
-        (n_load, e_mod), (_scaled((2.0 * (1.0 - nu**2), np.pi, r)),)), 2))
+        (n_load, e_mod), (_scaled((2.0 * (1.0 - nu**2), np.pi, r)),)), 2), n_load == 0.0)
     names = dict(normal_load=n_load, radius=r, youngs_modulus=e_mod)
     for value, what, unit in ((a0, "Hertz half-width a0", "m"), (p0, "Hertz pressure p0", "Pa")):
         if not np.all(np.isfinite(value)):
@@ -238,7 +238,7 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
         c_max = np.cbrt(n_load) * np.cbrt(rd / (2.0 * np.pi * e_star * c_major))
     # E* C_major beyond the float range: the quotient in (mantissa, exponent) form
     c_max = _finite_or_scaled(c_max, lambda: np.cbrt(n_load) * _root(_scaled(
-        (rd,), (_scaled((2.0 * np.pi, e_star, c_major)),)), 3))
+        (rd,), (_scaled((2.0 * np.pi, e_star, c_major)),)), 3), n_load == 0.0)
     c_min = k * c_max
     a0 = np.where(x_major, c_max, c_min)
     b0 = np.where(x_major, c_min, c_max)
@@ -247,7 +247,8 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
         # N / area first: 1.5 N would round in the subnormal range for N < ~1e-308 N
         p0 = 1.5 * np.divide(n_load, area, out=np.zeros_like(area), where=area > 0)
     p0 = _finite_or_scaled(p0, lambda: np.where(
-        n_load > 0.0, _value(*_scaled((1.5, n_load), (_scaled((np.pi, a0, b0)),))), 0.0))
+        n_load > 0.0, _value(*_scaled((1.5, n_load), (_scaled((np.pi, a0, b0)),))), 0.0),
+        n_load == 0.0)
     names = dict(normal_load=n_load, curvature_longitudinal=c_x, curvature_lateral=c_y,
                  youngs_modulus=e_mod)
     for value, what, unit in ((a0, "Hertz semi-axis a0", "m"), (b0, "Hertz semi-axis b0", "m"),
