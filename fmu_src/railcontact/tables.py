@@ -1064,7 +1064,8 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, norma
     sign_y = np.where(sig < 0.0, -1.0, 1.0)
     v_x = np.abs(u_x)
     sig = np.abs(sig)
-    v_y = u_y * sign_y + sig
+    with np.errstate(invalid="ignore"):       # inf - inf (beyond the grid): NaN, rejected
+        v_y = u_y * sign_y + sig
     rho = np.hypot(v_x, v_y)
     theta = np.arctan2(v_y, v_x)
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
