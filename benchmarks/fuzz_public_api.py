@@ -1,4 +1,4 @@
-"""Seeded fuzz of the public API at extreme magnitudes: finite answers or a ValueError, nothing else.
+"""Seeded fuzz of the public API at extreme magnitudes: finite answers or a ValueError only.
 
 Usage::
 

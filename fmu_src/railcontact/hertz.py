@@ -229,7 +229,8 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
     x_major = c_y >= c_x                      # smaller curvature along x -> major axis along x
     c_major = np.where(x_major, c_x, c_y)
     c_minor = np.where(x_major, c_y, c_x)
-    k = _k_from_ratio(c_minor / c_major)
+    with np.errstate(over="ignore", under="ignore"):   # (a ratio beyond the range: clipped)
+        k = _k_from_ratio(c_minor / c_major)
     # c_major = p0 c_min (K - E) / (E* c_max^2 m), p0 = 3N/(2 pi c_max c_min),
     # (K - E)/m = R_D(0, k^2, 1)/3  ->  c_max^3 = N R_D(0, k^2, 1) / (2 pi E* C_major)
     # cbrt of each factor: cbrt(N * ...) underflows for N below ~1e-297 N although a0 ~ N^(1/3)
@@ -237,8 +238,9 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
     with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
         c_max = np.cbrt(n_load) * np.cbrt(rd / (2.0 * np.pi * e_star * c_major))
     # E* C_major beyond the float range: the quotient in (mantissa, exponent) form
-    c_max = _finite_or_scaled(c_max, lambda: np.cbrt(n_load) * _root(_scaled(
-        (rd,), (_scaled((2.0 * np.pi, e_star, c_major)),)), 3), n_load == 0.0)
+    with np.errstate(over="ignore"):                    # (inf: a ValueError below)
+        c_max = _finite_or_scaled(c_max, lambda: np.cbrt(n_load) * _root(_scaled(
+            (rd,), (_scaled((2.0 * np.pi, e_star, c_major)),)), 3), n_load == 0.0)
     c_min = k * c_max
     a0 = np.where(x_major, c_max, c_min)
     b0 = np.where(x_major, c_min, c_max)

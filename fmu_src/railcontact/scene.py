@@ -195,7 +195,8 @@ from ._validation import check_range
 __all__ = [
     "SceneError", "Scene", "load_scene", "parse_scene", "scene_from_dict", "EFFECTS",
     "CREEP_METHODS", "SOURCES", "INPUTS", "INPUT_DEFAULTS", "NoContactWarning",
-    "FMU_PARAMETERS", "ParameterSpec", "scene_to_parameters", "parameters_to_scene_dict", "DEFAULT_SCENE",
+    "FMU_PARAMETERS", "ParameterSpec", "scene_to_parameters", "parameters_to_scene_dict",
+    "DEFAULT_SCENE",
 ]
 
 
