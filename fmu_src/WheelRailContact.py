@@ -14,8 +14,9 @@ solution for the start values of the inputs.
 Errors: PythonFMU (0.7) turns any Python exception into the status fmi2Fatal. An invalid
 parameter makes ``fmi2ExitInitializationMode`` fail, an invalid input (NaN, inf, negative
 normal force or speed) or step size (negative, NaN or inf) makes ``fmi2DoStep`` fail; in both
-cases an error message naming the parameter, input or step size is logged first (visible with debug logging on, e.g. ``fmpy simulate
---debug-logging`` or ``simulate_fmu(..., debug_logging=True)``). No NaN is ever returned.
+cases an error message naming the parameter, input or step size is logged first (visible
+with debug logging on, e.g. ``fmpy simulate --debug-logging`` or ``simulate_fmu(...,
+debug_logging=True)``). No NaN is ever returned.
 """
 
 import importlib

@@ -541,8 +541,8 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
 # the array path's placeholder 1 is used). Outside that the result is undefined (possibly NaN
 # or an exception); use the public functions there. Inputs of extreme magnitude (outside
 # MODERATE_MIN..MODERATE_MAX, see _moderate) are passed on to the overflow-safe array path.
-# Agreement with the array paths to a few ulp (libm's hypot, acos and pow may round differently from numpy's) is tested in
-# tests/test_creep3d.py.
+# Agreement with the array paths to a few ulp (libm's hypot, acos and pow may round
+# differently from numpy's) is tested in tests/test_creep3d.py.
 
 
 #: Magnitudes the scalar paths accept: every non-zero input in [1e-50, 1e50] keeps all their
