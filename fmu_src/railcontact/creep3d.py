@@ -567,10 +567,15 @@ def _f_over_z_scalar(z, _sqrt=math.sqrt, _acos=math.acos):
     return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * _acos(z)
 
 
-def _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0, _hypot=math.hypot, _inf=math.inf):
+def _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0):
     """:func:`spin_coefficient` for plain floats (inputs assumed in range, see above)."""
     if not _moderate(xi_x, xi_y, phi, a0, b0):
         return float(spin_coefficient(xi_x, xi_y, phi, a0, b0))
+    return _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
+
+
+def _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0, _hypot=math.hypot, _inf=math.inf):
+    """:func:`_spin_coefficient_scalar` for inputs already known to be moderate."""
     num = _hypot(a0, b0) * abs(phi)
     den = _hypot(xi_x, xi_y)
     if den > 0.0:
@@ -584,7 +589,8 @@ _STRIP_C22 = np.pi**2 / 4.0
 
 def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method,
                            _kalker=_coefficients_cached, _sqrt=math.sqrt, _hypot=math.hypot,
-                           _acos=math.acos, _pi=math.pi, _inf=math.inf):
+                           _acos=math.acos, _pi=math.pi, _inf=math.inf, _lo=MODERATE_MIN,
+                           _hi=MODERATE_MAX):
     """:func:`creep_solution_3d` for plain floats (inputs assumed in range, see above).
 
     The same operations in the same order as :func:`_solve` and :func:`creep_solution_3d`;
@@ -596,7 +602,11 @@ def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, metho
     CreepSolution3D
         Fields as plain floats (``within_validity`` a bool).
     """
-    if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+    # _moderate, inlined (one call per FMU step)
+    if not ((xi_x == 0.0 or _lo <= abs(xi_x) <= _hi) and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
+            and (phi == 0.0 or _lo <= abs(phi) <= _hi) and (n_load == 0.0 or _lo <= n_load <= _hi)
+            and _lo <= a0 <= _hi and _lo <= b0 <= _hi and _lo <= e_mod <= _hi
+            and (mu == 0.0 or _lo <= mu <= _hi)):
         res = creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
         return CreepSolution3D(*(float(v) for v in res[:6]), bool(res[6]))
     mu_n = mu * n_load
@@ -647,7 +657,7 @@ def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, metho
             scale = mu_n * (1.0 - _EPS4) / t_abs
             tx, ty = tx * scale, ty * scale
     tx, ty = tx + 0.0, ty + 0.0
-    phi_coef = _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0)
+    phi_coef = _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
     if method == "linear":
         return CreepSolution3D(tx, ty, 1.0, 1.0, z, phi_coef,
                                phi_coef <= 1.0 and _hypot(tx, ty) <= mu_n)
