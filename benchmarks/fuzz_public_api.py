@@ -24,12 +24,13 @@ Covered: railcontact.creep_force_3d (four methods), creep_solution_3d,
 normalised_creepage_3d, saturation_creepage_3d, spin_coefficient, kalker_coefficients,
 hertz_3d, hertz_2d, carter_creep_force, carter_stick_ratio, carter_critical_creepage,
 nonsteady.relax_creepage, tables.CreepTable (creep_force_3d scalar and array,
-creep_solution_3d, creep_force_jacobian_3d), tables.ExactCreepTable.creep_force_3d, and the
-FMU slave class (WheelRailContact, in process: the creep-only table, exact-table, analytic and
-non-steady scenes) with extreme inputs and step sizes, where a failed step must raise a
-ValueError after logging an error naming the input. The velocity-dependent friction iteration,
-corrugation, wear and roughness models are not fuzzed here (their own property tests cover their
-documented domains).
+creep_solution_3d, creep_force_jacobian_3d), tables.ExactCreepTable (creep_force_3d,
+creep_solution_3d), and the FMU slave class (WheelRailContact, in process: the creep-only
+table, exact-table, analytic and non-steady scenes; the outputs computed when read included)
+with extreme inputs and step sizes, where a failed step must raise a ValueError after logging
+an error naming the input. The velocity-dependent friction iteration, corrugation, wear and
+roughness models are not fuzzed here (their own property tests cover their documented
+domains).
 """
 
 from __future__ import annotations
@@ -171,6 +172,11 @@ def make_cases(tables):
         tx, ty = et.creep_force_3d(*args)
         return finite(tx, ty) and coulomb(tx, ty, args[8], args[3])
 
+    def exact_solution(rng):
+        args = perturbed(rng, base, extra=True)
+        tx, ty, mz, stick, rho = et.creep_solution_3d(*args)
+        return finite(tx, ty, mz, stick, rho) and coulomb(tx, ty, args[8], args[3])
+
     return {
         "creep_force_3d[modified_strip]": creep("modified_strip"),
         "creep_force_3d[she]": creep("she"), "creep_force_3d[strip]": creep("strip"),
@@ -182,6 +188,7 @@ def make_cases(tables):
         "CreepTable.creep_force_3d": table, "CreepTable.creep_solution_3d": table_solution,
         "CreepTable.creep_force_jacobian_3d": table_jacobian,
         "ExactCreepTable.creep_force_3d": exact,
+        "ExactCreepTable.creep_solution_3d": exact_solution,
     }
 
 
@@ -220,9 +227,11 @@ def fmu_call(slaves):
             if not errors:
                 raise RuntimeError("ValueError without an error log line") from None
             raise
-        LAST.extend([f"scene {stem}, step size {h:g}", ("Fx", c.Fx), ("Fy", c.Fy),
+        slave._auxiliary("stick_area_fraction")     # the outputs computed when read
+        lazy = (c.stick_area_fraction, c.stick_width_ratio, c.r_a0, c.Mz)
+        LAST.extend([f"scene {stem}, step size {h:g}", ("Fx", c.Fx), ("Fy", c.Fy), lazy,
                      ("a0", c.a0), ("b0", c.b0), ("p0", c.p0), ("mu", c.friction_coefficient)])
-        return finite(c.Fx, c.Fy, c.a0, c.b0, c.p0) and coulomb(c.Fx, c.Fy, c.friction_coefficient,
+        return finite(c.Fx, c.Fy, c.a0, c.b0, c.p0, *lazy) and coulomb(c.Fx, c.Fy, c.friction_coefficient,
                                                                 c.normal_force)
     return call
 

@@ -416,6 +416,15 @@ class Creep3D(_Effect):
         else:
             args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
                     c.b0, self._e, self._nu, c.friction_coefficient)
+            if self._exact:
+                # the spin moment output (read after the step), |Mz| < ~mu N sqrt(a0 b0)
+                scale = c.friction_coefficient * c.normal_force * math.sqrt(c.a0 * c.b0)
+                if not scale < _FLOAT_MAX / 4.0:
+                    raise ValueError(
+                        f"the spin moment scale mu N sqrt(a0 b0) must be in [0, "
+                        f"{_FLOAT_MAX / 4.0:g}] [N m]; got {scale:g} (normal_force = "
+                        f"{c.normal_force:g} N, friction_coefficient = "
+                        f"{c.friction_coefficient:g})")
             out = self._force(*args)
             if out is None:                # exact table only: out of its range (or extreme)
                 out, analytic = self._exact_fallback(args)

@@ -1198,7 +1198,14 @@ class ExactCreepTable:
         c, s_ = np.cos(theta), np.sin(theta)
         tx = -sx * n_mu * (f_par * c - f_perp * s_)
         ty = -sy * n_mu * (f_par * s_ + f_perp * c)
-        mz = sx * sy * mz * np.where(contact, mu * n_load, 0.0) * np.sqrt(a0 * b0)
+        with np.errstate(over="ignore"):
+            mz = sx * sy * mz * np.where(contact, mu * n_load, 0.0) * np.sqrt(a0 * b0)
+        if not forces_only and not np.all(np.isfinite(mz)):
+            from ._floats import _overflow_error  # noqa: PLC0415
+
+            raise _overflow_error("spin moment Mz ~ mu N sqrt(a0 b0)", "N m", mz,
+                                  dict(normal_load=n_load, a0=a0, b0=b0,
+                                       friction_coefficient=mu))
         stick = np.where(contact, np.clip(stick, 0.0, 1.0), 1.0)
         return tx, ty, mz, stick, rho
 
