@@ -1581,3 +1581,15 @@ def test_slave_creepage_without_normal_force_warns_once(stem):
     warned = [m.msg for m in slave.log_queue if m.status == 1]
     assert warned == [effects.NO_NORMAL_FORCE_MESSAGE]
     assert c.Fx == 0.0
+
+
+def test_slave_exact_table_spin_moment_beyond_float_range_is_an_error():
+    """The exact-table scene computes Mz when it is read; a step whose Mz would overflow
+    (mu N sqrt(a0 b0) ~ 1e395 at N = 1e300) fails at the step, naming the normal force."""
+    slave = _scene_slave("creep_exact_table")
+    slave._contact.normal_force = 1e300
+    with pytest.raises(ValueError, match=r"spin moment scale mu N sqrt\(a0 b0\) must be in "
+                                         r"\[0, 4.49423e\+307\] \[N m\]; got .*normal_force = "
+                                         r"1e\+300 N"):
+        slave.do_step(0.0, 1e-3)
+    assert slave.log_queue[-1].status == 3

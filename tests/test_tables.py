@@ -710,3 +710,16 @@ def test_tensor_spline_refuses_unknown_out_of_range():
     with pytest.raises(ValueError, match=r"out_of_range of axis 'x' must be one of \['error', "
                                          r"'hold'\]; got 'bogus'"):
         TensorSpline([axis], np.zeros((1, 5)), ["v"])
+
+
+def test_exact_table_spin_moment_beyond_float_range_raises():
+    """N = 1e300 on a large ellipse: the forces are finite (|T| = mu N ~ 3e299) but the spin
+    moment ~ mu N sqrt(a0 b0) ~ 3e395 is not; it was -inf."""
+    table = ExactCreepTable.from_file()
+    args = (1e-3, -5e-4, 0.1, 1e300, 1.5e96, 1.2e96, 210e9, 0.28, 0.3)
+    tx, ty = table.creep_force_3d(*args)
+    assert math.hypot(tx, ty) <= 0.3 * 1e300
+    with pytest.raises(ValueError, match=r"spin moment Mz ~ mu N sqrt\(a0 b0\) must be in "
+                                         r"\[0, 1.79769e\+308\] \[N m\]; got inf \(overflow at "
+                                         r"normal_load = 1e\+300"):
+        table.creep_solution_3d(*args)
