@@ -280,8 +280,9 @@ def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal
     Returns
     -------
     ndarray
-        z >= 0 [-]; inf if there is creepage but no friction force available (N = 0 or mu = 0),
-        0 for zero creepage.
+        z >= 0 [-]; inf if there is creepage but no friction force available (N = 0 or mu = 0)
+        or if |w| / w_sat exceeds the float range (full sliding either way), 0 for zero
+        creepage.
     """
     check_choice("method", method, ("modified_strip", "strip"))
     xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-")
