@@ -163,18 +163,6 @@ def _coefficients(a0, b0, nu, method):
     return c11, c22, c23
 
 
-def _weighted(xi_x, xi_y, phi, a0, b0, c11, c22, c23):
-    return c11 * xi_x, c22 * xi_y + np.sqrt(a0 * b0) * c23 * phi
-
-
-def _saturation_w(n_load, a0, b0, e_mod, nu, mu):
-    """w_sat = pi^2 (1 + nu) mu p0 / E, p0 = 3 N / (2 pi a0 b0); 0 if there is no contact."""
-    area = np.pi * a0 * b0
-    p0 = np.divide(1.5 * n_load, area, out=np.zeros(np.broadcast(n_load, area).shape),
-                   where=area > 0.0)
-    return np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
-
-
 def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23, parts=False):
     """The Kalker-weighted creepage w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) without
     overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e); with
