@@ -13,9 +13,10 @@ solution for the start values of the inputs.
 
 Errors: PythonFMU (0.7) turns any Python exception into the status fmi2Fatal. An invalid
 parameter makes ``fmi2ExitInitializationMode`` fail, an invalid input (NaN, inf, negative
-normal force or speed) makes ``fmi2DoStep`` fail; in both cases an error message naming the
-parameter or input is logged first (visible with debug logging on, e.g. ``fmpy simulate
---debug-logging`` or ``simulate_fmu(..., debug_logging=True)``). No NaN is ever returned.
+normal force or speed) or step size (negative, NaN or inf) makes ``fmi2DoStep`` fail; in both
+cases an error message naming the parameter, input or step size is logged first (visible
+with debug logging on, e.g. ``fmpy simulate --debug-logging`` or ``simulate_fmu(...,
+debug_logging=True)``). No NaN is ever returned.
 """
 
 import ctypes
@@ -438,6 +439,8 @@ class WheelRailContact(Fmi2Slave):
         # pass: then _do_step_full's range check names the bad input (or finds all valid, e.g.
         # when only their sum overflowed) before the effects run. For the creep-only table
         # scene _build replaces this method by Pipeline.fmu_step, the same in one frame.
+        if not 0.0 <= step_size < math.inf:        # (NaN fails too)
+            return self._do_step_full(current_time, step_size)
         self._contact.step_size = step_size        # (NonSteady: the rolled distance V h)
         try:
             if self._checked_step(self._contact):
@@ -448,7 +451,15 @@ class WheelRailContact(Fmi2Slave):
         return self._do_step_full(current_time, step_size)
 
     def _do_step_full(self, current_time, step_size):
-        """The step with the full input check: an error message naming the bad input."""
+        """The step with the full input check: an error message naming the bad input (or the
+        step size: negative, NaN or infinite, which would move the non-steady state by an
+        undefined rolled distance)."""
+        try:
+            _rc.check_range("step_size", step_size, "s", 0.0, None)
+        except ValueError as exc:
+            self.log(f"invalid communication step at t = {current_time:g} s: {exc}",
+                     Fmi2Status.error)
+            raise
         self._contact.step_size = step_size
         try:
             self._check_inputs()

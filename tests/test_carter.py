@@ -223,3 +223,17 @@ def test_scalar_path_keeps_tiny_creepage_digits_and_limits():
     assert _carter_scalar(0.0, *ARGS)[1] == 1.0
     n0 = (0.0, *ARGS[1:])
     assert _carter_scalar(1e-3, *n0) == (-0.0, 0.0) and _carter_scalar(0.0, *n0)[1] == 1.0
+
+
+def test_overflowing_results_raise_naming_the_inputs():
+    with pytest.raises(ValueError, match=r"friction_coefficient \* normal_load .* must be in "
+                                         r"\[0, 1.79769e\+308\] \[N/m\]; got inf"):
+        carter_creep_force(1e-3, 1e300, 0.46, 210e9, 0.28, 1e10)
+    with pytest.raises(ValueError, match=r"critical creepage mu a0 / R must be in "
+                                         r"\[0, 1.79769e\+308\] \[-\]; got inf \(overflow at "
+                                         r"friction_coefficient = 1e\+300"):
+        carter_critical_creepage(1e6, 1e-100, 210e9, 0.28, 1e300)   # 1e300 * 1e-52 / 1e-100
+    # a subnormal product is fine: mu a0 / R with mu = 5e-324 is 0 or subnormal, and the force
+    # is then full sliding (|T| = mu N, rounded)
+    force = carter_creep_force(1e-3, 1e6, 0.46, 210e9, 0.28, 5e-324)
+    assert np.isfinite(force) and abs(force) <= 5e-324 * 1e6

@@ -7,6 +7,7 @@ the linear theory by finite differences; CONTACT's exact creep curve (Vollebregt
 hard cases and a hypothesis property test.
 """
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -629,3 +630,92 @@ def test_exact_non_convergence_raises_rolling_convergence_error(monkeypatch):
 def test_unknown_method_lists_exact():
     with pytest.raises(ValueError, match="method must be one of .*'exact'"):
         creep_force_3d(1e-3, 0.0, 0.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3, method="exakt")
+# Inputs anywhere in the float range: a finite force with |T| <= mu N, or a ValueError naming
+# the parameter (products such as C11 xi or mu N / (a0 b0 E) are carried as mantissa and
+# exponent, railcontact._floats)
+# --------------------------------------------------------------------------------------------
+EXTREME_BASE = dict(creepage_longitudinal=1e-3, creepage_lateral=0.0, spin=0.0,
+                    normal_load=1e5, a0=6e-3, b0=5e-3, youngs_modulus=2.1e11,
+                    poisson_ratio=0.28, friction_coefficient=0.3)
+FLOAT_MAX = float(np.finfo(float).max)
+
+
+@pytest.mark.parametrize("method", ["modified_strip", "she", "strip"])
+@pytest.mark.parametrize("name, value", [("creepage_longitudinal", 1e308),
+                                         ("creepage_longitudinal", -FLOAT_MAX),
+                                         ("creepage_lateral", -1e308), ("spin", 1e308)])
+def test_huge_creepage_is_full_sliding(method, name, value):
+    """A creepage of 1e308 is as far beyond saturation as one of 1e12 (w_sat ~ 0.03 here): the
+    same force, of magnitude mu N (was NaN: C11 xi overflowed)."""
+    got = creep_force_3d(**dict(EXTREME_BASE, **{name: value}), method=method)
+    ref = creep_force_3d(**dict(EXTREME_BASE, **{name: math.copysign(1e12, value)}),
+                         method=method)
+    mu_n = 0.3 * 1e5
+    assert np.hypot(got.tx, got.ty) == pytest.approx(mu_n, rel=1e-12)
+    assert got.tx == pytest.approx(float(ref.tx), abs=1e-9 * mu_n)
+    assert got.ty == pytest.approx(float(ref.ty), abs=1e-9 * mu_n)
+
+
+@pytest.mark.parametrize("method", ["modified_strip", "she", "strip"])
+def test_huge_load_gives_the_linear_theory(method):
+    """N = 1e308 on a fixed ellipse: p0 ~ 1e317 overflowed (w_sat = inf, force 0); now z ~ 1e-300
+    and the force is the linear theory's, which does not depend on N (for "strip" with its own
+    coefficients: compare with "strip" at a creepage 1e-12 scaled up)."""
+    args = dict(EXTREME_BASE, normal_load=1e308)
+    got = creep_force_3d(**args, method=method)
+    if method == "strip":
+        tiny = creep_force_3d(**dict(EXTREME_BASE, creepage_longitudinal=1e-15), method=method)
+        want = float(tiny.tx) * 1e12
+    else:
+        want = float(creep_force_3d(**args, method="linear").tx)
+    assert float(got.tx) == pytest.approx(want, rel=1e-9)
+
+
+def test_subnormal_friction_gives_the_saturated_force():
+    got = creep_force_3d(**dict(EXTREME_BASE, friction_coefficient=5e-324))
+    assert 0.0 < np.hypot(got.tx, got.ty) <= 5e-324 * 1e5
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("name, value", [("a0", 1e300), ("b0", 5e-324)])
+def test_axis_ratio_beyond_kalker_range_raises(method, name, value):
+    with pytest.raises(ValueError, match=r"a0/b0 must be in \(0, 1e\+100\] \[-\]"):
+        creep_force_3d(**dict(EXTREME_BASE, **{name: value}), method=method)
+
+
+@pytest.mark.parametrize("method", ["modified_strip", "she", "strip"])
+def test_coulomb_limit_beyond_float_range_raises(method):
+    with pytest.raises(ValueError, match=r"friction_coefficient \* normal_load .* must be in "
+                                         r"\[0, 1.79769e\+308\] \[N\]; got inf "
+                                         r"\(friction_coefficient = 10, normal_load = 1e\+308\)"):
+        creep_force_3d(**dict(EXTREME_BASE, normal_load=1e308, friction_coefficient=10.0),
+                       method=method)
+
+
+def test_linear_theory_overflow_raises_naming_the_inputs():
+    with pytest.raises(ValueError, match=r"linear theory's force G a0 b0 \|w\| must be in "
+                                         r"\[0, 1.79769e\+308\] \[N\].*creepage_longitudinal "
+                                         r"= 1e\+308"):
+        creep_force_3d(**dict(EXTREME_BASE, creepage_longitudinal=1e308), method="linear")
+
+
+def test_saturation_creepage_extreme_inputs():
+    from railcontact import saturation_creepage_3d
+
+    common = (1e5, 6e-3, 5e-3, 2.1e11, 0.28)
+    assert saturation_creepage_3d(*common, 0.0) == 0.0
+    with pytest.raises(ValueError, match=r"a0/b0 must be in \(0, 1e\+100\]"):
+        saturation_creepage_3d(1e5, 1e300, 5e-3, 2.1e11, 0.28, 0.0)     # was NaN
+    with pytest.raises(ValueError, match=r"saturation creepage .* must be in "
+                                         r"\[0, 1.79769e\+308\] \[-\]; got inf .*normal_load "
+                                         r"= 1e\+308, a0 = 1e-300"):
+        saturation_creepage_3d(1e308, 1e-300, 1e-300, 2.1e11, 0.28, 0.3)
+    # scaling: N -> 2^k N multiplies s_sat by 2^k exactly, also where N 2^k ~ 1e300
+    s1 = saturation_creepage_3d(*common, 0.3)
+    assert saturation_creepage_3d(1e5 * 2.0**900, *common[1:], 0.3) == s1 * 2.0**900
+
+
+def test_spin_coefficient_without_overflow():
+    # hypot(1e300, 1e300) |phi| / hypot(1e308, 1e308) = 1e-8 (both hypots overflowed to inf)
+    assert spin_coefficient(1e308, 1e308, 1.0, 1e300, 1e300) == pytest.approx(1e-8, rel=1e-14)
+    assert spin_coefficient(0.0, 0.0, 5e-324, 1e300, 1e300) == np.inf

@@ -1516,3 +1516,84 @@ def test_corrugation_effect_treats_an_underflowing_load_as_no_contact(scene_name
         assert c.wear_depth_per_passage == 0.0
         amplitude = c.corrugation_amplitude if amplitude is None else amplitude
     assert c.corrugation_amplitude == pytest.approx(amplitude, rel=1e-12)
+
+
+# --------------------------------------------------------------------------------------------
+# the slave at extreme inputs and step sizes: finite outputs or an error status naming the input
+# --------------------------------------------------------------------------------------------
+_SCENES = Path(__file__).resolve().parents[1] / "examples" / "scenes"
+_EXTREME_SCENES = ["creep_only_table", "creep_exact_table", "creep_only_analytic",
+                   "nonsteady_creep"]
+
+
+def _scene_slave(stem):
+    slave = _slave()
+    slave.scene_file = str(_SCENES / f"{stem}.toml")
+    slave._contact.normal_force = 8e4
+    slave.exit_initialization_mode()
+    return slave
+
+
+@pytest.mark.parametrize("stem", _EXTREME_SCENES)
+def test_slave_huge_creepage_gives_finite_sliding_force(stem):
+    """creepage_longitudinal = 1e308 gave Fx = NaN with status OK (both table scenes); the
+    non-steady scene NaN on a jump from 1e308 to -1e308 (inf * 0 in the relaxation)."""
+    slave = _scene_slave(stem)
+    c = slave._contact
+    mu_n = c.friction_coefficient * c.normal_force
+    for xi in (1e308, -float(np.finfo(float).max), 1e308):      # (floats, as from an importer)
+        c.creepage_longitudinal = xi
+        assert slave.do_step(0.0, 1e-3) is True
+        assert math.hypot(c.Fx, c.Fy) == pytest.approx(mu_n, rel=1e-12)
+        assert math.copysign(1.0, c.Fx) == -math.copysign(1.0, xi)
+
+
+@pytest.mark.parametrize("stem", ["creep_only_table", "creep_only_analytic"])
+@pytest.mark.parametrize("step_size", [-1e-3, math.nan, math.inf, -math.inf])
+def test_slave_bad_step_size_is_an_error_naming_it(stem, step_size):
+    """A negative, NaN or infinite step size returned OK (NaN or inf would move the non-steady
+    state as if the step were infinitely long)."""
+    slave = _scene_slave(stem)
+    with pytest.raises(ValueError, match=r"step_size must be in \[0, inf\) \[s\]; got"):
+        slave.do_step(0.0, step_size)
+    assert slave.log_queue[-1].status == 3
+    assert "step_size must be in [0, inf) [s]" in slave.log_queue[-1].msg
+
+
+def test_slave_line_contact_load_beyond_float_range_is_an_error():
+    slave = _scene_slave("nonsteady_creep")
+    slave._contact.normal_force = float(np.finfo(float).max)
+    with pytest.raises(ValueError, match=r"normal_force / contact_width \(load per unit "
+                                         r"length\) must be in \[0, 1.79769e\+308\] \[N/m\]"):
+        slave.do_step(0.0, 1e-3)
+    assert slave.log_queue[-1].status == 3
+
+
+@pytest.mark.parametrize("stem", ["creep_only_table", "creep_only_analytic"])
+def test_slave_creepage_without_normal_force_warns_once(stem):
+    """A run with creepage but the normal force left at its start value 0 returned all-zero
+    forces silently: one Warning in the log (not at initialisation, where every input may
+    still be at its start value)."""
+    slave = _slave()
+    slave.scene_file = str(_SCENES / f"{stem}.toml")
+    slave.exit_initialization_mode()
+    c = slave._contact
+    assert not [m for m in slave.log_queue if m.status == 1]
+    c.creepage_longitudinal = 1e-3
+    for k in range(3):
+        slave.do_step(k * 1e-3, 1e-3)
+    warned = [m.msg for m in slave.log_queue if m.status == 1]
+    assert warned == [effects.NO_NORMAL_FORCE_MESSAGE]
+    assert c.Fx == 0.0
+
+
+def test_slave_exact_table_spin_moment_beyond_float_range_is_an_error():
+    """The exact-table scene computes Mz when it is read; a step whose Mz would overflow
+    (mu N sqrt(a0 b0) ~ 1e395 at N = 1e300) fails at the step, naming the normal force."""
+    slave = _scene_slave("creep_exact_table")
+    slave._contact.normal_force = 1e300
+    with pytest.raises(ValueError, match=r"spin moment scale mu N sqrt\(a0 b0\) must be in "
+                                         r"\[0, 4.49423e\+307\] \[N m\]; got .*normal_force = "
+                                         r"1e\+300 N"):
+        slave.do_step(0.0, 1e-3)
+    assert slave.log_queue[-1].status == 3

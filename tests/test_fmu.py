@@ -9,6 +9,7 @@ and point by point.
 
 import glob
 import json
+import math
 import os
 import subprocess
 import sys
@@ -497,6 +498,75 @@ def test_invalid_input_gives_fmi_error_not_nan(fmu_path, name, value):
                           logger=logger)
     errors = [m for s, m in messages if s == 3]
     assert errors and name in errors[0], messages
+
+
+def _instantiate_logged(fmu_path, scene_path, unzipdir, messages):
+    """As :func:`_instantiate`, with a logger that appends (status, message) to ``messages``
+    (the callbacks object is returned too: it must outlive the instance)."""
+    from ctypes import byref
+
+    from fmpy import calloc, free
+    from fmpy.fmi2 import (fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                           fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+    from fmpy.logging import addLoggerProxy
+
+    def logger(_env, _instance, status, _category, message):
+        messages.append((int(status), message.decode(errors="replace")))
+
+    cb = fmi2CallbackFunctions()
+    cb.logger = fmi2CallbackLoggerTYPE(logger)
+    cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    addLoggerProxy(byref(cb))
+    md = read_model_description(str(fmu_path))
+    fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
+                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName="logged")
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    fmu.instantiate(callbacks=cb, loggingOn=True)
+    fmu.setupExperiment(startTime=0.0)
+    fmu.setString([vr["scene_file"]], [str(scene_path)])
+    fmu.setReal([vr["normal_force"]], [8e4])
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    return fmu, vr, cb
+
+
+@pytest.mark.parametrize("stem", ["creep_only_table", "creep_exact_table"])
+def test_huge_creepage_gives_sliding_force_not_nan(fmu_path, tmp_path, stem):
+    """creepage_longitudinal = 1e308 gave Fx = NaN with status OK in both table scenes: it is
+    full sliding, |(Fx, Fy)| = mu N."""
+    scene_path = ROOT / "examples" / "scenes" / f"{stem}.toml"
+    messages = []
+    fmu, vr, _cb = _instantiate_logged(fmu_path, scene_path, extract(str(fmu_path),
+                                                                     str(tmp_path)), messages)
+    try:
+        for xi in (1e308, -1e308):
+            fmu.setReal([vr["creepage_longitudinal"]], [xi])
+            fmu.doStep(0.0, 1e-3)
+            fx, fy = fmu.getReal([vr["Fx"], vr["Fy"]])
+            mu_n = load_scene(str(scene_path)).friction_coefficient * 8e4
+            assert math.hypot(fx, fy) == pytest.approx(mu_n, rel=1e-12)
+            assert math.copysign(1.0, fx) == -math.copysign(1.0, xi)
+    finally:
+        fmu.terminate()
+        fmu.freeInstance()
+
+
+@pytest.mark.parametrize("step_size", [-1e-3, math.nan, math.inf])
+def test_bad_step_size_gives_fmi_error_naming_it(fmu_path, tmp_path, step_size):
+    """A negative, NaN or infinite communication step returned OK."""
+    messages = []
+    fmu, vr, _cb = _instantiate_logged(fmu_path, ROOT / "examples" / "scenes"
+                                       / "creep_only_table.toml",
+                                       extract(str(fmu_path), str(tmp_path)), messages)
+    try:
+        with pytest.raises(FMICallException, match="fmi2DoStep") as info:
+            fmu.doStep(0.0, step_size)
+        assert info.value.status >= 3
+        errors = [m for s, m in messages if s >= 3]
+        assert errors and "step_size must be in [0, inf) [s]" in errors[0], messages
+    finally:
+        fmu.freeInstance()
 
 
 def _instantiate(fmu_path, scene_path, unzipdir):

@@ -178,3 +178,31 @@ def test_3d_against_contact_tractcurv_header():
     assert a0 == pytest.approx(6.304e-3, rel=1e-4)
     assert b0 == pytest.approx(12.61e-3, rel=5e-4)
     assert p0 == pytest.approx(640.7e6, rel=1e-3)      # CONTACT's PMAX on its 48x44 grid
+
+
+def test_hertz_2d_beyond_the_float_range_of_its_products():
+    """N R ~ 1e600: the products overflowed (a0 = inf); Hertz's scaling a0 ~ sqrt(N R),
+    p0 ~ sqrt(N / R) gives the answer from the unit case. A result beyond the float range is
+    a ValueError naming the inputs."""
+    unit = hertz_2d(1.0, 1.0, 210e9, 0.28)
+    big = hertz_2d(1e300, 1e300, 210e9, 0.28)
+    assert big.a0 == pytest.approx(unit.a0 * 1e300, rel=1e-14)
+    assert big.p0 == pytest.approx(unit.p0, rel=1e-14)
+    with pytest.raises(ValueError, match=r"Hertz half-width a0 must be in \[0, 1.79769e\+308\] "
+                                         r"\[m\]; got inf \(overflow at normal_load = 1e\+300, "
+                                         r"radius = 1e\+300, youngs_modulus = 1e-300\)"):
+        hertz_2d(1e300, 1e300, 1e-300, 0.28)
+
+
+def test_hertz_3d_beyond_the_float_range_of_its_products():
+    """E and the curvatures both scaled by 1e-162: E* C_major ~ 1e-313 underflowed (a0 = inf).
+    Scaling (Johnson Sec. 4.2): a0, b0 ~ (N / (E C))^(1/3), p0 ~ N^(1/3) (E C)^(2/3), so
+    a0, b0 grow by 1e108 and p0 falls by 1e-216."""
+    unit = hertz_3d(8e4, 1.087, 1.667, 210e9, 0.28)
+    got = hertz_3d(8e4, 1.087e-162, 1.667e-162, 210e9 * 1e-162, 0.28)
+    assert got.a0 == pytest.approx(unit.a0 * 1e108, rel=1e-13)
+    assert got.b0 == pytest.approx(unit.b0 * 1e108, rel=1e-13)
+    assert got.p0 == pytest.approx(unit.p0 * 1e-216, rel=1e-13)
+    with pytest.raises(ValueError, match=r"Hertz pressure p0 must be in \[0, 1.79769e\+308\] "
+                                         r"\[Pa\]; got inf \(overflow at normal_load = 1e\+300"):
+        hertz_3d(1e300, 1e300, 1e300, 1e300, 0.28)

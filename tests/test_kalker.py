@@ -121,3 +121,20 @@ def test_vectorised_equals_scalar():
 def test_errors(g, nu, name):
     with pytest.raises(ValueError, match=name):
         kalker_coefficients(g, nu)
+
+
+def test_extreme_axis_ratios_finite_or_clear_error():
+    """a0/b0 anywhere in (0, 1e100]: finite coefficients; towards 0 they reach Kalker's limits
+    C11 = pi^2 / (4 (1 - nu)), C22 = pi^2 / 4 (Kalker 1990, Table E.3; ln(16/g) overflowed for
+    g < 1e-307 and gave C23 = inf). Beyond 1e100 a ValueError (C23 ~ g^1.5 overflows by
+    ~1e205; g = 1e300 gave (0, 0, NaN))."""
+    nu = 0.28
+    c = kalker_coefficients([5e-324, 1e-300, 1e50, 1e100], nu)
+    assert all(np.all(np.isfinite(v)) and np.all(np.asarray(v) > 0.0) for v in c)
+    assert c.c11[:2] == pytest.approx(np.pi**2 / (4 * (1 - nu)), rel=1e-12)
+    assert c.c22[:2] == pytest.approx(np.pi**2 / 4, rel=1e-12)
+    with pytest.raises(ValueError, match=r"a0_over_b0 must be in \(0, 1e\+100\] \[-\]; got "
+                                         r"1e\+300"):
+        kalker_coefficients(1e300, nu)
+    with pytest.raises(ValueError, match=r"a0_over_b0 must be in \(0, 1e\+100\]"):
+        kalker_asymptotes(1e300, nu)

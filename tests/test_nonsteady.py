@@ -390,3 +390,17 @@ def test_relax_creepage_accurate_bounded_and_equal_to_the_scalar_path():
             assert new == xi
     with pytest.raises(ValueError, match="relaxed_creepage must be"):
         relax_creepage(np.nan, 0.0, 1.0, 0.02)
+
+
+def test_relax_creepage_between_creepages_near_the_float_limit():
+    """xi_e = 1e308, xi = -1.8e308: xi - xi_e overflowed, and on a full-sliding step (sigma = 0,
+    q = 0) inf * 0 gave NaN (the FMU's non-steady scene returned Fx = NaN). The result lies
+    between the two and is xi exactly for sigma = 0."""
+    from railcontact.nonsteady import _relax, relax_creepage
+
+    big = float(np.finfo(float).max)
+    assert relax_creepage(1e308, -big, 1e-3, 0.0) == -big
+    for d in (1e-6, 1e-3, 1.0):
+        got = float(relax_creepage(1e308, -big, d, 5e-3))
+        assert -big <= got <= 1e308
+        assert _relax(1e308, -big, d / 5e-3) == got

@@ -318,6 +318,86 @@ def test_invalid_input_raises_value_error_naming_it(case, kind):
 
 
 # --------------------------------------------------------------------------------------------
+# the whole float range: finite results with |T| <= mu N, or a ValueError naming the parameter
+# --------------------------------------------------------------------------------------------
+_EDGES = [0.0, 5e-324, 2.2250738585072014e-308, 1e-300, 1e300, float(np.finfo(float).max)]
+#: Any finite float: the edges of the range (both signs) or any value hypothesis draws
+#: (unbounded st.floats covers subnormals to 1.8e308, both signs).
+any_magnitude = st.one_of(
+    st.tuples(st.sampled_from(_EDGES), st.sampled_from([-1.0, 1.0])).map(lambda t: t[0] * t[1]),
+    st.floats(allow_nan=False, allow_infinity=False))
+_CREEP_NAMES = list(_CREEP)
+
+
+def _extreme_creep_kwargs(values, where, as_array):
+    """The valid creep inputs with the parameters ``where`` set to ``values`` (the first one
+    as an array [value, valid value] if ``as_array``: the array paths)."""
+    kwargs = dict(_CREEP)
+    for k, (value, i) in enumerate(zip(values, where)):
+        name = _CREEP_NAMES[i]
+        kwargs[name] = np.array([value, _CREEP[name]]) if as_array and k == 0 else value
+    return kwargs
+
+
+def _finite_bounded_or_named_error(call, kwargs, coulomb=True):
+    """``call(**kwargs)`` gives finite forces within mu N, or a ValueError whose message names
+    a parameter (in the house style "... must be ...")."""
+    try:
+        tx, ty = call(**kwargs)[:2]
+    except ValueError as exc:
+        message = str(exc)
+        assert " must " in message and any(n in message for n in _CREEP_NAMES), message
+        return
+    assert np.all(np.isfinite(tx)) and np.all(np.isfinite(ty)), kwargs
+    if coulomb:
+        mu_n = np.asarray(kwargs["friction_coefficient"]) * np.asarray(kwargs["normal_load"])
+        assert np.all(np.hypot(tx, ty) <= mu_n * (1.0 + 4.0 * EPS)), kwargs
+
+
+_extreme_args = dict(values=st.lists(any_magnitude, min_size=1, max_size=3),
+                     where=st.lists(st.integers(0, 8), min_size=3, max_size=3, unique=True),
+                     as_array=st.booleans())
+
+
+@settings(max_examples=budget(2.0))
+@given(method=st.sampled_from(METHODS), solution=st.booleans(), **_extreme_args)
+def test_creep3d_whole_float_range_finite_bounded_or_named_error(values, where, as_array,
+                                                                 method, solution):
+    call = creep_solution_3d if solution else creep_force_3d
+    _finite_bounded_or_named_error(lambda **kw: call(**kw, method=method),
+                                   _extreme_creep_kwargs(values, where, as_array),
+                                   coulomb=method != "linear")
+
+
+@settings(max_examples=budget(1.0))
+@given(a0_over_b0=any_magnitude, nu=st.one_of(any_magnitude, st.floats(0.0, 0.5)))
+def test_kalker_whole_float_range_finite_or_named_error(a0_over_b0, nu):
+    try:
+        c = kalker_coefficients(a0_over_b0, nu)
+    except ValueError as exc:
+        assert "a0_over_b0 must" in str(exc) or "poisson_ratio must" in str(exc)
+        return
+    assert all(math.isfinite(float(v)) and float(v) >= 0.0 for v in c)
+
+
+@settings(max_examples=budget(1.0))
+@given(values=st.lists(any_magnitude, min_size=5, max_size=5), keep=st.integers(0, 4))
+def test_hertz_3d_whole_float_range_finite_or_named_error(values, keep):
+    names = ["normal_load", "curvature_longitudinal", "curvature_lateral", "youngs_modulus",
+             "poisson_ratio"]
+    kwargs = dict(zip(names, [8e4, 1.087, 1.667, E, NU]))
+    for i, v in enumerate(values):
+        if i != keep:
+            kwargs[names[i]] = abs(v) if i < 4 else kwargs[names[i]]
+    try:
+        out = hertz_3d(**kwargs)
+    except ValueError as exc:
+        assert " must " in str(exc) and any(n in str(exc) for n in names), str(exc)
+        return
+    assert all(np.all(np.isfinite(v)) for v in out), kwargs
+
+
+# --------------------------------------------------------------------------------------------
 # the shipped creep table
 # --------------------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
@@ -400,6 +480,34 @@ def test_table_no_overshoot_past_saturation(creep_table, z):
     f = float(_force_ratio_along_z(creep_table, z))
     assert f <= 1.0
     assert f == pytest.approx(float(strip_force_function(min(z, 1.0))), abs=1e-5)
+
+
+@pytest.fixture(scope="module")
+def exact_table():
+    from railcontact.tables import ExactCreepTable
+
+    return ExactCreepTable.from_file()
+
+
+@settings(max_examples=budget(2.0))
+@given(kind=st.sampled_from(["force", "solution", "jacobian", "exact"]), **_extreme_args)
+def test_tables_whole_float_range_finite_bounded_or_named_error(creep_table, exact_table,
+                                                                values, where, as_array, kind):
+    """The table readers over the whole float range (the array b0 = 1e-300 raised
+    ZeroDivisionError, xi = 1e308 gave NaN); the scalar fast path is taken unless as_array."""
+    kwargs = _extreme_creep_kwargs(values, where, as_array)
+    args = [kwargs[n] for n in _CREEP_NAMES]
+    if kind == "jacobian":
+        try:
+            jac = creep_table.creep_force_jacobian_3d(*args)
+        except ValueError as exc:
+            assert " must " in str(exc) and any(n in str(exc) for n in _CREEP_NAMES)
+            return
+        assert np.all(np.isfinite(jac))
+        return
+    call = {"force": creep_table.creep_force_3d, "solution": creep_table.creep_solution_3d,
+            "exact": exact_table.creep_force_3d}[kind]
+    _finite_bounded_or_named_error(lambda **kw: call(*[kw[n] for n in _CREEP_NAMES]), kwargs)
 
 
 # --------------------------------------------------------------------------------------------
@@ -568,5 +676,39 @@ def test_fmu_invalid_input_is_an_fmi_error_naming_it(fmu_setup, name, value):
         assert info.value.status >= 3       # fmi2Error or fmi2Fatal
         errors = [m for s, m in inst.messages if s >= 3]
         assert errors and name in errors[0], inst.messages
+    finally:
+        inst.fmu.freeInstance()
+
+
+@settings(max_examples=budget(0.5))
+@given(values=st.lists(any_magnitude, min_size=1, max_size=3),
+       where=st.lists(st.integers(0, 5), min_size=3, max_size=3, unique=True),
+       step_size=st.one_of(st.just(1e-3), any_magnitude),
+       stem=st.sampled_from(["creep_only_analytic", "creep_only_table"]))
+def test_fmu_whole_float_range_finite_bounded_or_fmi_error(fmu_setup, values, where, step_size,
+                                                           stem):
+    """Inputs and step sizes over the whole float range: finite outputs within mu N and status
+    OK, or fmi2DoStep fails with an error logged that names the input or the step size (with
+    creepage 1e308 the table scenes gave Fx = NaN with status OK; a negative, NaN or infinite
+    step size returned OK)."""
+    from fmpy.fmi1 import FMICallException
+
+    unzipdir, md, scenes = fmu_setup
+    path, scene, _ = scenes[stem]
+    inst = _Instance(unzipdir, md, path, "extreme")
+    try:
+        row = dict(zip(FMU_INPUTS, (8e4, 1e-3, -5e-4, 0.1, 20.0, 0.0)))
+        for value, i in zip(values, where):
+            row[FMU_INPUTS[i]] = value
+        try:
+            out = inst.step([row[n] for n in FMU_INPUTS], h=step_size)
+        except FMICallException as exc:
+            assert "fmi2DoStep" in str(exc) and exc.status >= 3
+            errors = [m for s, m in inst.messages if s >= 3]
+            assert errors and any(n in errors[0] for n in FMU_INPUTS + ["step_size"]), \
+                inst.messages
+            return
+        assert np.all(np.isfinite(out)), (row, step_size, out)
+        assert within_coulomb(out[0], out[1], scene.friction_coefficient * row["normal_force"])
     finally:
         inst.fmu.freeInstance()

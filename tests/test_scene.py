@@ -127,7 +127,10 @@ rail_position = { kind = "travel", start_value = 3.0 }
 
 
 def test_undriven_inputs_take_fmu_start_values():
-    s = parse_scene("").input_signals()
+    from railcontact.scene import NoContactWarning
+
+    with pytest.warns(NoContactWarning):            # (normal_force undriven: 0 N)
+        s = parse_scene("").input_signals()
     assert np.all(s["rolling_speed"] == 20.0) and np.all(s["normal_force"] == 0.0)
 
 
@@ -407,3 +410,27 @@ def test_roughness_as_fmu_parameters():
     # off by default: a parameter-only scene does not switch it on
     assert "roughness" not in scene_from_dict(parameters_to_scene_dict(
         dict(scene_to_parameters(), geometry_kind="line", creep_method="carter"))).effects
+
+
+def test_missing_table_is_a_scene_error_at_load():
+    """A creep table that does not exist failed only at FMU initialisation, naming a temporary
+    extraction path; now the scene is refused when read, naming the key, the table and where
+    tables are looked up."""
+    with pytest.raises(SceneError, match=r"effects.creep.table must name an existing table; got "
+                                         r"'no_such_table': table file 'no_such_table.nc' not "
+                                         r"found in \[.*\]; build it with"):
+        parse_scene("[effects.creep]\nsource = 'table'\ntable = 'no_such_table'\n")
+    # the analytic source does not read the table: no check
+    assert parse_scene("[effects.creep]\ntable = 'no_such_table'\n").effects["creep"]
+
+
+def test_input_signals_without_normal_force_warn():
+    from railcontact.scene import NoContactWarning
+
+    with pytest.warns(NoContactWarning, match=r"normal_force is 0 N at every time"):
+        signals = parse_scene("[inputs]\ncreepage_longitudinal = 1e-3\n").input_signals()
+    assert np.all(signals["normal_force"] == 0.0)
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NoContactWarning)
+        parse_scene("[inputs]\nnormal_force = 8e4\n").input_signals()

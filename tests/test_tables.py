@@ -8,12 +8,14 @@ Jacobian against finite differences; the linear-theory limit; ncdump (a non-Pyth
 import shutil
 import subprocess
 
+import math
+
 import numpy as np
 import pytest
 from scipy.interpolate import NdBSpline
 
 from railcontact import creep_force_3d, creep_solution_3d, kalker_coefficients
-from railcontact.tables import (CreepTable, Table, TableFileError, TensorSpline,
+from railcontact.tables import (CreepTable, ExactCreepTable, Table, TableFileError, TensorSpline,
                                 bspline_knots, default_table_path, fit_tensor_bspline,
                                 tables_directory)
 
@@ -506,14 +508,18 @@ def test_corrugation_table_rechecked_against_linear_response():
 
 
 def test_subnormal_friction_coefficient_gives_zero_or_clear_error():
-    """mu ~ 5e-324 makes w_sat underflow to 0: the modified-strip reader returns zero force
-    (|T| <= mu N ~ 1e-319 N), the exact-table reader raises its documented out-of-range
-    ValueError; neither raises ZeroDivisionError (found by the FMU speed work)."""
+    """mu ~ 5e-324: w_sat (carried as mantissa and exponent) no longer underflows, so the
+    modified-strip reader gives the saturated force, |T| = mu N ~ 5e-319 N (the analytic
+    theory's value); the exact-table reader raises its documented out-of-range ValueError;
+    neither raises ZeroDivisionError (found by the FMU speed work)."""
+    from railcontact import creep_force_3d
     from railcontact.tables import CreepTable, ExactCreepTable, default_table_path
 
     args = (1e-3, 1e-4, 0.1, 1e5, 6e-3, 9e-3, 210e9, 0.28, 5e-324)
     strip = CreepTable.from_file(default_table_path("creep_modified_strip"))
-    assert tuple(float(v) for v in strip.creep_force_3d(*args)) == (0.0, 0.0)
+    got = tuple(float(v) for v in strip.creep_force_3d(*args))
+    assert got == tuple(float(v) for v in creep_force_3d(*args))
+    assert 0.0 < math.hypot(*got) <= 5e-324 * 1e5
     exact = ExactCreepTable.from_file(default_table_path("creep_exact"))
     with pytest.raises(ValueError, match="normalised_creepage"):
         exact.creep_force_3d(*args)
@@ -593,3 +599,127 @@ def test_exact_table_scalar_solution_equals_array_path(exact_table):
         # the force part is the reader's own scalar path
         assert one[:2] == exact_table._scalar(*args)
     assert 0 < outside < 600
+
+
+# --------------------------------------------------------------------------------------------
+# Inputs anywhere in the float range (the creep3d mantissa/exponent arithmetic)
+# --------------------------------------------------------------------------------------------
+_EXTREME = (1e-3, 0.0, 0.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
+
+
+def _with(index, value):
+    args = list(_EXTREME)
+    args[index] = value
+    return args
+
+
+def test_creep_table_huge_creepage_is_full_sliding():
+    """xi = 1e308 gave NaN (C11 xi overflowed): it is full sliding, |T| = mu N."""
+    table = CreepTable.from_file()
+    for args in (_with(0, 1e308), _with(0, np.array([1e308, -1e308]))):
+        tx, ty = table.creep_force_3d(*args)
+        assert np.all(np.hypot(tx, ty) == pytest.approx(0.3 * 1e5, rel=1e-12))
+        assert np.all(np.sign(tx) == -np.sign(args[0]))
+
+
+def test_creep_table_huge_load_gives_the_linear_theory():
+    """N = 1e308 on a fixed ellipse: p0 overflowed (force 0); now z ~ 1e-300, and the table's
+    initial slope F'(0) = 3 pi / 4 gives the linear theory (independent of N)."""
+    got = CreepTable.from_file().creep_force_3d(*_with(3, 1e308))
+    want = creep_force_3d(*_with(3, 1e308), method="linear")
+    assert float(got.tx) == pytest.approx(float(want.tx), rel=1e-6)
+
+
+@pytest.mark.parametrize("method", ["creep_force_3d", "creep_force_jacobian_3d",
+                                    "creep_solution_3d"])
+def test_creep_table_array_b0_1e_300(method):
+    """An array b0 holding 1e-300 raised ZeroDivisionError in the compiled evaluator (NaN
+    coordinates): a0/b0 = 6e297 is beyond Kalker's coefficients, a ValueError naming it; with
+    a0 = 1e-300 too the ratio is fine and the answer finite."""
+    table = CreepTable.from_file()
+    with pytest.raises(ValueError, match=r"a0/b0 must be in \(0, 1e\+100\] \[-\]"):
+        getattr(table, method)(*_with(5, np.array([1e-300, 5e-3])))
+    args = _with(5, np.array([1e-300, 5e-3]))
+    args[4] = np.array([1e-300, 6e-3])
+    out = getattr(table, method)(*args)
+    assert all(np.all(np.isfinite(v)) for v in out[:2])
+
+
+def test_exact_table_tiny_youngs_modulus_and_no_contact():
+    """E = 5e-324 raised ZeroDivisionError (pi a0 b0 E underflowed): w_sat is huge, the
+    normalised creepage ~ 1e-300 and the force ~ 0; mu = 0 with huge creepage and spin gave
+    NaN coordinates (ZeroDivisionError in the evaluator): zero force."""
+    table = ExactCreepTable.from_file()
+    tx, ty = table.creep_force_3d(*_with(6, 5e-324))
+    assert np.isfinite(tx) and np.isfinite(ty) and math.hypot(tx, ty) <= 0.3 * 1e5
+    args = _with(8, 0.0)
+    args[1], args[2] = -np.finfo(float).max, np.array([1e300, 0.1])
+    tx, ty = table.creep_force_3d(*args)
+    assert np.all(tx == 0.0) and np.all(ty == 0.0)
+    with pytest.raises(ValueError, match=r"creepage_longitudinal: the finite-difference step "
+                                         r"relative_step \* w_sat / C must be finite and > 0"):
+        table.creep_force_jacobian_3d(*_with(6, 5e-324))
+    with pytest.raises(ValueError, match=r"friction_coefficient \* normal_load"):
+        table.creep_force_3d(*_with(3, 1e308)[:8], 10.0)
+
+
+@pytest.mark.parametrize("edit, match", [
+    (lambda nc: nc.setncattr("railcontact_table_format", "abc"),
+     r"edited.nc' has table format version 'abc', this reader understands version 1"),
+    (lambda nc: nc.setncattr("spline_degree", "three"),
+     r"edited.nc': attribute spline_degree must be 3; got 'three'"),
+    (lambda nc: nc.variables["normalised_creepage"].setncattr("double_knots", "abc"),
+     r"edited.nc': attribute normalised_creepage:double_knots must be a list of numbers; got "
+     r"'abc'"),
+    (lambda nc: nc.variables["normalised_creepage"].setncattr("out_of_range", "bogus"),
+     r"edited.nc': attribute normalised_creepage:out_of_range must be one of \['error', "
+     r"'hold'\]; got 'bogus'"),
+    (lambda nc: nc.setncattr("table_variables", "force_ratio"),
+     r"edited.nc': attribute table_variables \('force_ratio'\) lacks "
+     r"\['stick_area_fraction'\]"),
+])
+def test_malformed_attribute_is_a_table_file_error_naming_the_file(tmp_path, edit, match):
+    dst = _copy_with(tmp_path, edit)
+    with pytest.raises(TableFileError, match=match):
+        CreepTable.from_file(dst)
+
+
+def test_float32_copy_is_refused_precisely(tmp_path):
+    """A float32 copy misfits its own nodes by ~4e-8: refused as float32, not as 'corrupt'."""
+    import netCDF4
+
+    src = default_table_path("creep_modified_strip")
+    dst = tmp_path / "single.nc"
+    with netCDF4.Dataset(src) as a, netCDF4.Dataset(dst, "w") as b:
+        b.setncatts({k: a.getncattr(k) for k in a.ncattrs()})
+        for name, dim in a.dimensions.items():
+            b.createDimension(name, len(dim))
+        for name, var in a.variables.items():
+            out = b.createVariable(name, "f4" if var.dtype == np.float64 else var.dtype,
+                                   var.dimensions)
+            out.setncatts({k: var.getncattr(k) for k in var.ncattrs()})
+            out[...] = var[...]
+    with pytest.raises(TableFileError, match=r"single.nc': variable 'normalised_creepage' is "
+                                             r"stored as float32 where float64 is expected"):
+        CreepTable.from_file(dst)
+
+
+def test_tensor_spline_refuses_unknown_out_of_range():
+    axis = dict(name="x", nodes=np.arange(5.0), knots=bspline_knots(np.arange(5.0)),
+                out_of_range="bogus")
+    with pytest.raises(ValueError, match=r"out_of_range of axis 'x' must be one of \['error', "
+                                         r"'hold'\]; got 'bogus'"):
+        TensorSpline([axis], np.zeros((1, 5)), ["v"])
+
+
+def test_exact_table_spin_moment_beyond_float_range_raises():
+    """N = 1e300 on a large ellipse: the forces are finite (|T| = mu N ~ 3e299) but the spin
+    moment ~ mu N sqrt(a0 b0) ~ 3e395 is not; it was -inf."""
+    table = ExactCreepTable.from_file()
+    args = (1e-3, -5e-4, 0.1, 1e300, 1.5e96, 1.2e96, 210e9, 0.28, 0.3)
+    tx, ty = table.creep_force_3d(*args)
+    assert math.hypot(tx, ty) <= 0.3 * 1e300
+    with pytest.raises(ValueError, match=r"spin moment Mz ~ mu N sqrt\(a0 b0\) must be in "
+                                         r"\[0, 1.79769e\+308\] \[N m\]; got inf \(overflow at "
+                                         r"normal_load = 1e\+300"):
+        table.creep_solution_3d(*args)

@@ -35,6 +35,7 @@ import math
 
 import numpy as np
 
+from ._floats import _finite_or_scaled, _overflow_error, _scaled, _value
 from ._validation import check_range
 from .hertz import hertz_2d
 
@@ -78,7 +79,14 @@ def carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
     """
     a0, _, mu, r = _inputs(normal_load, radius, youngs_modulus, poisson_ratio,
                            friction_coefficient)
-    return mu * a0 / r
+    with np.errstate(over="ignore", under="ignore"):
+        xi_c = _finite_or_scaled(mu * a0 / r, lambda: _value(*_scaled((mu, a0), (r,))),
+                                 (mu == 0.0) | (a0 == 0.0))
+    if not np.all(np.isfinite(xi_c)):
+        raise _overflow_error("critical creepage mu a0 / R", "-", xi_c,
+                              dict(friction_coefficient=mu, normal_load=normal_load,
+                                   radius=r, youngs_modulus=youngs_modulus))
+    return xi_c
 
 
 def carter_stick_ratio(creepage, normal_load, radius, youngs_modulus, poisson_ratio,
@@ -148,6 +156,11 @@ def carter_creep_force(creepage, normal_load, radius, youngs_modulus, poisson_ra
                              friction_coefficient)
     mu = np.asarray(friction_coefficient, dtype=float)
     n_load = np.asarray(normal_load, dtype=float)
+    with np.errstate(over="ignore"):
+        mu_n = mu * n_load
+    if not np.all(np.isfinite(mu_n)):
+        raise _overflow_error("friction_coefficient * normal_load (the Coulomb limit mu N)",
+                              "N/m", mu_n, dict(friction_coefficient=mu, normal_load=n_load))
     return (-np.sign(xi) * mu * n_load * (frac * (2.0 - frac)))[()]
 
 
@@ -160,7 +173,9 @@ def _sliding_fraction(xi, normal_load, radius, youngs_modulus, poisson_ratio,
     xi_c = carter_critical_creepage(normal_load, radius, youngs_modulus, poisson_ratio,
                                     friction_coefficient)
     xi, xi_c = np.broadcast_arrays(xi, xi_c)
-    frac = np.divide(np.abs(xi), xi_c, out=np.where(xi == 0.0, 0.0, np.inf), where=xi_c > 0)
+    with np.errstate(over="ignore"):        # |xi| / xi_c beyond 1.8e308: full sliding (1)
+        frac = np.divide(np.abs(xi), xi_c, out=np.where(xi == 0.0, 0.0, np.inf),
+                         where=xi_c > 0)
     return np.minimum(frac, 1.0)
 
 

@@ -76,7 +76,8 @@ from collections import namedtuple
 import numpy as np
 
 from ._validation import check_choice, check_range
-from .kalker import _coefficients_cached, kalker_coefficients
+from ._floats import _NO_EXP, _TINY_SUBNORMAL, _hypot_scaled, _root_ab, _scaled, _value
+from .kalker import A0_OVER_B0_MAX, _coefficients_cached, kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS", "creep_force_3d", "creep_solution_3d",
            "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
@@ -143,26 +144,74 @@ def _check_common(normal_load, a0, b0, youngs_modulus, poisson_ratio, friction_c
     return n_load, a0, b0, e_mod, nu, mu
 
 
-def _coefficients(a0, b0, nu, method):
+def _axis_ratio(a0, b0):
+    """a0/b0 where both are > 0 (else the placeholder 1), checked against the range of
+    :func:`railcontact.kalker_coefficients`; an underflow to 0 is held at the smallest
+    subnormal (the coefficients have reached their a0/b0 -> 0 limits long before)."""
     has_area = (a0 > 0.0) & (b0 > 0.0)
-    g = np.where(has_area, a0 / np.where(has_area, b0, 1.0), 1.0)
-    c11, c22, c23 = kalker_coefficients(g, nu)
+    with np.errstate(over="ignore", under="ignore"):
+        g = np.where(has_area, a0 / np.where(has_area, b0, 1.0), 1.0)
+    return check_range("a0/b0", np.maximum(g, _TINY_SUBNORMAL), "-", 0.0, A0_OVER_B0_MAX,
+                       lower_closed=False,
+                       condition="semi-axis ratio; Kalker's C23 ~ (a0/b0)^1.5 overflows beyond")
+
+
+def _coefficients(a0, b0, nu, method):
+    c11, c22, c23 = kalker_coefficients(_axis_ratio(a0, b0), nu)
     if method == "strip":
         c11 = np.pi**2 / (4.0 * (1.0 - nu)) + 0.0 * c11
         c22 = np.pi**2 / 4.0 + 0.0 * c22
     return c11, c22, c23
 
 
-def _weighted(xi_x, xi_y, phi, a0, b0, c11, c22, c23):
-    return c11 * xi_x, c22 * xi_y + np.sqrt(a0 * b0) * c23 * phi
+def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23, parts=False):
+    """The Kalker-weighted creepage w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) without
+    overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e); with
+    ``parts`` also (ux, uy, top), w = (ux, uy) 2^top."""
+    t1 = _scaled((c11, xi_x))
+    t2 = _scaled((c22, xi_y))
+    t3 = _scaled((_root_ab(a0, b0), c23, phi))
+    ey = np.maximum(t2[1], t3[1])
+    wy_m = _value(t2[0], t2[1] - ey) + _value(t3[0], t3[1] - ey)    # |.| <= 2
+    wy_m, wy_e = np.frexp(wy_m)
+    wy_e = np.where(wy_m == 0.0, _NO_EXP, ey + wy_e.astype(np.int64))
+    top = np.maximum(t1[1], wy_e)
+    ux = _value(t1[0], t1[1] - top)                 # w / 2^top: |.| <= 1, one of them >= 1/2
+    uy = _value(wy_m, wy_e - top)
+    u_abs = np.hypot(ux, uy)
+    nonzero = u_abs > 0.0
+    safe = np.where(nonzero, u_abs, 1.0)
+    dx = np.where(nonzero, ux / safe, 0.0)
+    dy = np.where(nonzero, uy / safe, 0.0)
+    m, e = np.frexp(u_abs)
+    out = dx, dy, m, np.where(nonzero, top + e.astype(np.int64), _NO_EXP)
+    return out + (ux, uy, top) if parts else out
 
 
-def _saturation_w(n_load, a0, b0, e_mod, nu, mu):
-    """w_sat = pi^2 (1 + nu) mu p0 / E, p0 = 3 N / (2 pi a0 b0); 0 if there is no contact."""
-    area = np.pi * a0 * b0
-    p0 = np.divide(1.5 * n_load, area, out=np.zeros(np.broadcast(n_load, area).shape),
-                   where=area > 0.0)
-    return np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+def _saturation_scaled(n_load, a0, b0, e_mod, nu, mu):
+    """w_sat = 1.5 pi (1 + nu) mu N / (a0 b0 E) (= pi^2 (1 + nu) mu p0 / E with Hertz's p0)
+    as (m, e); m = 0 without contact (N, mu, a0 or b0 zero)."""
+    has_area = (a0 > 0.0) & (b0 > 0.0)
+    # the operations (and roundings) of pi^2 (1 + nu) mu (1.5 N / (pi a0 b0)) / E
+    area = _scaled((np.pi, np.where(has_area, a0, 1.0), np.where(has_area, b0, 1.0)))
+    p0 = _scaled((1.5, n_load), (area,))
+    m, e = _scaled((np.pi**2 * (1.0 + nu), mu, p0), (e_mod,))
+    m = np.where(has_area, m, 0.0)
+    return m, np.where(m == 0.0, _NO_EXP, e)
+
+
+def _check_coulomb_limit(mu, n_load):
+    """mu N, which must be a finite float (it bounds the force)."""
+    with np.errstate(over="ignore"):
+        mu_n = mu * n_load
+    if not np.all(np.isfinite(mu_n)):
+        bad = np.broadcast_arrays(mu, n_load, mu_n)
+        i = np.flatnonzero(~np.isfinite(bad[2]))[0]
+        raise ValueError(
+            f"friction_coefficient * normal_load (the Coulomb limit mu N) must be in "
+            f"[0, {np.finfo(float).max:g}] [N]; got inf (friction_coefficient = "
+            f"{bad[0].flat[i]:g}, normal_load = {bad[1].flat[i]:g})")
+    return mu_n
 
 
 def spin_coefficient(creepage_longitudinal, creepage_lateral, spin, a0, b0):
@@ -188,11 +237,15 @@ def spin_coefficient(creepage_longitudinal, creepage_lateral, spin, a0, b0):
     phi = check_range("spin", spin, "1/m")
     a0 = check_range("a0", a0, "m", 0.0, None)
     b0 = check_range("b0", b0, "m", 0.0, None)
-    num = np.hypot(a0, b0) * np.abs(phi)
-    den = np.hypot(xi_x, xi_y)
-    num, den = np.broadcast_arrays(num, den)
-    out = np.where(num > 0.0, np.inf, 0.0)
-    return np.divide(num, den, out=out, where=den > 0.0)[()]
+    # hypot(a0, b0) |phi| / hypot(xi_x, xi_y) in (mantissa, exponent) form: no overflow
+    n_m, n_e = _hypot_scaled(a0, b0)
+    d_m, d_e = _hypot_scaled(xi_x, xi_y)
+    p_m, p_e = np.frexp(np.abs(phi))
+    n_m, d_m, p_m, n_e, d_e, p_e = np.broadcast_arrays(n_m, d_m, p_m, n_e, d_e, p_e)
+    num_m = n_m * p_m
+    den = d_m > 0.0
+    ratio = _value(num_m / np.where(den, d_m, 1.0), n_e + p_e.astype(np.int64) - d_e)
+    return np.where(den, ratio, np.where(num_m > 0.0, np.inf, 0.0))[()]
 
 
 def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
@@ -216,8 +269,9 @@ def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal
     Returns
     -------
     ndarray
-        z >= 0 [-]; inf if there is creepage but no friction force available (N = 0 or mu = 0),
-        0 for zero creepage.
+        z >= 0 [-]; inf if there is creepage but no friction force available (N = 0 or mu = 0)
+        or if |w| / w_sat exceeds the float range (full sliding either way), 0 for zero
+        creepage.
     """
     check_choice("method", method, ("modified_strip", "strip"))
     xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-")
@@ -226,12 +280,12 @@ def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal
     n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
                                                   poisson_ratio, friction_coefficient)
     c11, c22, c23 = _coefficients(a0, b0, nu, method)
-    w_x, w_y = _weighted(xi_x, xi_y, phi, a0, b0, c11, c22, c23)
-    w_abs = np.hypot(w_x, w_y)
-    w_sat = _saturation_w(n_load, a0, b0, e_mod, nu, mu)
-    w_abs, w_sat = np.broadcast_arrays(w_abs, w_sat)
-    out = np.where(w_abs > 0.0, np.inf, 0.0)
-    return np.divide(w_abs, w_sat, out=out, where=w_sat > 0.0)[()]
+    _, _, w_m, w_e = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23)
+    s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
+    w_m, w_e, s_m, s_e = np.broadcast_arrays(w_m, w_e, s_m, s_e)
+    pos = s_m > 0.0
+    return np.where(pos, _value(w_m / np.where(pos, s_m, 1.0), w_e - s_e),
+                    np.where(w_m > 0.0, np.inf, 0.0))[()]
 
 
 def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
@@ -277,8 +331,17 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
     b0 = check_range("b0", b0, "m", 0.0, None, lower_closed=False)
     theta = check_range("direction", direction, "rad")
     c11, c22, _ = _coefficients(a0, b0, nu, method)
-    w_sat = _saturation_w(n_load, a0, b0, e_mod, nu, mu)
-    return (w_sat / np.hypot(c11 * np.cos(theta), c22 * np.sin(theta)))[()]
+    s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
+    s_sat = _value(s_m / np.hypot(c11 * np.cos(theta), c22 * np.sin(theta)), s_e)
+    if not np.all(np.isfinite(s_sat)):
+        bad = np.broadcast_arrays(n_load, a0, b0, e_mod, s_sat)
+        i = np.flatnonzero(~np.isfinite(bad[-1]))[0]
+        raise ValueError(
+            f"saturation creepage pi^2 (1 + nu) mu p0 / (E |C|) must be in "
+            f"[0, {np.finfo(float).max:g}] [-]; got inf (overflow at normal_load = "
+            f"{bad[0].flat[i]:g}, a0 = {bad[1].flat[i]:g}, b0 = {bad[2].flat[i]:g}, "
+            f"youngs_modulus = {bad[3].flat[i]:g})")
+    return s_sat[()]
 
 
 def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
@@ -290,42 +353,63 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
     n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
                                                   poisson_ratio, friction_coefficient)
     shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
-    g_mod = e_mod / (2.0 * (1.0 + nu))
-    mu_n = mu * n_load
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (
+        np.broadcast_to(v, shape) for v in (xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
+    if method == "linear":
+        with np.errstate(over="ignore"):
+            mu_n = mu * n_load                   # (only for within_validity: may be inf)
+    else:
+        mu_n = _check_coulomb_limit(mu, n_load)
     c11, c22, c23 = _coefficients(a0, b0, nu, "strip" if method == "strip" else "modified_strip")
-    w_x, w_y = _weighted(xi_x, xi_y, phi, a0, b0, c11, c22, c23)
-    w_x, w_y = np.broadcast_to(w_x, shape), np.broadcast_to(w_y, shape)
-    w_abs = np.hypot(w_x, w_y)
-    w_sat = np.broadcast_to(_saturation_w(n_load, a0, b0, e_mod, nu, mu), shape)
-    has_force = (mu_n > 0.0) & (w_sat > 0.0)
-    with np.errstate(over="ignore"):             # w_sat ~ 1e-300 (N -> 0): z = inf is meant
-        z = np.divide(w_abs, w_sat, out=np.where(w_abs > 0.0, np.inf, 0.0), where=w_sat > 0.0)
-    stiffness = np.broadcast_to(g_mod * a0 * b0, shape)     # G a0 b0 [N]
+    # All in (mantissa, exponent) form (see _scaled): no intermediate overflows or underflows,
+    # and the same operations in the same order as the scalar path (_creep_solution_scalar),
+    # so the two agree bit for bit wherever its plain floats stay in the normal range.
+    d_x, d_y, w_m, w_e, u_x, u_y, top = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22,
+                                                         c23, parts=True)
+    w_abs = _value(w_m, w_e)
+    s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
+    w_sat = _value(s_m, s_e)
+    has_force = (mu_n > 0.0) & (s_m > 0.0)
+    # z = |w| / w_sat (inf: no contact with creepage, or beyond the float range: sliding)
+    s_safe = (np.where(s_m > 0.0, s_m, 1.0), s_e)
+    z = np.where(s_m > 0.0, _value(*_scaled(((w_m, w_e),), (s_safe,))),
+                 np.where(w_m > 0.0, np.inf, 0.0))
+    stiffness = _scaled((e_mod / (2.0 * (1.0 + nu)), a0, b0))       # G a0 b0 [N]
+    w_safe = (np.where(w_m > 0.0, w_m, 1.0), w_e)
+    mun_safe = np.where(mu_n > 0.0, mu_n, 1.0)
 
     if method == "linear":
-        factor = stiffness
+        f_m, f_e = stiffness
     elif method == "she":
-        t_lin = stiffness * w_abs
-        with np.errstate(over="ignore"):         # mu N ~ 1e-300: u = inf is meant (sliding)
-            u = np.divide(t_lin, mu_n, out=np.where(t_lin > 0.0, np.inf, 0.0),
-                          where=mu_n > 0.0)
+        t_lin = _scaled((stiffness, (w_m, w_e)))
+        u = np.where(mu_n > 0.0, _value(*_scaled((t_lin,), (mun_safe,))),
+                     np.where(t_lin[0] > 0.0, np.inf, 0.0))
         small = u <= 3.0
         u_c = np.minimum(u, 3.0)
-        factor_small = stiffness * (1.0 - u_c / 3.0 + u_c * u_c / 27.0)
-        factor_big = np.divide(mu_n, w_abs, out=np.zeros(shape), where=(w_abs > 0.0) & ~small)
-        factor = np.where(small, factor_small, factor_big)
-        factor = np.where(has_force | (w_abs == 0.0), factor, 0.0)
+        f_small = _scaled((stiffness, 1.0 - u_c / 3.0 + u_c * u_c / 27.0))
+        f_big = _scaled((mun_safe,), (w_safe,))
+        f_m = np.where(small, f_small[0], np.where(w_m > 0.0, f_big[0], 0.0))
+        f_e = np.where(small, f_small[1], f_big[1])
+        f_m = np.where(has_force | (w_m == 0.0), f_m, 0.0)
     else:
         # T = -mu N F(z) w/|w| = -(mu N / w_sat) (F(z)/z) w   (z <= 1),  -mu N w/|w|  (z > 1)
         below = z <= 1.0
         zc = np.minimum(z, 1.0)
-        k_sat = np.divide(mu_n, w_sat, out=np.zeros(shape), where=w_sat > 0.0)
-        factor_small = k_sat * _f_over_z(zc)
-        factor_big = np.divide(mu_n, w_abs, out=np.zeros(shape), where=(w_abs > 0.0) & ~below)
-        factor = np.where(below, factor_small, factor_big)
-        factor = np.where(has_force, factor, 0.0)
-    tx = -factor * w_x
-    ty = -factor * w_y
+        f_small = _scaled((_scaled((mun_safe,), (s_safe,)), _f_over_z(zc)))
+        f_big = _scaled((mun_safe,), (w_safe,))
+        f_m = np.where(below, f_small[0], np.where(w_m > 0.0, f_big[0], 0.0))
+        f_e = np.where(below, f_small[1], f_big[1])
+        f_m = np.where(has_force, f_m, 0.0)
+    tx = -_value(f_m * u_x, f_e + top)
+    ty = -_value(f_m * u_y, f_e + top)
+    if method == "linear" and not (np.all(np.isfinite(tx)) and np.all(np.isfinite(ty))):
+        i = np.flatnonzero(~(np.isfinite(tx) & np.isfinite(ty)))[0]
+        args = ", ".join(f"{n} = {v.flat[i]:g}" for n, v in (
+            ("creepage_longitudinal", xi_x), ("creepage_lateral", xi_y), ("spin", phi),
+            ("a0", a0), ("b0", b0), ("youngs_modulus", e_mod)))
+        raise ValueError(f"the linear theory's force G a0 b0 |w| must be in "
+                         f"[0, {np.finfo(float).max:g}] [N] (no Coulomb limit); got inf "
+                         f"(overflow at {args})")
     if method != "linear":
         # full sliding: |T| = mu N up to rounding of the unit vector; never above mu N
         t_abs = np.hypot(tx, ty)
@@ -503,9 +587,25 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
 # b0 >= 0, youngs_modulus > 0, 0 <= poisson_ratio < 0.5, friction_coefficient >= 0, method in
 # METHODS, and a0/b0 in the range kalker_coefficients accepts (> 0, any value; for a0 b0 = 0
 # the array path's placeholder 1 is used). Outside that the result is undefined (possibly NaN
-# or an exception); use the public functions there. Agreement with the array paths to a few
-# ulp (libm's hypot, acos and pow may round differently from numpy's) is tested in
-# tests/test_creep3d.py.
+# or an exception); use the public functions there. Inputs of extreme magnitude (outside
+# MODERATE_MIN..MODERATE_MAX, see _moderate) are passed on to the overflow-safe array path.
+# Agreement with the array paths to a few ulp (libm's hypot, acos and pow may round
+# differently from numpy's) is tested in tests/test_creep3d.py.
+
+
+#: Magnitudes the scalar paths accept: every non-zero input in [1e-50, 1e50] keeps all their
+#: intermediate products (at most five factors) in the normal float range, where they equal the
+#: array paths' (mantissa, exponent) arithmetic to a few ulp. Outside it they call the array
+#: path (overflow-safe; it also raises the ValueError of an input out of range).
+MODERATE_MIN, MODERATE_MAX = 1e-50, 1e50
+
+
+def _moderate(*values, _lo=MODERATE_MIN, _hi=MODERATE_MAX):
+    """True if every value is 0 or of magnitude in [1e-50, 1e50] (False for NaN, inf)."""
+    for v in values:
+        if v != 0.0 and not _lo <= abs(v) <= _hi:
+            return False
+    return True
 
 
 def _f_over_z_scalar(z, _sqrt=math.sqrt, _acos=math.acos):
@@ -515,8 +615,15 @@ def _f_over_z_scalar(z, _sqrt=math.sqrt, _acos=math.acos):
     return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * _acos(z)
 
 
-def _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0, _hypot=math.hypot, _inf=math.inf):
+def _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0):
     """:func:`spin_coefficient` for plain floats (inputs assumed in range, see above)."""
+    if not _moderate(xi_x, xi_y, phi, a0, b0):
+        return float(spin_coefficient(xi_x, xi_y, phi, a0, b0))
+    return _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
+
+
+def _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0, _hypot=math.hypot, _inf=math.inf):
+    """:func:`_spin_coefficient_scalar` for inputs already known to be moderate."""
     num = _hypot(a0, b0) * abs(phi)
     den = _hypot(xi_x, xi_y)
     if den > 0.0:
@@ -530,7 +637,8 @@ _STRIP_C22 = np.pi**2 / 4.0
 
 def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method,
                            _kalker=_coefficients_cached, _sqrt=math.sqrt, _hypot=math.hypot,
-                           _acos=math.acos, _pi=math.pi, _inf=math.inf):
+                           _acos=math.acos, _pi=math.pi, _inf=math.inf, _lo=MODERATE_MIN,
+                           _hi=MODERATE_MAX):
     """:func:`creep_solution_3d` for plain floats (inputs assumed in range, see above).
 
     The same operations in the same order as :func:`_solve` and :func:`creep_solution_3d`;
@@ -542,6 +650,13 @@ def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, metho
     CreepSolution3D
         Fields as plain floats (``within_validity`` a bool).
     """
+    # _moderate, inlined (one call per FMU step)
+    if not ((xi_x == 0.0 or _lo <= abs(xi_x) <= _hi) and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
+            and (phi == 0.0 or _lo <= abs(phi) <= _hi) and (n_load == 0.0 or _lo <= n_load <= _hi)
+            and _lo <= a0 <= _hi and _lo <= b0 <= _hi and _lo <= e_mod <= _hi
+            and (mu == 0.0 or _lo <= mu <= _hi)):
+        res = creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
+        return CreepSolution3D(*(float(v) for v in res[:6]), bool(res[6]))
     mu_n = mu * n_load
     has_area = a0 > 0.0 and b0 > 0.0
     c11, c22, c23 = _kalker(a0 / b0 if has_area else 1.0, nu)
@@ -590,7 +705,7 @@ def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, metho
             scale = mu_n * (1.0 - _EPS4) / t_abs
             tx, ty = tx * scale, ty * scale
     tx, ty = tx + 0.0, ty + 0.0
-    phi_coef = _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0)
+    phi_coef = _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
     if method == "linear":
         return CreepSolution3D(tx, ty, 1.0, 1.0, z, phi_coef,
                                phi_coef <= 1.0 and _hypot(tx, ty) <= mu_n)

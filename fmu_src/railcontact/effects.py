@@ -49,6 +49,8 @@ class EffectUnavailable(SceneError):
     """The scene asks for an effect whose model is not part of this build."""
 
 
+_FLOAT_MAX = 1.7976931348623157e308
+
 #: Sentinel of the accuracy outputs for "not estimated" (no table in use, no iteration run).
 NOT_ESTIMATED = -1.0
 
@@ -229,6 +231,13 @@ class _Effect:
         self.calls = int(state["calls"])
 
 
+#: Logged (once per FMU instance, category Warning) at the first evaluation with creepage but
+#: without a normal force (e.g. the input normal_force left at its start value 0).
+NO_NORMAL_FORCE_MESSAGE = (
+    "normal_force = 0 N with non-zero creepage: no contact, so every force output is 0 (the "
+    "input's start value is 0 N; set or connect normal_force)")
+
+
 class NormalContact(_Effect):
     r"""Hertz contact ellipse from the normal force (always on).
 
@@ -244,8 +253,9 @@ class NormalContact(_Effect):
 
     name = "normal"
 
-    def __init__(self, scene, mu_source=None):
+    def __init__(self, scene, mu_source=None, warn=None):
         super().__init__()
+        self._warn = warn if warn is not None else (lambda key, msg: None)
         geo = scene.geometry
         self._line = geo["kind"] == "line"
         if self._line:
@@ -272,8 +282,15 @@ class NormalContact(_Effect):
         # (a change here must be made in _normal_table_creep too: the fused FMU step)
         self.calls += 1
         n = c.normal_force
+        if n <= 0.0 and (c.creepage_longitudinal or c.creepage_lateral or c.spin):
+            self._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
         if self._line:
-            scale = math.sqrt(n / self._width)
+            n_line = n / self._width
+            if n_line == math.inf:
+                raise ValueError(f"normal_force / contact_width (load per unit length) must be "
+                                 f"in [0, {_FLOAT_MAX:g}] [N/m]; got inf (normal_force = "
+                                 f"{n:g} N, contact_width = {self._width:g} m)")
+            scale = math.sqrt(n_line)
             c.a0, c.b0, c.p0 = self._a1 * scale, 0.5 * self._width, self._p1 * scale
             c.contact_half_width = c.a0
             return
@@ -399,24 +416,32 @@ class Creep3D(_Effect):
         else:
             args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
                     c.b0, self._e, self._nu, c.friction_coefficient)
+            if self._exact:
+                # the spin moment output (read after the step), |Mz| < ~mu N sqrt(a0 b0)
+                scale = c.friction_coefficient * c.normal_force * math.sqrt(c.a0 * c.b0)
+                if not scale < _FLOAT_MAX / 4.0:
+                    raise ValueError(
+                        f"the spin moment scale mu N sqrt(a0 b0) must be in [0, "
+                        f"{_FLOAT_MAX / 4.0:g}] [N m]; got {scale:g} (normal_force = "
+                        f"{c.normal_force:g} N, friction_coefficient = "
+                        f"{c.friction_coefficient:g})")
             out = self._force(*args)
-            if out is None:                # exact table only: out of its range
-                out = self._exact_fallback(args)
-                c.creep_table_error_estimate = NOT_ESTIMATED
+            if out is None:                # exact table only: out of its range (or extreme)
+                out, analytic = self._exact_fallback(args)
+                if analytic:
+                    c.creep_table_error_estimate = NOT_ESTIMATED
             c.Fx, c.Fy = float(out[0]), float(out[1])
             self._aux_args = args
 
     def _exact_fallback(self, args):
-        try:                               # the reader's own message for the warning
-            self._table.creep_force_3d(*args)
-        except ValueError as exc:
+        try:    # the fast path declines extreme magnitudes too: the array path takes those
+            return self._table.creep_force_3d(*args), False
+        except ValueError as exc:          # out of the table: the reader's own message
             reason = str(exc)
-        else:                              # pragma: no cover - fast path declined, slow path ok
-            reason = "fast path declined"
         self._warn("creep-exact-range",
                    f"creep table {self._table.table.path.name}: input outside the table "
                    f"({reason}); the analytic modified strip theory is used there (Mz = 0)")
-        return self._force_analytic(*args, "modified_strip")
+        return self._force_analytic(*args, "modified_strip"), True
 
     def auxiliary(self, c):
         """Fill the stick measures and the validity flag of the last table step (lazily)."""
@@ -497,7 +522,11 @@ class Creep2D(_Effect):
         n_line = c.normal_force / self._width
         force, c.r_a0 = self._scalar(c.creepage_longitudinal, n_line, self._radius, self._e,
                                      self._nu, c.friction_coefficient)
-        c.Fx = force * self._width
+        fx = force * self._width
+        mu_n = c.friction_coefficient * c.normal_force
+        if abs(fx) > mu_n:       # (subnormal N: (mu N / w) w rounds a few ulp above mu N)
+            fx = math.copysign(mu_n, fx)
+        c.Fx = fx
         c.stick_area_fraction = c.r_a0
         c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
 
@@ -1346,14 +1375,17 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
     slope0, half_curv0, z_max = table._slope0, 0.5 * table._curv0, table._z_max
     breaks, coefs = table._pp_breaks, table._pp_coefs
     guard = 1.0 - 2.0**-51
+    creep3d = _import("creep3d", "creep (table)")
+    lo, hi = creep3d.MODERATE_MIN, creep3d.MODERATE_MAX
+    e_ok = lo <= e_mod <= hi
     memo = {}
     memo_get = memo.get
 
-    def step(c, current_time=0.0, step_size=0.0, _isfinite=math.isfinite):
+    def step(c, current_time=0.0, step_size=0.0, _isfinite=math.isfinite, _inf=math.inf):
         n, v = c.normal_force, c.rolling_speed
         xi_x, xi_y, phi = c.creepage_longitudinal, c.creepage_lateral, c.spin
         if not (_isfinite(n + xi_x + xi_y + phi + v + c.rail_position) and n >= 0.0
-                and v >= 0.0):
+                and v >= 0.0 and 0.0 <= step_size < _inf):
             return otherwise(current_time, step_size)
         # NormalContact.step
         normal.calls += 1
@@ -1368,6 +1400,8 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
         creep.calls += 1
         c.creep_table_error_estimate = estimate
         if n <= 0.0:
+            if xi_x or xi_y or phi:                  # (NormalContact.step)
+                normal._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
             c.Fx = c.Fy = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
             c.creep_within_validity = True
@@ -1380,6 +1414,19 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
         # CreepTable._scalar(table, xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu), n > 0 here
         if a0 <= 0.0 or b0 <= 0.0 or mu <= 0.0:
             c.Fx, c.Fy = 0.0, 0.0
+            creep._aux_args = (xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
+            return True
+        if not (e_ok and lo <= n <= hi and lo <= mu <= hi and lo <= a0 <= hi
+                and lo <= b0 <= hi and (xi_x == 0.0 or lo <= abs(xi_x) <= hi)
+                and (xi_y == 0.0 or lo <= abs(xi_y) <= hi)
+                and (phi == 0.0 or lo <= abs(phi) <= hi)):
+            # extreme magnitudes (railcontact.creep3d._moderate): as CreepTable._scalar, the
+            # overflow-safe array path, which raises a ValueError naming a bad input
+            try:
+                c.Fx, c.Fy = table._scalar(xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
+            except ValueError as exc:
+                on_error(current_time, exc)
+                raise
             creep._aux_args = (xi_x, xi_y, phi, n, a0, b0, e_mod, nu, mu)
             return True
         g = a0 / b0
@@ -1455,7 +1502,7 @@ def build_pipeline(scene, tables_dir=None, warn=None):
     """
     from pathlib import Path
 
-    effects = {"normal": NormalContact(scene)}
+    effects = {"normal": NormalContact(scene, warn=warn)}
     for name in scene.effects:
         if name not in ("creep", "corrugation", "wear", "velocity_friction", "nonsteady",
                         "roughness"):

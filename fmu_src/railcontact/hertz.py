@@ -39,6 +39,7 @@ from collections import namedtuple
 import numpy as np
 from scipy.special import elliprd
 
+from ._floats import _finite_or_scaled, _overflow_error, _root, _scaled, _value
 from ._validation import check_range
 
 __all__ = ["Hertz2D", "Hertz3D", "hertz_2d", "hertz_3d", "curvature_ratio_from_axis_ratio",
@@ -98,9 +99,20 @@ def hertz_2d(normal_load, radius, youngs_modulus, poisson_ratio):
     n_load = check_range("normal_load", normal_load, "N/m", 0.0, None)
     r = check_range("radius", radius, "m", 0.0, None, lower_closed=False)
     e_mod, nu = _check_material(youngs_modulus, poisson_ratio)
-    a0 = np.sqrt(8.0 * (1.0 - nu**2) * r * n_load / (np.pi * e_mod))
-    p0 = np.sqrt(n_load * e_mod / (2.0 * (1.0 - nu**2) * np.pi * r))
-    return Hertz2D(a0, p0)
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        a0 = np.sqrt(8.0 * (1.0 - nu**2) * r * n_load / (np.pi * e_mod))
+        p0 = np.sqrt(n_load * e_mod / (2.0 * (1.0 - nu**2) * np.pi * r))
+    # products beyond the float range (e.g. N R ~ 1e600 with E ~ 1e300): the same expressions
+    # in (mantissa, exponent) form; a result that itself overflows is a ValueError
+    a0 = _finite_or_scaled(a0, lambda: _root(_scaled(
+        (8.0 * (1.0 - nu**2), r, n_load), (_scaled((np.pi, e_mod)),)), 2), n_load == 0.0)
+    p0 = _finite_or_scaled(p0, lambda: _root(_scaled(
+        (n_load, e_mod), (_scaled((2.0 * (1.0 - nu**2), np.pi, r)),)), 2), n_load == 0.0)
+    names = dict(normal_load=n_load, radius=r, youngs_modulus=e_mod)
+    for value, what, unit in ((a0, "Hertz half-width a0", "m"), (p0, "Hertz pressure p0", "Pa")):
+        if not np.all(np.isfinite(value)):
+            raise _overflow_error(what, unit, value, names)
+    return Hertz2D(a0[()], p0[()])
 
 
 def _ratio_across_over_along(k):
@@ -217,15 +229,32 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
     x_major = c_y >= c_x                      # smaller curvature along x -> major axis along x
     c_major = np.where(x_major, c_x, c_y)
     c_minor = np.where(x_major, c_y, c_x)
-    k = _k_from_ratio(c_minor / c_major)
+    with np.errstate(over="ignore", under="ignore"):   # (a ratio beyond the range: clipped)
+        k = _k_from_ratio(c_minor / c_major)
     # c_major = p0 c_min (K - E) / (E* c_max^2 m), p0 = 3N/(2 pi c_max c_min),
     # (K - E)/m = R_D(0, k^2, 1)/3  ->  c_max^3 = N R_D(0, k^2, 1) / (2 pi E* C_major)
     # cbrt of each factor: cbrt(N * ...) underflows for N below ~1e-297 N although a0 ~ N^(1/3)
-    c_max = np.cbrt(n_load) * np.cbrt(elliprd(0.0, k * k, 1.0) / (2.0 * np.pi * e_star * c_major))
+    rd = elliprd(0.0, k * k, 1.0)
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        c_max = np.cbrt(n_load) * np.cbrt(rd / (2.0 * np.pi * e_star * c_major))
+    # E* C_major beyond the float range: the quotient in (mantissa, exponent) form
+    with np.errstate(over="ignore"):                    # (inf: a ValueError below)
+        c_max = _finite_or_scaled(c_max, lambda: np.cbrt(n_load) * _root(_scaled(
+            (rd,), (_scaled((2.0 * np.pi, e_star, c_major)),)), 3), n_load == 0.0)
     c_min = k * c_max
     a0 = np.where(x_major, c_max, c_min)
     b0 = np.where(x_major, c_min, c_max)
-    area = np.pi * a0 * b0
-    # N / area first: 1.5 N would round in the subnormal range for N < ~1e-308 N
-    p0 = 1.5 * np.divide(n_load, area, out=np.zeros_like(area), where=area > 0)
+    with np.errstate(over="ignore", under="ignore"):
+        area = np.pi * a0 * b0
+        # N / area first: 1.5 N would round in the subnormal range for N < ~1e-308 N
+        p0 = 1.5 * np.divide(n_load, area, out=np.zeros_like(area), where=area > 0)
+    p0 = _finite_or_scaled(p0, lambda: np.where(
+        n_load > 0.0, _value(*_scaled((1.5, n_load), (_scaled((np.pi, a0, b0)),))), 0.0),
+        n_load == 0.0)
+    names = dict(normal_load=n_load, curvature_longitudinal=c_x, curvature_lateral=c_y,
+                 youngs_modulus=e_mod)
+    for value, what, unit in ((a0, "Hertz semi-axis a0", "m"), (b0, "Hertz semi-axis b0", "m"),
+                              (p0, "Hertz pressure p0", "Pa")):
+        if not np.all(np.isfinite(value)):
+            raise _overflow_error(what, unit, value, names)
     return Hertz3D(a0[()], b0[()], p0[()])

@@ -62,13 +62,17 @@ from scipy.interpolate import CubicSpline
 from ._validation import check_range
 
 __all__ = ["KalkerCoefficients", "kalker_coefficients", "kalker_table",
-           "kalker_asymptotes"]
+           "kalker_asymptotes", "A0_OVER_B0_MAX"]
 
 KalkerCoefficients = namedtuple("KalkerCoefficients", ["c11", "c22", "c23"])
 KalkerCoefficients.__doc__ = "Kalker's creep coefficients C11, C22, C23 of the linear theory. [-]"
 
 _NU_NODES = np.array([0.0, 0.25, 0.5])
 _G_LOW, _G_HIGH = 0.1, 10.0
+#: Largest a0/b0 accepted: C23 grows as (a0/b0)^1.5 / ln(a0/b0) and overflows float64 beyond
+#: ~1e205; 1e100 keeps every coefficient (and products such as sqrt(a0 b0) C23) far from it.
+#: Small ratios have no such limit (C11, C22 tend to constants, C23 to 0).
+A0_OVER_B0_MAX = 1e100
 _FD_STEP = 1e-3
 
 
@@ -122,7 +126,7 @@ def kalker_asymptotes(a0_over_b0, poisson_ratio):
     -------
     KalkerCoefficients
     """
-    g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, None, lower_closed=False)
+    g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, A0_OVER_B0_MAX, lower_closed=False)
     nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5)
     return KalkerCoefficients(*_asymptotes(*np.broadcast_arrays(g, nu)))
 
@@ -132,9 +136,11 @@ def _asymptotes(g, nu):
     gl = np.where(low, g, 1.0)                       # a0/b0 -> 0 branch
     c11_l = np.pi**2 / (4.0 * (1.0 - nu))
     c22_l = np.full_like(gl, np.pi**2 / 4.0)
-    c23_l = np.pi * np.sqrt(gl) / (3.0 * (1.0 - nu)) * (1.0 + nu * (np.log(16.0 / gl) - 5.0))
-    gh = np.where(low, 1.0, 1.0 / g)                 # b0/a0 -> 0 branch
-    lam = np.log(16.0 / gh**2)
+    # ln(16/g) and ln(16/g'^2) as differences of logarithms: 16/g overflows for g < ~1e-307
+    c23_l = (np.pi * np.sqrt(gl) / (3.0 * (1.0 - nu))
+             * (1.0 + nu * (np.log(16.0) - np.log(gl) - 5.0)))
+    gh = 1.0 / np.where(low, 1.0, g)                 # b0/a0 -> 0 branch
+    lam = np.log(16.0) - 2.0 * np.log(gh)
     c3 = 3.0 - np.log(4.0)
     d11 = lam - 2.0 * nu
     c11_h = 2.0 * np.pi / (d11 * gh) * (1.0 + c3 / d11)
@@ -143,6 +149,7 @@ def _asymptotes(g, nu):
     d22 = lam + 2.0 * nu / (1.0 - nu)
     c22_h = 2.0 * np.pi / (d22 * gh) * (1.0 + c3 / d22) / (1.0 - nu)
     c23_h = 2.0 * np.pi / (3.0 * gh**1.5 * ((1.0 - nu) * lam - 2.0 + 4.0 * nu))
+    # (finite for a0/b0 <= A0_OVER_B0_MAX: g'^1.5 >= 1e-150)
     return (np.where(low, c11_l, c11_h), np.where(low, c22_l, c22_h),
             np.where(low, c23_l, c23_h))
 
@@ -222,9 +229,10 @@ def kalker_coefficients(a0_over_b0, poisson_ratio):
     Parameters
     ----------
     a0_over_b0 : array_like
-        Semi-axis ratio a0/b0 (rolling over lateral) > 0. [-] Table range 0.1 ... 10;
-        smooth blend into the asymptotes over 0.05 ... 0.1 and 10 ... 20 (the validated range
-        is [0.05, 20]); beyond that the result tends to Kalker's asymptotes.
+        Semi-axis ratio a0/b0 (rolling over lateral), in (0, 1e100]. [-] Table range
+        0.1 ... 10; smooth blend into the asymptotes over 0.05 ... 0.1 and 10 ... 20 (the
+        validated range is [0.05, 20]); beyond that the result tends to Kalker's asymptotes.
+        The upper limit :data:`A0_OVER_B0_MAX` keeps C23 ~ (a0/b0)^1.5 finite.
     poisson_ratio : array_like
         Poisson's ratio nu, in [0, 0.5]. [-]
 
@@ -243,7 +251,7 @@ def kalker_coefficients(a0_over_b0, poisson_ratio):
     .. [1] J.J. Kalker, Three-dimensional elastic bodies in rolling contact, 1990, Table E.3.
     .. [2] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Appendix B.
     """
-    g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, None, lower_closed=False)
+    g = check_range("a0_over_b0", a0_over_b0, "-", 0.0, A0_OVER_B0_MAX, lower_closed=False)
     nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5)
     g, nu = np.broadcast_arrays(g, nu)
     shape = g.shape

@@ -656,9 +656,15 @@ def relax_creepage(relaxed_creepage, creepage, rolled_distance, relaxation_lengt
     xi = check_range("creepage", creepage, "-")
     x = _exponent(rolled_distance, relaxation_length_start, relaxation_length_end)
     short = x < _LN2
-    with np.errstate(invalid="ignore"):
-        return np.where(short, old - (xi - old) * np.expm1(-np.where(short, x, 0.0)),
-                        xi + (old - xi) * np.exp(-x))[()]
+    with np.errstate(invalid="ignore", over="ignore"):
+        em = np.expm1(-np.where(short, x, 0.0))
+        q = np.exp(-x)
+        out = np.where(short, old - (xi - old) * em, xi + (old - xi) * q)
+        # xi - xi_e beyond the float range (|xi|, |xi_e| ~ 1e308, opposite signs): the same
+        # weights on the halved difference (the result lies between xi_e and xi: finite)
+        halved = np.where(short, old - ((0.5 * xi - 0.5 * old) * em) * 2.0,
+                          xi + ((0.5 * old - 0.5 * xi) * q) * 2.0)
+        return np.where(np.isfinite(out), out, halved)[()]
 
 
 def _relaxation_exponent(d, s0, s1):
@@ -673,8 +679,13 @@ def _relaxation_exponent(d, s0, s1):
 def _relax(old, xi, x, _expm1=math.expm1, _exp=math.exp, _ln2=_LN2):
     """Scalar :func:`relax_creepage` for the exponent ``x = -ln q`` (plain floats)."""
     if x < _ln2:
-        return old - (xi - old) * _expm1(-x)
-    return xi + (old - xi) * _exp(-x)
+        em = _expm1(-x)
+        out = old - (xi - old) * em
+        return out if out - out == 0.0 else old - ((0.5 * xi - 0.5 * old) * em) * 2.0
+    q = _exp(-x)
+    out = xi + (old - xi) * q
+    # (xi - xi_e beyond the float range: the halved difference, see relax_creepage)
+    return out if out - out == 0.0 else xi + ((0.5 * old - 0.5 * xi) * q) * 2.0
 
 
 def relaxation_step(relaxed_creepages, creepages, rolled_distance, relaxation_length_of, *,
@@ -739,13 +750,19 @@ def relaxation_step(relaxed_creepages, creepages, rolled_distance, relaxation_le
     return state
 
 
-def _relax_all(old, xi, x, _expm1=math.expm1, _exp=math.exp, _ln2=_LN2):
+def _relax_all(old, xi, x, _expm1=math.expm1, _exp=math.exp, _ln2=_LN2,
+               _isfinite=math.isfinite):
     """:func:`_relax` of every component for one exponent (the same arithmetic)."""
     if x < _ln2:
         em = _expm1(-x)
-        return tuple([o - (v - o) * em for o, v in zip(old, xi)])
-    q = _exp(-x)
-    return tuple([v + (o - v) * q for o, v in zip(old, xi)])
+        out = tuple([o - (v - o) * em for o, v in zip(old, xi)])
+    else:
+        q = _exp(-x)
+        out = tuple([v + (o - v) * q for o, v in zip(old, xi)])
+    if _isfinite(sum(out)):
+        return out
+    # a difference xi - xi_e beyond the float range (or only the sum overflowed): per component
+    return tuple([_relax(o, v, x) for o, v in zip(old, xi)])
 
 
 def _relaxation_factor(d, s0, s1):

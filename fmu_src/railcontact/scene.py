@@ -184,6 +184,7 @@ from __future__ import annotations
 import copy
 import math
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -193,9 +194,14 @@ from ._validation import check_range
 
 __all__ = [
     "SceneError", "Scene", "load_scene", "parse_scene", "scene_from_dict", "EFFECTS",
-    "CREEP_METHODS", "SOURCES", "INPUTS", "INPUT_DEFAULTS", "FMU_PARAMETERS", "ParameterSpec",
-    "scene_to_parameters", "parameters_to_scene_dict", "DEFAULT_SCENE",
+    "CREEP_METHODS", "SOURCES", "INPUTS", "INPUT_DEFAULTS", "NoContactWarning",
+    "FMU_PARAMETERS", "ParameterSpec", "scene_to_parameters", "parameters_to_scene_dict",
+    "DEFAULT_SCENE",
 ]
+
+
+class NoContactWarning(UserWarning):
+    """A scene's input signals have no normal force: every force of the run is 0."""
 
 
 class SceneError(ValueError):
@@ -328,6 +334,12 @@ class Scene:
         ndarray
             Fields ``time`` and every input of :data:`INPUTS`, float64, the layout
             :func:`fmpy.simulate_fmu` takes as ``input``.
+
+        Warns
+        -----
+        NoContactWarning
+            If the normal force is 0 at every time (``[inputs] normal_force`` not set: its
+            default is 0 N): every force of the run would be 0.
         """
         t = self.time_grid() if time is None else np.asarray(time, dtype=float)
         out = np.zeros(t.shape, dtype=[("time", float)] + [(k, float) for k in INPUTS])
@@ -345,6 +357,10 @@ class Scene:
                 ([0.0], np.cumsum(steps)))
         else:
             out["rail_position"] = _evaluate_signal(spec, t, self.simulation)
+        if out.size and np.all(out["normal_force"] <= 0.0):
+            warnings.warn(f"scene {self.name!r}: normal_force is 0 N at every time ([inputs] "
+                          "normal_force not set, its default is 0 N): no contact, every force "
+                          "of the run is 0", NoContactWarning, stacklevel=2)
         return out
 
 
@@ -430,6 +446,18 @@ def _boolean(path, value):
     if not isinstance(value, bool):
         raise SceneError(f"{path} must be true or false; got {value!r}")
     return value
+
+
+def _check_table_exists(key, name):
+    """A table the scene names must exist where the readers look for it
+    (:func:`railcontact.tables.default_table_path`), checked when the scene is read rather
+    than when an FMU first loads it."""
+    from . import tables  # noqa: PLC0415  (numba, netCDF4: only for scenes that use a table)
+
+    try:
+        tables.default_table_path(name)
+    except FileNotFoundError as exc:
+        raise SceneError(f"{key} must name an existing table; got {name!r}: {exc}") from None
 
 
 def _check_keys(path, table, allowed):
@@ -630,6 +658,8 @@ def scene_from_dict(data, base_dir=None):
             if not isinstance(opts.get("table"), str):
                 raise SceneError(f"effects.creep.table must be a string; got "
                                  f"{opts['table']!r}")
+            if opts["source"] == "table":
+                _check_table_exists("effects.creep.table", opts["table"])
         elif name == "corrugation":
             opts["method"] = _choice("effects.corrugation.method", opts.get("method", "exact"),
                                      ("exact", "linear"))

@@ -51,6 +51,7 @@ from scipy.interpolate import make_interp_spline
 
 from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from ._validation import check_range
+from .creep3d import _moderate
 
 __all__ = [
     "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
@@ -306,6 +307,10 @@ class TensorSpline:
         self._knot_start = np.cumsum([0] + [len(a["knots"]) for a in self.axes[:-1]]).astype(np.int64)
         self._lower = np.array([a["nodes"][0] for a in self.axes])
         self._upper = np.array([a["nodes"][-1] for a in self.axes])
+        for a in self.axes:
+            if a.get("out_of_range", "error") not in OUT_OF_RANGE_CHOICES:
+                raise ValueError(f"out_of_range of axis {a.get('name')!r} must be one of "
+                                 f"{list(OUT_OF_RANGE_CHOICES)}; got {a['out_of_range']!r}")
         self._hold = np.array([a.get("out_of_range", "error") == "hold" for a in self.axes])
         self._zero = np.zeros(self.ndim, dtype=np.int64)
         self._strides, self._offset = _offsets(self._shape)
@@ -454,6 +459,35 @@ def _read_netcdf(path):
     return attrs, variables
 
 
+#: The out-of-grid behaviours an axis may state (attribute ``out_of_range``).
+OUT_OF_RANGE_CHOICES = ("error", "hold")
+
+
+def _as_int(value):
+    """An integer attribute (e.g. ``spline_degree``); None if it is not one (the caller then
+    reports the file, the attribute and the value)."""
+    try:
+        number = float(np.asarray(value).item()) if np.ndim(value) == 0 else None
+    except (TypeError, ValueError):
+        return None
+    return int(number) if number is not None and number.is_integer() else None
+
+
+def _fmt_attr(value):
+    """An attribute value for a message: numbers plain, text quoted."""
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def _check_float64(where, name, values):
+    """Table data must be float64: the B-spline coefficients reproduce the node values to
+    ~1e-15 only in double precision (a float32 copy misfits by ~1e-8)."""
+    if np.asarray(values).dtype != np.float64:
+        raise TableFileError(
+            f"{where}: variable {name!r} is stored as {np.asarray(values).dtype} where float64 "
+            "is expected (a converted copy?); the spline needs double precision: use the "
+            "original file or rebuild it with `python -m tablegen build`")
+
+
 def _attr_list(value):
     arr = np.atleast_1d(np.asarray(value))
     if arr.dtype.kind in "US":
@@ -519,18 +553,19 @@ class Table:
         if version is None:
             raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
                                  "not written by tablegen")
-        if int(version) != TABLE_FORMAT_VERSION:
+        if _as_int(version) != TABLE_FORMAT_VERSION:
             raise TableFileError(
-                f"{where} has table format version {version}, this reader understands version "
-                f"{TABLE_FORMAT_VERSION}; rebuild it with `python -m tablegen build`")
+                f"{where} has table format version {_fmt_attr(version)}, this reader understands "
+                f"version {TABLE_FORMAT_VERSION}; rebuild it with `python -m tablegen build`")
         if expected_name is not None and attrs.get("table_name") != expected_name:
             raise TableFileError(f"{where} holds table {attrs.get('table_name')!r}, expected "
                                  f"{expected_name!r}")
         for key in ("table_axes", "table_variables", "spline_degree"):
             if key not in attrs:
                 raise TableFileError(f"{where} lacks the global attribute {key!r}")
-        if int(attrs["spline_degree"]) != SPLINE_DEGREE:
-            raise TableFileError(f"{where}: spline_degree {attrs['spline_degree']} is not 3")
+        if _as_int(attrs["spline_degree"]) != SPLINE_DEGREE:
+            raise TableFileError(f"{where}: attribute spline_degree must be {SPLINE_DEGREE}; got "
+                                 f"{attrs['spline_degree']!r}")
         axis_names = str(attrs["table_axes"]).split()
         var_names = str(attrs["table_variables"]).split()
         axes = []
@@ -540,13 +575,25 @@ class Table:
                     raise TableFileError(f"{where} lacks the variable {needed!r}")
             _, nodes, a = ncvars[name]
             _, knots, _ = ncvars[f"{name}_knots"]
+            for vname, arr in ((name, nodes), (f"{name}_knots", knots)):
+                _check_float64(where, vname, arr)
             if len(knots) != len(nodes) + 4 or not np.all(np.diff(nodes) > 0):
                 raise TableFileError(f"{where}: axis {name!r} has inconsistent nodes/knots")
+            try:
+                double_knots = _attr_list(a.get("double_knots", []))
+            except ValueError:
+                raise TableFileError(
+                    f"{where}: attribute {name}:double_knots must be a list of numbers; got "
+                    f"{a.get('double_knots')!r}") from None
+            out_of_range = str(a.get("out_of_range", "error"))
+            if out_of_range not in OUT_OF_RANGE_CHOICES:
+                raise TableFileError(
+                    f"{where}: attribute {name}:out_of_range must be one of "
+                    f"{list(OUT_OF_RANGE_CHOICES)}; got {out_of_range!r}")
             axes.append(dict(name=name, nodes=np.asarray(nodes, float),
                              knots=np.asarray(knots, float), units=str(a.get("units", "1")),
                              long_name=str(a.get("long_name", name)),
-                             double_knots=_attr_list(a.get("double_knots", [])),
-                             out_of_range=str(a.get("out_of_range", "error"))))
+                             double_knots=double_knots, out_of_range=out_of_range))
         values, coefs, vattrs = {}, [], {}
         shape = tuple(len(a["nodes"]) for a in axes)
         for name in var_names:
@@ -559,6 +606,8 @@ class Table:
             if val.shape != shape or coef.shape != shape:
                 raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
                                      f"expected {shape} (truncated?)")
+            _check_float64(where, name, val)
+            _check_float64(where, cname, coef)
             values[name] = np.asarray(val, float)
             coefs.append(np.asarray(coef, float))
             vattrs[name] = a
@@ -662,6 +711,15 @@ def _fast_scalars_ok(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
             and 0.0 < e_mod < math.inf and 0.0 <= nu < 0.5 and 0.0 <= mu < math.inf)
 
 
+def _variable_indices(table, names):
+    """Positions of ``names`` in the table's variables (attribute ``table_variables``)."""
+    missing = [n for n in names if n not in table.variables]
+    if missing:
+        raise TableFileError(f"table file {str(table.path)!r}: attribute table_variables "
+                             f"({' '.join(table.variables)!r}) lacks {missing}")
+    return [table.variables.index(n) for n in names]
+
+
 def _creep_force_type():
     global _CreepForce3D
     if _CreepForce3D is None:
@@ -700,8 +758,7 @@ class CreepTable:
         self.kind = kind
         self._spline = table.spline
         self._z_max = float(table.axes[0]["nodes"][-1])
-        self._i_f = table.variables.index("force_ratio")
-        self._i_s = table.variables.index("stick_area_fraction")
+        self._i_f, self._i_s = _variable_indices(table, ("force_ratio", "stick_area_fraction"))
         d1 = self._spline.evaluate_point([0.0], [1])
         d2 = self._spline.evaluate_point([0.0], [2])
         self._slope0 = float(d1[self._i_f])     # F'(0) of the table (3 pi / 4 exactly in theory)
@@ -741,38 +798,34 @@ class CreepTable:
                            0.0, out.reshape(z.shape + (-1,)))
         return out.reshape(z.shape + (-1,))
 
-    def _conversion(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
-        has_area = (a0 > 0.0) & (b0 > 0.0)
-        g = np.where(has_area, a0 / np.where(has_area, b0, 1.0), 1.0)
-        c11, c22, c23 = _kalker(g, nu)
-        w_x = c11 * xi_x
-        w_y = c22 * xi_y + np.sqrt(a0 * b0) * c23 * phi
-        area = np.pi * a0 * b0
-        p0 = np.divide(1.5 * n_load, area, out=np.zeros(np.broadcast(n_load, area).shape),
-                       where=area > 0.0)
-        w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
-        return c11, c22, c23, w_x, w_y, w_sat
-
     def _solve(self, args, jacobian=False):
+        from . import creep3d as c3  # noqa: PLC0415  (the overflow-safe arithmetic)
+
         xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_creep_inputs(*args)
         shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
-        c11, c22, c23, w_x, w_y, w_sat = self._conversion(xi_x, xi_y, phi, n_load, a0, b0,
-                                                          e_mod, nu, mu)
-        w_x, w_y, w_sat = (np.broadcast_to(v, shape) for v in (w_x, w_y, w_sat))
-        mu_n = np.broadcast_to(mu * n_load, shape)
-        w_abs = np.hypot(w_x, w_y)
-        has_force = (mu_n > 0.0) & (w_sat > 0.0)
-        z = np.divide(w_abs, w_sat, out=np.where(w_abs > 0.0, np.inf, 0.0), where=has_force)
-        z = np.where(has_force, z, 0.0)
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.broadcast_to(v, shape) for v in (
+            xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
+        mu_n = c3._check_coulomb_limit(mu, n_load)
+        c11, c22, c23 = _kalker(c3._axis_ratio(a0, b0), nu)
+        # w, w_sat and mu N / w_sat in (mantissa, exponent) form (railcontact.creep3d._scaled):
+        # no intermediate overflows or underflows for any finite input
+        d_x, d_y, w_m, w_e, u_x, u_y, top = c3._weighted_scaled(xi_x, xi_y, phi, a0, b0, c11,
+                                                                 c22, c23, parts=True)
+        s_m, s_e = c3._saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
+        has_force = (mu_n > 0.0) & (s_m > 0.0)
+        s_safe = np.where(has_force, s_m, 1.0)
+        z = np.where(has_force, c3._value(w_m / s_safe, w_e - s_e), 0.0)
         vals = self._f(z)
         f = np.minimum(vals[..., self._i_f], 1.0)   # rounding guard: the spline is <= 1 + 1e-15
         stick = np.clip(vals[..., self._i_s], 0.0, 1.0)
         small = z < 1e-6
         f_over_z = np.where(small, self._slope0 + 0.5 * self._curv0 * z,
                             f / np.where(small, 1.0, z))
-        k = np.divide(mu_n, w_sat, out=np.zeros(shape), where=has_force)
-        tx = -k * f_over_z * w_x
-        ty = -k * f_over_z * w_y
+        k_m, k_e = c3._scaled((np.where(has_force, mu_n, 0.0),), ((s_safe, s_e),))  # mu N/w_sat
+        held = z > self._z_max                       # full sliding: -mu N w/|w| (F = 1)
+        tx = np.where(held, -mu_n * d_x, -c3._value(k_m * f_over_z * u_x, k_e + top))
+        ty = np.where(held, -mu_n * d_y, -c3._value(k_m * f_over_z * u_y, k_e + top))
+        tx, ty = np.where(has_force, tx, -0.0), np.where(has_force, ty, -0.0)
         # rounding guard (|T| = mu N f with f <= 1, but w/|w| is rounded): never above mu N
         t_abs = np.hypot(tx, ty)
         over = t_abs > mu_n
@@ -781,22 +834,30 @@ class CreepTable:
         if not jacobian:
             return tx, ty, stick, z
         fp = self._f(z, 1)[..., self._i_f]
-        n_x = np.divide(w_x, w_abs, out=np.ones(shape), where=w_abs > 0.0)
-        n_y = np.divide(w_y, w_abs, out=np.zeros(shape), where=w_abs > 0.0)
-        # dT/dw = -(mu N / w_sat) [F'(z) n n^T + (F/z)(I - n n^T)]
-        a_ = -k * fp
-        b_ = -k * f_over_z
-        dxx = a_ * n_x * n_x + b_ * (1.0 - n_x * n_x)
-        dxy = (a_ - b_) * n_x * n_y
-        dyy = a_ * n_y * n_y + b_ * (1.0 - n_y * n_y)
-        root = np.sqrt(a0 * b0)
-        jac = np.empty(shape + (2, 3))
-        jac[..., 0, 0] = dxx * c11
-        jac[..., 0, 1] = dxy * c22
-        jac[..., 0, 2] = dxy * root * c23
-        jac[..., 1, 0] = dxy * c11
-        jac[..., 1, 1] = dyy * c22
-        jac[..., 1, 2] = dyy * root * c23
+        n_x, n_y = d_x, d_y
+        n_x = np.where(w_m > 0.0, n_x, 1.0)
+        # dT/dw = -(mu_n / w_sat) [F'(z) n n^T + (F/z)(I - n n^T)]
+        k = c3._value(k_m, k_e)
+        with np.errstate(over="ignore", invalid="ignore"):
+            a_ = -k * fp
+            b_ = -k * f_over_z
+            dxx = a_ * n_x * n_x + b_ * (1.0 - n_x * n_x)
+            dxy = (a_ - b_) * n_x * n_y
+            dyy = a_ * n_y * n_y + b_ * (1.0 - n_y * n_y)
+            root = np.sqrt(a0) * np.sqrt(b0)
+            jac = np.empty(shape + (2, 3))
+            jac[..., 0, 0] = dxx * c11
+            jac[..., 0, 1] = dxy * c22
+            jac[..., 0, 2] = dxy * (root * c23)
+            jac[..., 1, 0] = dxy * c11
+            jac[..., 1, 1] = dyy * c22
+            jac[..., 1, 2] = dyy * (root * c23)
+        if not np.all(np.isfinite(jac)):
+            i = np.flatnonzero(~np.all(np.isfinite(jac), axis=(-2, -1)))[0]
+            raise ValueError(
+                f"the creep force's derivative G a0 b0 C (and sqrt(a0 b0) C23) must be in "
+                f"[0, {np.finfo(float).max:g}] [N]; got inf (overflow at a0 = "
+                f"{a0.flat[i]:g}, b0 = {b0.flat[i]:g}, youngs_modulus = {e_mod.flat[i]:g})")
         return tx, ty, stick, z, jac
 
     def creep_force_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
@@ -829,6 +890,10 @@ class CreepTable:
         """
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             return 0.0, 0.0
+        if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+            # extreme magnitudes: the overflow-safe array path (it also names a bad input)
+            tx, ty = self._solve((xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))[:2]
+            return float(tx), float(ty)
         c11, c22, c23 = _kalker(a0 / b0, nu)
         w_x = c11 * xi_x
         w_y = c22 * xi_y + _sqrt(a0 * b0) * c23 * phi
@@ -874,6 +939,9 @@ class CreepTable:
         """
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             z = 0.0
+        elif not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+            _, _, stick, z = self._solve((xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
+            return float(stick), float(z)
         else:
             c11, c22, c23 = _kalker(a0 / b0, nu)
             w_x = c11 * xi_x
@@ -969,25 +1037,40 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, norma
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.asarray(v, dtype=float) for v in (
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient))
-    g = a0 / b0
+    from . import creep3d as c3  # noqa: PLC0415  (the overflow-safe arithmetic)
+
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        g = a0 / b0
     c11, c22, c23 = coefficients if coefficients is not None else _kalker(g, nu)
-    p0 = 1.5 * n_load / (np.pi * a0 * b0)
-    w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
-    # w_sat = 0 (mu or N so small that it underflows): infinite coordinates, which the reader
-    # rejects as out of range (its documented error); 0/0 stays a visible NaN
-    with np.errstate(divide="ignore"):
-        u_x = c11 * xi_x / w_sat
-        u_y = c22 * xi_y / w_sat
-        sig = np.sqrt(a0 * b0) * c23 * phi / w_sat
-        tau = np.abs(phi) * np.hypot(b0 * c11, a0 * c22) / w_sat
+    # w_sat and the quotients by it in (mantissa, exponent) form (railcontact.creep3d._scaled):
+    # the same roundings as the plain expressions where they stay in range, and no overflow of
+    # an intermediate for any finite input (a coordinate beyond the float range is inf, which
+    # the reader rejects as out of range)
+    s_m, s_e = c3._saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
+    pos = s_m > 0.0
+    w_sat_pair = (np.where(pos, s_m, 1.0), s_e)
+    w_sat = c3._value(s_m, s_e)
+
+    def over_w_sat(*factors):
+        m, e = c3._scaled(factors, (w_sat_pair,))
+        # w_sat = 0 (no contact): infinite coordinates, which the reader rejects as out of
+        # range (its documented error); 0/0 stays a visible NaN
+        return np.where(pos, c3._value(m, e), np.where(m != 0.0, np.copysign(np.inf, m), np.nan))
+
+    u_x = over_w_sat(c11, xi_x)
+    u_y = over_w_sat(c22, xi_y)
+    sig = over_w_sat(c3._root_ab(a0, b0), c23, phi)
+    tau = over_w_sat(np.abs(phi), c3._hypot_scaled(c3._scaled((b0, c11)), c3._scaled((a0, c22))))
     sign_x = np.where(u_x < 0.0, -1.0, 1.0)
     sign_y = np.where(sig < 0.0, -1.0, 1.0)
     v_x = np.abs(u_x)
     sig = np.abs(sig)
-    v_y = u_y * sign_y + sig
+    with np.errstate(invalid="ignore"):       # inf - inf (beyond the grid): NaN, rejected
+        v_y = u_y * sign_y + sig
     rho = np.hypot(v_x, v_y)
     theta = np.arctan2(v_y, v_x)
-    return np.log(g), rho, theta, tau, sign_x, sign_y, mu * n_load, w_sat
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        return np.log(g), rho, theta, tau, sign_x, sign_y, mu * n_load, w_sat
 
 
 def exact_table_inverse(log_aspect_ratio, rho, theta, tau, poisson_ratio):
@@ -1047,10 +1130,12 @@ class ExactCreepTable:
                                  "the exact creep table 'creep_exact'")
         self.table = table
         self._spline = table.spline
-        self._idx = [table.variables.index(v) for v in ("force_ratio_parallel",
-                                                         "force_ratio_perpendicular",
-                                                         "spin_moment_ratio",
-                                                         "stick_area_fraction")]
+        self._idx = _variable_indices(table, ("force_ratio_parallel",
+                                              "force_ratio_perpendicular",
+                                              "spin_moment_ratio", "stick_area_fraction"))
+        if "poisson_ratio_range" not in table.attrs:
+            raise TableFileError(f"table file {str(table.path)!r} lacks the global attribute "
+                                 "'poisson_ratio_range'")
         # forces only (half the work of all four variables): creep_force_3d and the fast path
         sp = table.spline
         self._force_spline = TensorSpline(
@@ -1079,15 +1164,20 @@ class ExactCreepTable:
         shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
         xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.broadcast_to(v, shape) for v in (
             xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
+        from .creep3d import _check_coulomb_limit  # noqa: PLC0415
+
+        _check_coulomb_limit(mu, n_load)
         contact = (a0 > 0.0) & (b0 > 0.0) & (n_load > 0.0) & (mu > 0.0)
         safe = lambda v, one=1.0: np.where(contact, v, one)  # noqa: E731
-        g = safe(a0) / safe(b0)
+        with np.errstate(over="ignore", under="ignore"):
+            g = safe(a0) / safe(b0)
         check_range("a0/b0", np.where(contact, g, 1.0), "-", *self._g_range,
                     condition=f"range of table file {str(self.table.path)!r}")
         s, rho, theta, sig, sx, sy, mu_n, w_sat = exact_table_coordinates(
             xi_x, xi_y, phi, safe(n_load), safe(a0), safe(b0), e_mod, nu, safe(mu))
         rho = np.where(contact, rho, 0.0)
         sig = np.where(contact, sig, 0.0)
+        theta = np.where(contact, theta, 0.0)     # (NaN without contact: inf - inf)
         where = f"range of table file {str(self.table.path)!r}"
         check_range("normalised_creepage", rho, "1", 0.0, self._rho_max,
                     condition="|(C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)| / w_sat, " + where)
@@ -1109,7 +1199,14 @@ class ExactCreepTable:
         c, s_ = np.cos(theta), np.sin(theta)
         tx = -sx * n_mu * (f_par * c - f_perp * s_)
         ty = -sy * n_mu * (f_par * s_ + f_perp * c)
-        mz = sx * sy * mz * np.where(contact, mu * n_load, 0.0) * np.sqrt(a0 * b0)
+        with np.errstate(over="ignore"):
+            mz = sx * sy * mz * np.where(contact, mu * n_load, 0.0) * np.sqrt(a0 * b0)
+        if not forces_only and not np.all(np.isfinite(mz)):
+            from ._floats import _overflow_error  # noqa: PLC0415
+
+            raise _overflow_error("spin moment Mz ~ mu N sqrt(a0 b0)", "N m", mz,
+                                  dict(normal_load=n_load, a0=a0, b0=b0,
+                                       friction_coefficient=mu))
         stick = np.where(contact, np.clip(stick, 0.0, 1.0), 1.0)
         return tx, ty, mz, stick, rho
 
@@ -1131,6 +1228,8 @@ class ExactCreepTable:
         path then raises the message)."""
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             return 0.0, 0.0
+        if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+            return None     # extreme magnitudes: the overflow-safe array path
         g = a0 / b0
         lo, hi = self.poisson_ratio_range
         if not (self._g_range[0] <= g <= self._g_range[1] and lo <= nu <= hi):
@@ -1171,6 +1270,12 @@ class ExactCreepTable:
         """
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             return 0.0, 0.0, 0.0, 1.0, 0.0
+        if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+            try:            # extreme magnitudes: the overflow-safe array path
+                out = self._solve((xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
+            except ValueError:
+                return None
+            return tuple(float(v) for v in out)
         g = a0 / b0
         lo, hi = self.poisson_ratio_range
         if not (self._g_range[0] <= g <= self._g_range[1] and lo <= nu <= hi):
@@ -1221,10 +1326,19 @@ class ExactCreepTable:
             creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
             youngs_modulus, poisson_ratio, friction_coefficient)]
         shape = np.broadcast(*args).shape
+        self._solve(tuple(args), forces_only=True)      # range checks, naming a bad input
         *_, w_sat = exact_table_coordinates(*args)
         c11, c22, c23 = _kalker(args[4] / args[5], args[7])
-        steps = (relative_step * w_sat / c11, relative_step * w_sat / c22,
-                 relative_step * w_sat / (np.sqrt(args[4] * args[5]) * c23))
+        with np.errstate(over="ignore", under="ignore", divide="ignore"):
+            steps = (relative_step * w_sat / c11, relative_step * w_sat / c22,
+                     relative_step * w_sat / (np.sqrt(args[4] * args[5]) * c23))
+        for h, name in zip(steps, ("creepage_longitudinal", "creepage_lateral", "spin")):
+            bad = ~(np.isfinite(h) & (h > 0.0) & np.isfinite(args[_CREEP_ARGS.index(name)] + h))
+            if np.any(bad):
+                raise ValueError(
+                    f"{name}: the finite-difference step relative_step * w_sat / C must be "
+                    f"finite and > 0 [-]; got {np.broadcast_to(h, shape)[bad].flat[0]:g} "
+                    f"(w_sat = {np.broadcast_to(w_sat, shape)[bad].flat[0]:g})")
         jac = np.empty(shape + (2, 3))
         for j, h in enumerate(steps):
             plus, minus = list(args), list(args)
