@@ -612,6 +612,39 @@ def test_exact_bad_input_names_parameter():
         creep_solution_3d(1e-3, 0.0, 0.0, *rest, sensitivities=True)
 
 
+def test_exact_extreme_magnitudes_give_a_finite_answer_or_a_value_error():
+    """Found by a seeded fuzz: a subnormal modulus or semi-axis, or N = 1e308, made the solver
+    divide by zero. The case is solved on a similar reference contact (forces over mu N depend
+    on a0/b0, nu and the creepages over mu p0 / G only), so only the domain can refuse it."""
+    base = [1e-3, 0.0, 0.1, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3]
+    ref = creep_force_3d(*base, method="exact")
+    # the same normalised problem at N = 1e300 (p0 and G scaled together): the same T/(mu N)
+    big = list(base)
+    big[3], big[6] = 1e300, 210e9 * 1e295
+    f = creep_force_3d(*big, method="exact")
+    assert f.tx / (0.3 * 1e300) == pytest.approx(ref.tx / (0.3 * 1e5), rel=1e-9)
+    assert f.ty / (0.3 * 1e300) == pytest.approx(ref.ty / (0.3 * 1e5), rel=1e-9, abs=1e-12)
+    # a vanishing modulus: saturation mu p0 / G is huge, so the creepage is deep in the linear
+    # regime: Kalker's linear theory (the grid's 1 % discretisation error)
+    soft = list(base)
+    soft[2], soft[6] = 0.0, 2.2557274743709375e-183
+    f = creep_force_3d(*soft, method="exact")
+    lin = creep_force_3d(*soft, method="linear")
+    assert np.isfinite(f.tx) and f.tx == pytest.approx(lin.tx, rel=0.02)
+    # a huge modulus: the creepage is far beyond saturation -> refused by the solver's domain
+    stiff = list(base)
+    stiff[6] = 1e300
+    with pytest.raises(ValueError, match="creepage_longitudinal must be in the exact solver"):
+        creep_force_3d(*stiff, method="exact")
+    for j, value in ((5, 1e-300), (5, 5.7e-276), (4, 1e300)):
+        bad = list(base)
+        bad[j] = value
+        with pytest.raises(ValueError, match=r"a0/b0 must be in \[0.01, 100\]"):
+            creep_force_3d(*bad, method="exact")
+    with pytest.raises(ValueError, match="friction_coefficient \\* normal_load"):
+        creep_force_3d(*base[:3], 1e308, *base[4:8], 5.0, method="exact")
+
+
 def test_exact_non_convergence_raises_rolling_convergence_error(monkeypatch):
     import functools
 

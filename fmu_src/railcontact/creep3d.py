@@ -749,6 +749,72 @@ iterations : Gauss-Seidel sweeps used (summed over both grids with ``extrapolate
 """
 
 
+#: The contact the exact solver is run on: every case is mapped to it by the exact theory's
+#: similarity (forces over mu N depend only on a0/b0, nu and the creepages over
+#: mu p0 / G, the spin times sqrt(a0 b0) likewise), so that extreme magnitudes of load,
+#: size, modulus or friction never reach the solver's arithmetic. [N, Pa, -, m^2]
+EXACT_REFERENCE_CONTACT = {"normal_load": 1e5, "youngs_modulus": 210e9,
+                           "friction_coefficient": 0.3, "area": 36e-6}
+#: Range of a0/b0 the grid resolves (elements per semi-axis scale with it). [-]
+EXACT_AXIS_RATIO_RANGE = (0.01, 100.0)
+
+
+def _exact_reference_problem(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+    """The similar problem on :data:`EXACT_REFERENCE_CONTACT` and the factors back.
+
+    Creepages scale with k = (G / (mu p0)) / (G_r / (mu_r p0_r)), p0 = 3 N / (2 pi a0 b0), the
+    spin with k sqrt(a0 b0 / A_r), forces with mu N / (mu_r N_r), the spin moment with that
+    times sqrt(a0 b0 / A_r); all in logarithms, so no product overflows. Raises ValueError
+    where a0/b0 is outside :data:`EXACT_AXIS_RATIO_RANGE`, where the similar creepages are
+    beyond the solver's domain (|xi| <= 1, |phi| max(a0, b0) <= 1 on the reference contact:
+    some 200 times the saturation creepage) or where mu N leaves the float range."""
+    log = math.log
+    ref = EXACT_REFERENCE_CONTACT
+    log_ratio = log(a0) - log(b0)
+    lo, hi = EXACT_AXIS_RATIO_RANGE
+    if not log(lo) <= log_ratio <= log(hi):
+        raise ValueError(f"a0/b0 must be in [{lo:g}, {hi:g}] [-] with method='exact' (the "
+                         f"grid must resolve both semi-axes); got {math.exp(log_ratio):g}"
+                         if abs(log_ratio) < 700 else
+                         f"a0/b0 must be in [{lo:g}, {hi:g}] [-] with method='exact'; got "
+                         f"a0 = {a0:g}, b0 = {b0:g}")
+    log_g = log(e_mod) - log(2.0 * (1.0 + nu))
+    log_p0 = log(1.5 / math.pi) + log(n_load) - log(a0) - log(b0)
+    log_g_r = log(ref["youngs_modulus"]) - log(2.0 * (1.0 + nu))
+    log_p0_r = log(1.5 / math.pi) + log(ref["normal_load"]) - log(ref["area"])
+    log_k = (log_g - log(mu) - log_p0) - (log_g_r - log(ref["friction_coefficient"])
+                                           - log_p0_r)
+    log_spin = log_k + 0.5 * (log(a0) + log(b0) - log(ref["area"]))
+
+    def scaled(value, log_factor, name, unit):
+        if value == 0.0:
+            return 0.0
+        exponent = log(abs(value)) + log_factor
+        if exponent > 0.0:       # |similar value| > 1: beyond the solver's domain
+            raise ValueError(
+                f"{name} must be in the exact solver's domain: at most 1 on the similar "
+                f"reference contact (creepage, or rigid spin slip |phi| max(a0, b0); about 200 "
+                f"times the saturation creepage mu p0 / G) [{unit}]; got {value:g} (similar "
+                f"value e^{exponent:.3g})")
+        return math.copysign(math.exp(exponent), value)
+
+    a_r = math.sqrt(ref["area"]) * math.exp(0.5 * log_ratio)
+    b_r = math.sqrt(ref["area"]) * math.exp(-0.5 * log_ratio)
+    xi_r = scaled(xi_x, log_k, "creepage_longitudinal", "-")
+    eta_r = scaled(xi_y, log_k, "creepage_lateral", "-")
+    phi_r = scaled(phi, log_spin + log(max(a_r, b_r)), "spin", "1/m") / max(a_r, b_r)
+    log_force = log(mu) + log(n_load) - log(ref["friction_coefficient"] * ref["normal_load"])
+    log_moment = log_force + 0.5 * (log(a0) + log(b0) - log(ref["area"]))
+    if max(log(mu) + log(n_load), log_moment) > 709.0:
+        raise ValueError("friction_coefficient * normal_load must be within the float range "
+                         f"[N] (and the spin moment with it); got mu = {mu:g}, N = {n_load:g}")
+    return {"args": (xi_r, eta_r, phi_r, ref["normal_load"], a_r, b_r, ref["youngs_modulus"],
+                     nu, ref["friction_coefficient"]),
+            "force_scale": math.exp(log_force), "moment_scale": math.exp(log_moment),
+            "creepage_scale": math.exp(min(log_k, 709.0)),      # d xi_r / d xi
+            "spin_scale": math.exp(min(log_spin, 709.0))}      # d phi_r / d phi
+
+
 def _check_exact_grid(grid):
     try:
         mx, my = (int(v) for v in grid)
@@ -774,11 +840,6 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
                                                   poisson_ratio, friction_coefficient)
     mx, my = _check_exact_grid(grid)
     tolerance = float(check_range("tolerance", tolerance, "-", 0.0, 0.1, lower_closed=False))
-    big = np.broadcast(xi_x, xi_y, phi, a0, b0)
-    rigid = np.broadcast_to(np.abs(phi) * np.maximum(a0, b0), big.shape)
-    if np.any(rigid > 1.0):
-        raise ValueError(f"spin must be in [-1/max(a0, b0), 1/max(a0, b0)] [1/m] (rigid slip "
-                         f"|phi| max(a0, b0) <= 1); got {np.broadcast_to(phi, big.shape)[rigid > 1.0].flat[0]:g}")
     args = np.broadcast_arrays(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
     shape = args[0].shape
     tx, ty, mz = np.zeros(shape), np.zeros(shape), np.zeros(shape)
@@ -790,24 +851,37 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         x_, y_, p_, n_, a_, b_, e_, v_, m_ = (float(arr[idx]) for arr in args)
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
+        ref = _exact_reference_problem(x_, y_, p_, n_, a_, b_, e_, v_, m_)
         kw = dict(tolerance=tolerance, sensitivities=sensitivities)
-        one = solve_rolling_3d(x_, y_, p_, n_, a_, b_, e_, v_, m_, mx=mx, my=my, **kw)
+        one = solve_rolling_3d(*ref["args"], mx=mx, my=my, **kw)
         fine = one
         if extrapolate:  # one Richardson step in the rolling-direction element size
-            fine = solve_rolling_3d(x_, y_, p_, n_, a_, b_, e_, v_, m_, mx=2 * mx, my=my,
-                                    initial_guess=one, **kw)  # prolongated coarse start
+            fine = solve_rolling_3d(*ref["args"], mx=2 * mx, my=my, initial_guess=one,
+                                    **kw)  # prolongated coarse start
         w_c, w_f = (-1.0, 2.0) if extrapolate else (0.0, 1.0)
-        tx[idx] = w_f * fine.tx + w_c * one.tx
-        ty[idx] = w_f * fine.ty + w_c * one.ty
-        mz[idx] = w_f * fine.mz + w_c * one.mz
+        force, moment = ref["force_scale"], ref["moment_scale"]
+        tx[idx] = (w_f * fine.tx + w_c * one.tx) * force
+        ty[idx] = (w_f * fine.ty + w_c * one.ty) * force
+        mz[idx] = (w_f * fine.mz + w_c * one.mz) * moment
         iters[idx] = one.iterations + (fine.iterations if extrapolate else 0)
         if sensitivities:
-            sens[idx] = w_f * fine.sensitivity + w_c * one.sensitivity
+            rows = np.array([force, force, moment])[:, None]
+            cols = np.array([ref["creepage_scale"], ref["creepage_scale"],
+                             ref["spin_scale"]])[None, :]
+            with np.errstate(over="ignore", invalid="ignore"):
+                sens[idx] = (w_f * fine.sensitivity + w_c * one.sensitivity) * rows * cols
+            if not np.all(np.isfinite(sens[idx])):
+                raise ValueError("normal_load, a0, b0, youngs_modulus and "
+                                 "friction_coefficient must give creep-force sensitivities "
+                                 "within the float range [N, N m per unit creepage]; got "
+                                 f"N = {n_:g}, a0 = {a_:g}, b0 = {b_:g}, E = {e_:g}, "
+                                 f"mu = {m_:g}")
+        a_ref, b_ref = ref["args"][4], ref["args"][5]
         dx = fine.x[1] - fine.x[0]
         dy = fine.y[1] - fine.y[0]
-        stick[idx] = fine.adhesion.sum() * dx * dy / (np.pi * a_ * b_)
-        rows = np.nonzero(fine.adhesion.any(axis=0))[0]
-        width[idx] = (rows[-1] - rows[0] + 1) * dy / (2.0 * b_) if rows.size else 0.0
+        stick[idx] = fine.adhesion.sum() * dx * dy / (np.pi * a_ref * b_ref)
+        rows_ = np.nonzero(fine.adhesion.any(axis=0))[0]
+        width[idx] = (rows_[-1] - rows_[0] + 1) * dy / (2.0 * b_ref) if rows_.size else 0.0
         if fields:
             res[idx] = fine
     return (tx, ty, mz, stick, width, sens, res, iters,
