@@ -78,11 +78,14 @@ import numpy as np
 from ._validation import check_choice, check_range
 from .kalker import _coefficients_cached, kalker_coefficients
 
-__all__ = ["CreepForce3D", "CreepSolution3D", "METHODS", "creep_force_3d", "creep_solution_3d",
+__all__ = ["CreepForce3D", "CreepSolution3D", "METHODS", "COMPARISON_METHODS", "creep_force_3d", "creep_solution_3d",
            "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
            "strip_force_function"]
 
 METHODS = ("linear", "she", "strip", "modified_strip")
+# Methods users compare against, each in its own module (railcontact.fastsim, railcontact.polach);
+# creep_force_3d and creep_solution_3d dispatch to them by name.
+COMPARISON_METHODS = ("fastsim", "polach", "fastrip")
 
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
 CreepForce3D.__doc__ = "Tangential creep force on the wheel, components tx, ty. [N]"
@@ -282,7 +285,7 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
            friction_coefficient, method):
-    check_choice("method", method, METHODS)
+    check_choice("method", method, METHODS + COMPARISON_METHODS)
     xi_x = check_range("creepage_longitudinal", xi_x, "-")
     xi_y = check_range("creepage_lateral", xi_y, "-")
     phi = check_range("spin", phi, "1/m")
@@ -341,7 +344,8 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-                   youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip"):
+                   youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
+                   **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -366,8 +370,14 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         Poisson's ratio nu of both bodies, in [0, 0.5). [-]
     friction_coefficient : array_like
         Coulomb friction coefficient mu, >= 0. [-]
-    method : {"modified_strip", "strip", "she", "linear"}
-        Creep-force model.
+    method : {"modified_strip", "strip", "she", "linear", "fastsim", "polach", "fastrip"}
+        Creep-force model. "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016):
+        :mod:`railcontact.fastsim`; "polach" (Polach 1999/2005): :mod:`railcontact.polach`.
+    **method_options
+        Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
+        (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
+        ``friction_decay``, ``rolling_speed``): see :func:`railcontact.fastsim.fastsim_force_3d`,
+        :func:`railcontact.fastsim.fastrip_force_3d`, :func:`railcontact.polach.polach_force_3d`.
 
     Returns
     -------
@@ -387,14 +397,46 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     ----------
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Secs. 2.5-2.6.
     """
+    if method in COMPARISON_METHODS:
+        tx, ty = _comparison(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                             youngs_modulus, poisson_ratio, friction_coefficient, method,
+                             method_options)[:2]
+        return CreepForce3D(tx, ty)
+    _no_options(method, method_options)
     tx, ty = _solve(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, method)[:2]
     return CreepForce3D(tx[()], ty[()])
 
 
+_OPTIONS = {"fastsim": ("n_strips", "n_elements"), "fastrip": ("n_strips", "n_elements"),
+            "polach": ("reduction_adhesion", "reduction_slip", "friction_ratio_limit",
+                       "friction_decay", "rolling_speed")}
+
+
+def _no_options(method, method_options):
+    if method_options:
+        raise ValueError(f"method {method!r} takes no options; got "
+                         f"{sorted(method_options)!r}")
+
+
+def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options):
+    """(tx, ty, stick_area_fraction or None) of a method of COMPARISON_METHODS."""
+    unknown = sorted(set(options) - set(_OPTIONS[method]))
+    if unknown:
+        raise ValueError(f"method {method!r} takes the options {list(_OPTIONS[method])!r}; "
+                         f"got {unknown!r}")
+    if method == "polach":
+        from .polach import polach_force_3d
+        return polach_force_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, **options) + (
+            None,)
+    from . import fastsim
+    fun = fastsim.fastsim_force_3d if method == "fastsim" else fastsim.fastrip_force_3d
+    return fun(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, **options)
+
+
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
-                      method="modified_strip"):
+                      method="modified_strip", **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -410,11 +452,25 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     evaluated (|T| <= mu N still holds) and ``within_validity`` is False; pure spin is off by
     up to 59 % (large spin makes the true curve decay, which these theories do not model).
 
+    For "fastsim" and "fastrip" the stick area fraction is the method's own (its grid);
+    for "polach" (no stick zone) the modified-strip estimate, as for "she"; the other fields
+    are the modified-strip ones. Measured errors of all methods against the exact theory:
+    docs/accuracy_vs_time.md.
+
     Returns
     -------
     CreepSolution3D
         See :class:`CreepSolution3D`.
     """
+    if method in COMPARISON_METHODS:
+        tx, ty, stick_own = _comparison(creepage_longitudinal, creepage_lateral, spin,
+                                        normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                        friction_coefficient, method, method_options)
+        base = creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                                 b0, youngs_modulus, poisson_ratio, friction_coefficient)
+        stick = base.stick_area_fraction if stick_own is None else stick_own
+        return base._replace(tx=tx, ty=ty, stick_area_fraction=stick)
+    _no_options(method, method_options)
     (tx, ty, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0) = _solve(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, method)
