@@ -61,9 +61,15 @@ FaStrip ([3], [4]; CONTACT's "original FaStrip", [5] ``m_solvpt.f90: original_fa
     in full sliding (CONTACT's "full sliding correction", [5] option 7; the printed d is not
     real there), and d < 0 means full sliding too. Without spin the stick zone is the modified
     strip theory's (d = a0 z, Nielsen Eq. (2.83)), so FaStrip then equals
-    ``method="modified_strip"`` up to the discretisation. Not done: CONTACT's fallback to one
-    flexibility in strips whose leading element slips (it changes the slip direction there
-    only).
+    ``method="modified_strip"`` up to the discretisation. In strips whose leading element
+    slips, FASTSIM's direction is taken with Kalker's single weighted flexibility ([1], [5]), so
+    that full sliding acts against the rigid slip.
+
+    FASTSIM with three flexibilities, by contrast, keeps the direction of the *weighted* rigid
+    slip (w_x/L1, w_y/L2) even in full sliding: for pure creepage at full sliding its force is
+    parallel to (C11 xi_x, C22 xi_y), not to (xi_x, xi_y) as in the exact theory (a known
+    property of the three-flexibility variant; Kalker's single flexibility avoids it at the
+    cost of the linear limit of combined creepages).
 
 Both are computed for many contacts at once: the broadcast inputs form the leading axes, the
 strips one more axis, and only the n_elements steps along x are a Python loop.
@@ -302,9 +308,19 @@ def fastrip_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     fy = mu_p0 * (lam * i_cnt - lam_p * i_adh) / a_s
     stick = 2.0 * r_adh
     # slip zone [-a(y), x_intf]: mu p (Hertz) in FASTSIM's direction at the element's point;
-    # the pressure integrated in closed form over each element's part in the slip zone
+    # the pressure integrated in closed form over each element's part in the slip zone. Strips
+    # whose leading element slips with three flexibilities take the direction from FASTSIM with
+    # Kalker's one weighted flexibility (as CONTACT's original_fastrip): in full sliding that
+    # direction is the rigid slip's, as in the exact theory.
     dx = 2.0 * a_y / n_elements
     a_safe = np.where(a_y > 0.0, a_y, 1.0)
+    lead_slip = next(_fastsim_points(xi_x, xi_y, phi, a_s, b_s, y, a_y, l1, l2, l3,
+                                     peak_parab, mu, n_elements))[3]
+    c_ab = np.sqrt(a_s * b_s)
+    denom = np.sqrt(np.maximum(xi_x**2 + xi_y**2 + (c_ab * phi) ** 2, 1e-20))
+    l_one = (np.abs(xi_x) * l1 + np.abs(xi_y) * l2 + c_ab * np.abs(phi) * l3) / denom
+    l_one = np.where(l_one > 0.0, l_one, l1)
+    l1, l2, l3 = (np.where(lead_slip, l_one, v) for v in (l1, l2, l3))
     for x, px, py, _ in _fastsim_points(xi_x, xi_y, phi, a_s, b_s, y, a_y, l1, l2, l3,
                                         peak_parab, mu, n_elements):
         lo = x - 0.5 * dx
