@@ -227,7 +227,8 @@ def _finish(fx, fy, stick, dy, has_area, n_load, mu, a_s, b_s):
     # |T| <= mu N: the quadrature of tractions on the bound may round a few ulp above it
     mu_n = (mu * n_load)[..., 0]
     t_abs = np.hypot(tx, ty)
-    scale = np.divide(mu_n, t_abs, out=np.ones(t_abs.shape), where=t_abs > mu_n)
+    cap = mu_n * (1.0 - 4.0 * np.finfo(float).eps)     # hypot must not round above mu N
+    scale = np.divide(cap, t_abs, out=np.ones(t_abs.shape), where=t_abs > cap)
     return ((tx * scale + 0.0)[()], (ty * scale + 0.0)[()],
             np.where(has_area[..., 0], np.minimum(stick, 1.0), 1.0)[()])
 

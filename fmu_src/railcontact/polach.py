@@ -209,5 +209,7 @@ def polach_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, 
     tx = np.where(ok, -fx, 0.0)
     ty = np.where(ok, -fy, 0.0)
     t_abs = np.hypot(tx, ty)
-    scale = np.divide(q_mu, t_abs, out=np.ones(shape), where=t_abs > q_mu)
+    # (1 - 4 eps): np.hypot of the rescaled components must not round above mu N (creep3d)
+    cap = q_mu * (1.0 - 4.0 * np.finfo(float).eps)
+    scale = np.divide(cap, t_abs, out=np.ones(shape), where=t_abs > cap)
     return (tx * scale + 0.0)[()], (ty * scale + 0.0)[()]
