@@ -82,6 +82,53 @@ def test_creep_effect_returns_the_solver_values(method):
     assert math.hypot(c.Fx, c.Fy) <= 0.3 * 7e4 * (1 + 1e-12) or method == "linear"
 
 
+@pytest.mark.parametrize("method", ["fastsim", "polach", "fastrip"])
+def test_creep_effect_comparison_methods_by_name(method):
+    """FASTSIM, Polach, FaStrip chosen by name in a scene give the public function's values."""
+    scene = parse_scene(f"[effects.creep]\nmethod = '{method}'\n")
+    pipe = build_pipeline(scene)
+    c = _contact(normal_force=7e4, creepage_longitudinal=-1e-3, creepage_lateral=5e-4,
+                 spin=0.1, friction_coefficient=0.3, rolling_speed=20.0)
+    pipe.step(c)
+    ref = creep3d.creep_solution_3d(-1e-3, 5e-4, 0.1, 7e4, c.a0, c.b0, E, NU, 0.3, method)
+    assert (c.Fx, c.Fy) == (float(ref.tx), float(ref.ty))
+    assert c.stick_area_fraction == float(ref.stick_area_fraction)
+    assert math.hypot(c.Fx, c.Fy) <= 0.3 * 7e4
+
+
+def test_creep_effect_polach_falling_friction_from_the_scene():
+    """Polach 2005's parameters in the scene, slip velocity = rolling_speed x creepage."""
+    scene = parse_scene("[effects.creep]\nmethod = 'polach'\npolach_reduction_adhesion = 1.0\n"
+                        "polach_reduction_slip = 0.4\npolach_friction_ratio_limit = 0.4\n"
+                        "polach_friction_decay = 0.6\n")
+    pipe = build_pipeline(scene)
+    c = _contact(normal_force=7e4, creepage_longitudinal=0.05, creepage_lateral=0.0, spin=0.0,
+                 friction_coefficient=0.55, rolling_speed=30.0)
+    pipe.step(c)
+    from railcontact.polach import POLACH_DRY, polach_force_3d
+    tx, ty = polach_force_3d(0.05, 0.0, 0.0, 7e4, c.a0, c.b0, E, NU, 0.55, rolling_speed=30.0,
+                             **POLACH_DRY)
+    assert (c.Fx, c.Fy) == (float(tx), float(ty))
+    # falling friction: mu(w = 1.5 m/s) = 0.55 (0.6 exp(-0.9) + 0.4) = 0.354 bounds the force
+    assert -c.Fx < 0.55 * (0.6 * math.exp(-0.9) + 0.4) * 7e4
+
+
+@pytest.mark.parametrize("text, match", [
+    ("method = 'polach'\npolach_reduction_adhesion = 0.0",
+     r"effects.creep.polach_reduction_adhesion must be in \(0, 1\] \[-\]; got 0"),
+    ("method = 'polach'\npolach_friction_decay = -1.0",
+     r"effects.creep.polach_friction_decay must be in \[0, inf\) \[s/m\]; got -1"),
+    ("method = 'polach'\npolach_reduction_adhesion = 0.3\npolach_reduction_slip = 0.5",
+     r"polach_reduction_slip must be <= effects.creep.polach_reduction_adhesion"),
+    ("method = 'fastsim'\npolach_friction_ratio_limit = 0.4",
+     r"polach_friction_ratio_limit applies to method = 'polach' only"),
+    ("method = 'fastrip'\nsource = 'table'", r"effects.creep.method must be"),
+])
+def test_comparison_method_scene_errors(text, match):
+    with pytest.raises(SceneError, match=match):
+        build_pipeline(parse_scene("[effects.creep]\n" + text + "\n"))
+
+
 def test_spin_switch_ignores_spin_input():
     on = build_pipeline(parse_scene("[effects.creep]\nspin = true\n"))
     off = build_pipeline(parse_scene("[effects.creep]\nspin = false\n"))
