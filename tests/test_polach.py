@@ -68,7 +68,8 @@ def test_polach_friction():
     assert polach_friction(0.55, 1e3, 0.4, 0.6) == pytest.approx(0.22)
     # mu0 ((1 - A) e^{-B w} + A) at w = 1 m/s, B = 0.2 s/m
     assert polach_friction(0.3, 1.0, 0.4, 0.2) == pytest.approx(0.3 * (0.6 * 0.8187307531 + 0.4))
-    with pytest.raises(ValueError, match=r"friction_ratio_limit must be in \[0, 1\] \[-\]; got 1.5"):
+    with pytest.raises(ValueError,
+                       match=r"friction_ratio_limit must be in \[0, 1\] \[-\]; got 1.5"):
         polach_friction(0.3, 1.0, 1.5, 0.2)
 
 

@@ -78,7 +78,8 @@ import numpy as np
 from ._validation import check_choice, check_range
 from .kalker import _coefficients_cached, kalker_coefficients
 
-__all__ = ["CreepForce3D", "CreepSolution3D", "METHODS", "COMPARISON_METHODS", "creep_force_3d", "creep_solution_3d",
+__all__ = ["CreepForce3D", "CreepSolution3D", "METHODS", "COMPARISON_METHODS", "creep_force_3d",
+           "creep_solution_3d",
            "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
            "strip_force_function"]
 

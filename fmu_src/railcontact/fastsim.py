@@ -175,7 +175,9 @@ def fastsim_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         Number of strips of equal width across the ellipse (y), in [2, 10000]. [-]
     n_elements : int, optional
         Number of steps along each strip (x), in [2, 10000]. [-] The discretisation error of
-        the force is about 1/n_strips^1.5 + 1/n_elements^2 of mu N (0.2 % at 40 x 40).
+        the force is first order (the slip zone's edge falls inside an element): max 1.4 % of
+        mu N at 10 x 10, 0.4 % at 40 x 40 (default), 0.2 % at 80 x 80 (200 random creepages
+        with spin, against 400 x 400; 0.03 % in the linear limit).
 
     Returns
     -------
@@ -250,8 +252,10 @@ def fastrip_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     n_strips : int, optional
         Number of strips across the ellipse, in [2, 10000]. [-]
     n_elements : int, optional
-        Number of nodes steps along each strip for the FASTSIM direction and the quadrature of
-        the square-root tractions, in [2, 10000]. [-] (Quadrature error ~ n^-1.5.)
+        Number of steps along each strip for FASTSIM's slip direction and the slip-zone
+        quadrature, in [2, 10000]. [-] (The stick zone is integrated in closed form.) First
+        order: max 1.9 % of mu N at 10 x 10, 0.5 % at 40 x 40 (default), 0.25 % at 80 x 80
+        (same test as :func:`fastsim_force_3d`).
 
     Returns
     -------
