@@ -226,6 +226,26 @@ def test_slave_bad_parameter_logs_error_naming_it():
     assert "parameter poisson_ratio" in slave.log_queue[-1].msg
 
 
+def test_slave_polach_parameters_reach_the_creep_effect():
+    """FMU parameters creep_method = 'polach' and polach_* (Polach 2005, dry) set the effect's
+    method and options; a k_S > k_A is rejected naming the parameter."""
+    slave = _slave()
+    slave.creep_method = "polach"
+    slave.polach_reduction_slip = 0.4
+    slave.polach_friction_ratio_limit = 0.4
+    slave.polach_friction_decay = 0.6
+    _run_slave(slave, 3)
+    creep = slave._pipeline.effects["creep"]
+    assert creep.method == "polach"
+    assert creep._polach == {"reduction_adhesion": 1.0, "reduction_slip": 0.4,
+                             "friction_ratio_limit": 0.4, "friction_decay": 0.6}
+    bad = _slave()
+    bad.creep_method = "polach"
+    bad.polach_reduction_adhesion = 0.3
+    with pytest.raises(ValueError, match="polach_reduction_slip must be <="):
+        bad.exit_initialization_mode()
+
+
 def test_slave_state_round_trip_in_python():
     slave = _run_slave(_slave(), 10)
     state = slave._get_fmu_state()
