@@ -93,7 +93,7 @@ def test_pure_spin_odd_and_bounded():
 
 
 def test_published_parameter_sets():
-    """Polach 2005, Table 1 (locomotive, dry and wet rail): k_A, k_S, A, B."""
+    """Polach 2005 (locomotive, dry and wet rail): k_A, k_S, A, B, as quoted in the module."""
     assert POLACH_DRY == {"reduction_adhesion": 1.0, "reduction_slip": 0.4,
                           "friction_ratio_limit": 0.4, "friction_decay": 0.6}
     assert POLACH_WET == {"reduction_adhesion": 0.3, "reduction_slip": 0.1,

@@ -9,8 +9,8 @@ so that the linear limit is ``T = -G a0 b0 (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23
 Kalker's coefficients (:func:`railcontact.kalker_coefficients`).
 
 FASTSIM ([1], Kalker's simplified theory)
-    Surface displacement u = L p (p the traction). With three flexibilities ([1] Sec. 2, [2]
-    Sec. 3.3; the variant CONTACT uses, [5] ``m_solvpt.f90``)
+    Surface displacement u = L p (p the traction). With three flexibilities ([1], [2]; the
+    variant CONTACT uses, [5] ``m_solvpt.f90``)
 
         L1 = 8 a0 / (3 G C11),  L2 = 8 a0 / (3 G C22),  L3 = pi a0 sqrt(a0/b0) / (4 G C23),
 
@@ -24,15 +24,15 @@ FASTSIM ([1], Kalker's simplified theory)
     creepage at a time).
 
     Traction bound: the *parabolic* one, ``p_z = 2 N / (pi a0 b0) (1 - x^2/a0^2 - y^2/b0^2)``
-    ([1] Eq. (8)), as Kalker: it is the pressure of the simplified theory itself (constant
+    ([1]), as Kalker: it is the pressure of the simplified theory itself (constant
     flexibility), its integral is N, and with FASTSIM's linear-in-x stick traction it gives a
     smooth stick/slip transition; the elliptic (Hertz) bound makes the traction slip at the
-    leading edge with an infinite slope and gives worse force/creepage curves ([2] Sec. 4,
+    leading edge with an infinite slope and gives worse force/creepage curves ([2],
     [5] example ``fastsim.inp``).
 
     Discretisation: ``n_strips`` strips of equal width in y (centres y_j), each with
     ``n_elements`` equal steps of length dx_j = 2 a(y_j)/n_elements from the leading to the
-    trailing edge (Kalker's element division [1] Sec. 3); the traction is integrated at the
+    trailing edge (Kalker's element division [1]); the traction is integrated at the
     nodes and the force by the trapezoidal rule along x (exact in the stick zone for creepage)
     and the midpoint rule across y.
 
@@ -192,7 +192,7 @@ def fastsim_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
 
     References
     ----------
-    .. [1] J.J. Kalker, Vehicle System Dynamics 11 (1982) 1-13, Eqs. (5)-(12).
+    .. [1] J.J. Kalker, Vehicle System Dynamics 11 (1982) 1-13.
     """
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_inputs(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
@@ -269,8 +269,8 @@ def fastrip_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
 
     References
     ----------
-    .. [1] M. Sichani, R. Enblom, M. Berg, Vehicle System Dynamics 54 (2016) 748-764, Sec. 3
-       (strip theory with spin, stick zone and traction), Sec. 4 (FASTSIM in the slip zone).
+    .. [1] M. Sichani, R. Enblom, M. Berg, Vehicle System Dynamics 54 (2016) 748-764 (strip
+       theory with spin for the stick zone, FASTSIM's direction in the slip zone).
     .. [2] E.A.H. Vollebregt, CONTACT, src/m_solvpt.f90, ``original_fastrip`` (option 7).
     """
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_inputs(

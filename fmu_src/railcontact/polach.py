@@ -5,7 +5,7 @@ Polach writes the force in the direction of the creepage, so every force below i
 minus sign. Symbols: Q = N the normal load, a = a0 (rolling direction), b = b0, C_ij Kalker's
 coefficients (:func:`railcontact.kalker_coefficients`), G = E / (2 (1 + nu)).
 
-Creepage without spin ([1] Eqs. (3)-(7), [2] Eqs. (1)-(5))
+Creepage without spin ([1], [2])
 
     s = sqrt(xi_x^2 + xi_y^2),
     C = (3/8) (G / a) c_jj,   c_jj = sqrt((C11 xi_x / s)^2 + (C22 xi_y / s)^2),
@@ -16,7 +16,7 @@ Creepage without spin ([1] Eqs. (3)-(7), [2] Eqs. (1)-(5))
 With k_A = k_S = 1 this is the 1999 formula; its initial slope ``dF/ds = G a b c_jj`` is the
 linear theory's and F -> mu Q as s -> inf.
 
-Spin ([1] Eqs. (8)-(13), [2] Eqs. (6)-(10)); phi [1/m]:
+Spin ([1], [2]); phi [1/m]:
 
     s_yC = xi_y + phi a   if |xi_y + phi a| > |xi_y|,  else xi_y,
     s_C = sqrt(xi_x^2 + s_yC^2),
@@ -28,17 +28,17 @@ Spin ([1] Eqs. (8)-(13), [2] Eqs. (6)-(10)); phi [1/m]:
 
 At small spin K_M -> -(2/3) eps_M and F_yS -> G a b sqrt(a b) C23 phi, the linear theory.
 
-2005 extension ([2] Eqs. (11)-(14)): friction falling with the magnitude of the slip velocity
+2005 extension ([2]): friction falling with the magnitude of the slip velocity
 w = V s_C [m/s] (V the rolling speed),
 
     mu = mu0 ((1 - A) exp(-B w) + A),
 
 A = mu_inf / mu0 the ratio of the friction at infinite slip velocity to the maximum, B [s/m]
 the rate of the exponential decrease; and the reduction factors k_A (initial slope in the area
-of adhesion) and k_S (slope in the area of slip), 0 < k_S <= k_A <= 1 ([2] Sec. 3: they model
+of adhesion) and k_S (slope in the area of slip), 0 < k_S <= k_A <= 1 ([2]: they model
 the reduced initial slope measured on real, contaminated rails). The 1999 method is the default
 here (k_A = k_S = 1, A = 1): the exact theory it is measured against has neither. Polach's
-published parameter sets for a locomotive ([2] Table 1; [3] Table 2): dry k_A = 1.00,
+published parameter sets for a locomotive ([2]; also quoted in [3]): dry k_A = 1.00,
 k_S = 0.40, mu0 = 0.55, A = 0.40, B = 0.60 s/m; wet k_A = 0.30, k_S = 0.10, mu0 = 0.30,
 A = 0.40, B = 0.20 s/m (:data:`POLACH_DRY`, :data:`POLACH_WET`).
 
@@ -86,7 +86,7 @@ def _check_polach(reduction_adhesion, reduction_slip, friction_ratio_limit, fric
 
 def polach_friction(friction_coefficient, slip_velocity, friction_ratio_limit=1.0,
                     friction_decay=0.0):
-    r"""Polach's falling friction ``mu = mu0 ((1 - A) exp(-B w) + A)`` ([2] Eq. (11)).
+    r"""Polach's falling friction ``mu = mu0 ((1 - A) exp(-B w) + A)`` (Polach 2005).
 
     Parameters
     ----------
@@ -150,8 +150,8 @@ def polach_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, 
 
     References
     ----------
-    .. [1] O. Polach, Vehicle System Dynamics 33 Suppl. (1999) 728-739, Eqs. (3)-(13).
-    .. [2] O. Polach, Wear 258 (2005) 992-1000, Eqs. (1)-(14).
+    .. [1] O. Polach, Vehicle System Dynamics 33 Suppl. (1999) 728-739.
+    .. [2] O. Polach, Wear 258 (2005) 992-1000.
     """
     from .creep3d import _check_common      # (creep3d dispatches to this module)
     xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-")
