@@ -27,8 +27,11 @@ cases, stated in the output):
   study). Two references: CONTACT's published values (tractcurv at 48x44; the grid-convergence
   cases at 240x60), and the project's most accurate method, the 3-D exact theory
   (``reference.rolling3d``) Richardson-extrapolated from the finest grid pair. Methods: linear,
-  SHE, strip, modified strip, the modified-strip table at three resolutions, the exact-theory
-  table (if built), the exact theory at increasing grids, with and without Richardson.
+  SHE, strip, modified strip, the methods users compare against (FASTSIM, Kalker 1982, at
+  several strip/element counts; Polach 1999; FaStrip, Sichani et al. 2016), the modified-strip
+  table at three resolutions, the exact-theory table (if built), the exact theory at increasing
+  grids, with and without Richardson. Plus a table of where each closed-form method is within
+  1 %, 5 %, 10 % of mu N by a/b and spin class (21 CONTACT cases, converged exact values).
 * **Corrugation and wear** (Ch. 4) -- normalised wear coefficient ``w`` (first harmonic),
   ``|w - w_ref| / |w_ref|``; reference: the exact nonlinear wear integral extrapolated to zero
   amplitude (Richardson in amplitude^2); the direct wear integral with the half-space solver
@@ -301,6 +304,64 @@ def _contact_cases(quick):
     return cases
 
 
+SPIN_CLASSES = (("no spin", lambda case: case in ("long k0.3", "long k1", "lat k1", "comb k1")),
+                ("Phi = 1", lambda case: "Phi1" in case),
+                ("pure spin", lambda case: case.startswith("spin")))
+
+
+def method_regions():
+    """Max |T - T_exact|/(mu N) of every 3-D method per (a/b, spin class) over the 21 cases of
+    CONTACT's grid-convergence study, reference its converged 240x60 exact values."""
+    from railcontact import creep_force_3d
+    from railcontact.creep3d import COMPARISON_METHODS, METHODS
+    path = ROOT / "tests" / "data" / "contact_hertz3d_grid_convergence.csv"
+    rows = [r for r in csv.DictReader(line for line in open(path) if not line.startswith("#"))
+            if (r["mx"], r["my"]) == ("240", "60")]
+    ratios = sorted({float(r["a_over_b"]) for r in rows})
+    out = {}
+    for method in METHODS + COMPARISON_METHODS:
+        for r in rows:
+            e_mod = 2 * float(r["G_Pa"]) * (1 + float(r["nu"]))
+            mu_n = float(r["mu"]) * float(r["Fn_N"])
+            f = creep_force_3d(float(r["cksi"]), float(r["ceta"]), float(r["cphi_per_m"]),
+                               float(r["Fn_N"]), float(r["a_m"]), float(r["b_m"]), e_mod,
+                               float(r["nu"]), float(r["mu"]), method=method)
+            err = math.hypot(f.tx / mu_n - float(r["fx_over_mu_fn"]),
+                             f.ty / mu_n - float(r["fy_over_mu_fn"]))
+            cls = next(name for name, test in SPIN_CLASSES if test(r["case"]))
+            key = (method, float(r["a_over_b"]), cls)
+            out[key] = max(out.get(key, 0.0), err)
+    return ratios, out
+
+
+def regions_markdown(ratios, errors):
+    """The 'where within 1 %, 5 %, 10 % of mu N' table."""
+    classes = [c for c, _ in SPIN_CLASSES]
+    methods = list(dict.fromkeys(k[0] for k in errors))
+    lines = ["## Where each 3-D method is within 1 %, 5 %, 10 % of mu N", "",
+             "Max |T - T_exact| / (mu N) per ellipse shape a/b and spin class over the 21 cases "
+             "of CONTACT's grid-convergence study (reference: CONTACT's exact theory at 240x60; "
+             "'no spin': longitudinal, lateral and combined creepage at 0.3 and 1 of the "
+             "linear-force scale (4 cases), 'Phi = 1': lateral or longitudinal creepage with "
+             "spin coefficient 1 (2 cases), 'pure spin': one case, spin at 1.2 of its scale). "
+             "Cell: the class it falls in (<= 1 %, <= 5 %, <= 10 %, > 10 %) and the measured "
+             "error in %. FASTSIM and FaStrip at their defaults (40 strips x 40 elements), "
+             "Polach 1999 (k_A = k_S = 1, constant friction).", "",
+             "| method | " + " | ".join(f"a/b = {g:g}, {c}" for g in ratios for c in classes)
+             + " |", "|---|" + "---|" * (len(ratios) * len(classes))]
+    for m in methods:
+        cells = []
+        for g in ratios:
+            for c in classes:
+                e = errors.get((m, g, c), math.nan) * 100
+                band = ("<= 1 %" if e <= 1 else "<= 5 %" if e <= 5 else "<= 10 %" if e <= 10
+                        else "> 10 %")
+                cells.append(f"{band} ({e:.1f})")
+        lines.append(f"| {m} | " + " | ".join(cells) + " |")
+    lines.append("")
+    return lines
+
+
 def contact_grid_errors():
     """CONTACT's own discretisation error per grid: max |F(mx,my) - F(240x60)|/(mu N), a/b = 1."""
     path = ROOT / "tests" / "data" / "contact_hertz3d_grid_convergence.csv"
@@ -314,6 +375,20 @@ def contact_grid_errors():
         e = math.hypot(float(r["dfx_vs_240x60"]), float(r["dfy_vs_240x60"]))
         out[key] = max(out.get(key, 0.0), e)
     return out
+
+
+#: FASTSIM, Polach, FaStrip runs of the 3-D family: (method, knob label, options, note); the
+#: first three are the defaults (the --quick run measures only those).
+COMPARISON_RUNS = (
+    ("fastsim", "40x40", {}, "Kalker 1982, 3 flexibilities, parabolic bound"),
+    ("polach", "1999 (kA = kS = 1)", {}, "Polach 1999 with spin"),
+    ("fastrip", "40x40", {}, "Sichani et al. 2016"),
+    ("fastsim", "10x10", dict(n_strips=10, n_elements=10), ""),
+    ("fastsim", "20x20", dict(n_strips=20, n_elements=20), ""),
+    ("fastsim", "100x100", dict(n_strips=100, n_elements=100), ""),
+    ("fastrip", "10x10", dict(n_strips=10, n_elements=10), ""),
+    ("fastrip", "100x100", dict(n_strips=100, n_elements=100), ""),
+)
 
 
 def family_3d(quick, workdir):
@@ -391,6 +466,13 @@ def family_3d(quick, workdir):
         t1 = per_call(lambda: creep_force_3d(*args1, method=method))
         tb = per_call(lambda: creep_force_3d(*args, method=method)) / len(cases)
         add(f"closed form: {method}", "-", f.tx, f.ty, t1, tb)
+
+    # the methods users compare against (FASTSIM, Polach, FaStrip), same cases and timing
+    for method, knob, opts, note in COMPARISON_RUNS if not quick else COMPARISON_RUNS[:3]:
+        f = creep_force_3d(*args, method=method, **opts)
+        t1 = per_call(lambda: creep_force_3d(*args1, method=method, **opts))
+        tb = per_call(lambda: creep_force_3d(*args, method=method, **opts)) / len(cases)
+        add(f"comparison: {method}", knob, f.tx, f.ty, t1, tb, note)
 
     # tables: the shipped modified-strip table built at three resolutions (same run)
     try:
@@ -853,35 +935,47 @@ def plot(families, contact_errors, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter
 
-    fig, axes = plt.subplots(1, 2, figsize=(16, 7))
+    # one small panel per family (left), the 3-D family against CONTACT (right); the points of
+    # each Pareto frontier are named in the panel's legend, not by text on the points (which
+    # overlapped when several methods have similar times)
+    fig = plt.figure(figsize=(22, 10))
+    grid = fig.add_gridspec(2, 6)
+    fam_axes = [fig.add_subplot(grid[i // 4, i % 4]) for i in range(8)]
+    axes = [None, fig.add_subplot(grid[:, 4:])]
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    markers = "os^vD<>pXP*h"
     floor = 1e-16
-    ax = axes[0]
-    for fi, fam in enumerate(families):
+    for fi, fam in enumerate(families[:len(fam_axes)]):
+        ax = fam_axes[fi]
         pts = [(r.t_single, max(r.error, floor), r) for r in fam.rows
                if np.isfinite(r.t_single) and np.isfinite(r.error)
                and not (r.error == 0.0 and "reference" in r.note)]
+        ax.set_title(fam.name, fontsize=9)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.tick_params(labelsize=7)
+        ax.xaxis.set_minor_formatter(NullFormatter())     # (minor labels overlap on short
+        ax.yaxis.set_minor_formatter(NullFormatter())     # decades)
         if not pts:
             continue
-        c = colors[fi % len(colors)]
-        ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=c, s=18, alpha=0.6)
+        ax.scatter([p[0] for p in pts], [p[1] for p in pts], color="0.6", s=12)
         front = [pts[i] for i in pareto([(p[0], p[1]) for p in pts])]
-        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color=c, lw=1.8,
-                label=fam.name)
-        ax.scatter([p[0] for p in front], [p[1] for p in front], color=c, s=40,
-                   edgecolor="k", zorder=3)
-        for p in front:
-            knob = "" if p[2].knob == "-" else " " + p[2].knob.split(" (")[0][:16]
-            ax.annotate(f"{p[2].method.split(' (')[0][:26]}{knob}", (p[0], p[1]), fontsize=6,
-                        xytext=(3, 3), textcoords="offset points", color=c)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("time per evaluation, single call [s]")
-    ax.set_ylabel("max error against the family's project reference (see table) [-]")
-    ax.set_title("All families: Pareto frontiers (errors at 1e-16 are exact to round-off)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k", lw=1)
+        for k, p in enumerate(front):
+            knob = "" if p[2].knob == "-" else ", " + p[2].knob.split(" (")[0][:18]
+            ax.scatter([p[0]], [p[1]], color=colors[k % len(colors)],
+                       marker=markers[k % len(markers)], s=36, edgecolor="k", zorder=3,
+                       label=f"{p[2].method.split(' (')[0][:34]}{knob}")
+        ax.legend(fontsize=5.5, loc="best", framealpha=0.8)
+    for ax in fam_axes[len(families):]:
+        ax.set_visible(False)
+    for ax in fam_axes[4:]:
+        ax.set_xlabel("time per single call [s]", fontsize=8)
+    for ax in fam_axes[::4]:
+        ax.set_ylabel("max error vs the family's reference", fontsize=8)
 
     ax = axes[1]
     fam3 = next((f for f in families if f.name == "3-D creep forces"), None)
@@ -890,13 +984,26 @@ def plot(families, contact_errors, path):
         for r in fam3.rows:
             if np.isfinite(r.error_peer2):
                 groups.setdefault(r.method.split(":")[0].split(" (")[0], []).append(r)
+        k = 0
         for gi, (name, rows) in enumerate(groups.items()):
+            if name in ("closed form", "comparison"):
+                # one legend entry per method (their times are close: text would overlap)
+                for r in rows:
+                    lab = r.method.split(": ", 1)[1] + ("" if r.knob in ("-", "40x40")
+                                                        else f" {r.knob.split(' (')[0]}")
+                    ax.scatter([r.t_single], [max(r.error_peer2, floor)], s=46,
+                               marker=markers[k % len(markers)], edgecolor="k", zorder=4,
+                               color=colors[k % len(colors)], label=lab)
+                    k += 1
+                continue
             ax.scatter([r.t_single for r in rows], [max(r.error_peer2, floor) for r in rows],
-                       color=colors[gi % len(colors)], s=30, label=name)
+                       color="0.5" if name.startswith("exact") else colors[(gi + 5) % 10],
+                       marker="." if name.startswith("exact") else "d", s=30, label=name)
             for r in rows:
-                lab = r.method.replace("closed form: ", "") if "closed" in r.method else r.knob
-                ax.annotate(lab[:22], (r.t_single, max(r.error_peer2, floor)), fontsize=6,
-                            xytext=(3, 2), textcoords="offset points")
+                if name.startswith("exact"):
+                    ax.annotate(r.knob.split(",")[0].split(" ->")[0][:10],
+                                (r.t_single, max(r.error_peer2, floor)), fontsize=5.5,
+                                xytext=(3, 2), textcoords="offset points", color="0.3")
         pts = [(r.t_single, r.error_peer2) for r in fam3.rows if np.isfinite(r.error_peer2)]
         front = [pts[i] for i in pareto(pts)]
         ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k", lw=1.5,
@@ -921,7 +1028,8 @@ def plot(families, contact_errors, path):
         ax.annotate("CONTACT 2016 test, 11^2..35^2", (134e-3, e30 * 30 / 35), fontsize=7,
                     color="tab:purple", xytext=(4, -8), textcoords="offset points")
     ax.axvline(1e-3, color="tab:brown", ls="--", lw=1)
-    ax.text(1e-3, 2e-1, " FASTSIM < 1 ms\n (error not stated)", fontsize=7, color="tab:brown")
+    ax.text(1e-3, 2e-1, " FASTSIM (peers) < 1 ms;\n ours measured: legend", fontsize=7,
+            color="tab:brown")
     t_usetab = 10e-3 / 15000
     ax.axvline(t_usetab, color="tab:olive", ls="--", lw=1)
     ax.text(t_usetab, 5e-2, " USETAB: CONTACT 25x25 / 15000", fontsize=7, color="tab:olive")
@@ -930,10 +1038,10 @@ def plot(families, contact_errors, path):
     ax.set_xlabel("time per evaluation, single call [s]")
     ax.set_ylabel("max |T - T_CONTACT(240x60)| / (mu N) [-]")
     ax.set_title("3-D creep forces against CONTACT's converged values (a/b = 1, 240x60),\n"
-                 "with the peers' published times")
+                 "FASTSIM, Polach, FaStrip measured; the peers' published times")
     ax.grid(True, which="both", alpha=0.3)
     if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=7, loc="lower left")
+        ax.legend(fontsize=6.5, loc="lower left", ncol=2, framealpha=0.85)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
@@ -1084,7 +1192,7 @@ def answers(fams, series, amp, contact_errors):
     return lines
 
 
-def write_markdown(fams, series, amp, contact_errors, path, meta):
+def write_markdown(fams, series, amp, contact_errors, path, meta, regions=None):
     lines = ["# Accuracy versus time", "",
              "Generated by `python benchmarks/accuracy_vs_time.py` "
              f"({meta['mode']} run, {meta['date']}, {meta['seconds']:.0f} s, load average "
@@ -1097,6 +1205,8 @@ def write_markdown(fams, series, amp, contact_errors, path, meta):
              "(or a loop over the cases for the iterative solvers).", "",
              "![error vs time](figures/accuracy_vs_time.png)", ""]
     lines += answers(fams, series, amp, contact_errors)
+    if regions is not None:
+        lines += regions_markdown(*regions)
     for fam in fams:
         lines += [f"## {fam.name}", "", f"* quantity: {fam.quantity}",
                   f"* reference: {fam.reference}"]
@@ -1148,6 +1258,13 @@ def write_markdown(fams, series, amp, contact_errors, path, meta):
         lines.append(f"| SHE (ours, same formula) | {_fmt_t(she.t_single)} | "
                      f"{_fmt(she.error_peer)} vs CONTACT's curve (tractcurv); "
                      f"{_fmt(she.error_peer2)} vs CONTACT 240x60 |")
+    for method in ("fastsim", "polach", "fastrip"):
+        r = _find(f3, f"comparison: {method}")
+        if r:
+            lines.append(f"| {method} (ours, {r.knob}) | {_fmt_t(r.t_single)} single, "
+                         f"{_fmt_t(r.t_batch)} per batch point | {_fmt(r.error)} vs the "
+                         f"project reference; {_fmt(r.error_peer)} vs CONTACT's curve; "
+                         f"{_fmt(r.error_peer2)} vs CONTACT 240x60 |")
     if contact_errors:
         lines += ["", "CONTACT's own discretisation error, max |F(grid) - F(240x60)| / (mu N) "
                   "over the 7 cases at a/b = 1: " + ", ".join(
@@ -1217,7 +1334,9 @@ def main(argv=None):
                 date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
                 seconds=time.perf_counter() - t_start,
                 load=f"{load[0]:.1f}")
-    write_markdown(fams, series, amp, contact_errors, out / "accuracy_vs_time.md", meta)
+    regions = method_regions()
+    write_markdown(fams, series, amp, contact_errors, out / "accuracy_vs_time.md", meta,
+                   regions)
     plot(fams, contact_errors, out / "figures" / "accuracy_vs_time.png")
     _log(f"wrote {out / 'accuracy_vs_time.md'} and {out / 'figures' / 'accuracy_vs_time.png'} "
          f"in {time.perf_counter() - t_start:.0f} s")

@@ -80,3 +80,20 @@ def test_answers_section(report):
                 "linearised closed forms", "Where the tables", "(4.28)", "CONTACT", "FASTSIM",
                 "USETAB"):
         assert key in text, key
+
+
+def test_comparison_methods_measured_and_regions_table(report):
+    """FASTSIM, Polach and FaStrip are measured points of the 3-D family (finite error and
+    time), and the 'within 1 %, 5 %, 10 % of mu N' table has a row per 3-D method with one
+    cell per (a/b, spin class)."""
+    sections = _sections((report / "accuracy_vs_time.md").read_text())
+    rows = {r[0].replace(" **(P)**", ""): r for r in sections["3-D creep forces"]}
+    for method in ("fastsim", "polach", "fastrip"):
+        r = rows[f"comparison: {method}"]
+        assert 0 < _number(r[2]) < 0.2 and _number(r[-3]) > 0 and _number(r[-2]) > 0
+    table = sections["Where each 3-D method is within 1 %, 5 %, 10 % of mu N"]
+    assert [r[0] for r in table] == ["linear", "she", "strip", "modified_strip", "fastsim",
+                                     "polach", "fastrip"]
+    for r in table:
+        assert len(r) == 1 + 9
+        assert all(re.fullmatch(r"(<= (1|5|10) %|> 10 %) \([0-9.]+\)", c) for c in r[1:]), r

@@ -82,6 +82,53 @@ def test_creep_effect_returns_the_solver_values(method):
     assert math.hypot(c.Fx, c.Fy) <= 0.3 * 7e4 * (1 + 1e-12) or method == "linear"
 
 
+@pytest.mark.parametrize("method", ["fastsim", "polach", "fastrip"])
+def test_creep_effect_comparison_methods_by_name(method):
+    """FASTSIM, Polach, FaStrip chosen by name in a scene give the public function's values."""
+    scene = parse_scene(f"[effects.creep]\nmethod = '{method}'\n")
+    pipe = build_pipeline(scene)
+    c = _contact(normal_force=7e4, creepage_longitudinal=-1e-3, creepage_lateral=5e-4,
+                 spin=0.1, friction_coefficient=0.3, rolling_speed=20.0)
+    pipe.step(c)
+    ref = creep3d.creep_solution_3d(-1e-3, 5e-4, 0.1, 7e4, c.a0, c.b0, E, NU, 0.3, method)
+    assert (c.Fx, c.Fy) == (float(ref.tx), float(ref.ty))
+    assert c.stick_area_fraction == float(ref.stick_area_fraction)
+    assert math.hypot(c.Fx, c.Fy) <= 0.3 * 7e4
+
+
+def test_creep_effect_polach_falling_friction_from_the_scene():
+    """Polach 2005's parameters in the scene, slip velocity = rolling_speed x creepage."""
+    scene = parse_scene("[effects.creep]\nmethod = 'polach'\npolach_reduction_adhesion = 1.0\n"
+                        "polach_reduction_slip = 0.4\npolach_friction_ratio_limit = 0.4\n"
+                        "polach_friction_decay = 0.6\n")
+    pipe = build_pipeline(scene)
+    c = _contact(normal_force=7e4, creepage_longitudinal=0.05, creepage_lateral=0.0, spin=0.0,
+                 friction_coefficient=0.55, rolling_speed=30.0)
+    pipe.step(c)
+    from railcontact.polach import POLACH_DRY, polach_force_3d
+    tx, ty = polach_force_3d(0.05, 0.0, 0.0, 7e4, c.a0, c.b0, E, NU, 0.55, rolling_speed=30.0,
+                             **POLACH_DRY)
+    assert (c.Fx, c.Fy) == (float(tx), float(ty))
+    # falling friction: mu(w = 1.5 m/s) = 0.55 (0.6 exp(-0.9) + 0.4) = 0.354 bounds the force
+    assert -c.Fx < 0.55 * (0.6 * math.exp(-0.9) + 0.4) * 7e4
+
+
+@pytest.mark.parametrize("text, match", [
+    ("method = 'polach'\npolach_reduction_adhesion = 0.0",
+     r"effects.creep.polach_reduction_adhesion must be in \(0, 1\] \[-\]; got 0"),
+    ("method = 'polach'\npolach_friction_decay = -1.0",
+     r"effects.creep.polach_friction_decay must be in \[0, inf\) \[s/m\]; got -1"),
+    ("method = 'polach'\npolach_reduction_adhesion = 0.3\npolach_reduction_slip = 0.5",
+     r"polach_reduction_slip must be <= effects.creep.polach_reduction_adhesion"),
+    ("method = 'fastsim'\npolach_friction_ratio_limit = 0.4",
+     r"polach_friction_ratio_limit applies to method = 'polach' only"),
+    ("method = 'fastrip'\nsource = 'table'", r"effects.creep.method must be"),
+])
+def test_comparison_method_scene_errors(text, match):
+    with pytest.raises(SceneError, match=match):
+        build_pipeline(parse_scene("[effects.creep]\n" + text + "\n"))
+
+
 def test_spin_switch_ignores_spin_input():
     on = build_pipeline(parse_scene("[effects.creep]\nspin = true\n"))
     off = build_pipeline(parse_scene("[effects.creep]\nspin = false\n"))
@@ -177,6 +224,26 @@ def test_slave_bad_parameter_logs_error_naming_it():
         slave.exit_initialization_mode()
     assert slave.log_queue[-1].status == 3
     assert "parameter poisson_ratio" in slave.log_queue[-1].msg
+
+
+def test_slave_polach_parameters_reach_the_creep_effect():
+    """FMU parameters creep_method = 'polach' and polach_* (Polach 2005, dry) set the effect's
+    method and options; a k_S > k_A is rejected naming the parameter."""
+    slave = _slave()
+    slave.creep_method = "polach"
+    slave.polach_reduction_slip = 0.4
+    slave.polach_friction_ratio_limit = 0.4
+    slave.polach_friction_decay = 0.6
+    _run_slave(slave, 3)
+    creep = slave._pipeline.effects["creep"]
+    assert creep.method == "polach"
+    assert creep._polach == {"reduction_adhesion": 1.0, "reduction_slip": 0.4,
+                             "friction_ratio_limit": 0.4, "friction_decay": 0.6}
+    bad = _slave()
+    bad.creep_method = "polach"
+    bad.polach_reduction_adhesion = 0.3
+    with pytest.raises(ValueError, match="polach_reduction_slip must be <="):
+        bad.exit_initialization_mode()
 
 
 def test_slave_state_round_trip_in_python():

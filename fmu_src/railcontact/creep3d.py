@@ -79,12 +79,16 @@ from ._validation import check_choice, check_range
 from ._floats import _NO_EXP, _TINY_SUBNORMAL, _hypot_scaled, _root_ab, _scaled, _value
 from .kalker import A0_OVER_B0_MAX, _coefficients_cached, kalker_coefficients
 
-__all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS", "creep_force_3d", "creep_solution_3d",
+__all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
+           "COMPARISON_METHODS", "creep_force_3d", "creep_solution_3d",
            "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
            "strip_force_function"]
 
 METHODS = ("linear", "she", "strip", "modified_strip")
 EXACT_DEFAULT_GRID = (40, 20)  # method="exact": elements (rolling, lateral); see creep_force_3d
+# Methods users compare against, each in its own module (railcontact.fastsim, railcontact.polach);
+# creep_force_3d and creep_solution_3d dispatch to them by name.
+COMPARISON_METHODS = ("fastsim", "polach", "fastrip")
 
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
 CreepForce3D.__doc__ = "Tangential creep force on the wheel, components tx, ty. [N]"
@@ -346,7 +350,7 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
            friction_coefficient, method):
-    check_choice("method", method, METHODS + ("exact",))  # "exact": dispatched earlier
+    check_choice("method", method, METHODS + COMPARISON_METHODS + ("exact",))  # dispatched
     xi_x = check_range("creepage_longitudinal", xi_x, "-")
     xi_y = check_range("creepage_lateral", xi_y, "-")
     phi = check_range("spin", phi, "1/m")
@@ -427,7 +431,8 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
-                   *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-4):
+                   *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-4,
+                   **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -452,8 +457,9 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         Poisson's ratio nu of both bodies, in [0, 0.5). [-]
     friction_coefficient : array_like
         Coulomb friction coefficient mu, >= 0. [-]
-    method : {"modified_strip", "strip", "she", "linear", "exact"}
-        Creep-force model. ``"exact"`` is Kalker's exact theory, discretised
+    method : {"modified_strip", "strip", "she", "linear", "exact", "fastsim", "polach", "fastrip"}
+        Creep-force model. "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016):
+        :mod:`railcontact.fastsim`; "polach" (Polach 1999/2005): :mod:`railcontact.polach`. ``"exact"`` is Kalker's exact theory, discretised
         (:func:`railcontact.reference.rolling3d.solve_rolling_3d`: the Hertzian normal problem
         solved on the grid, then the frictional steady rolling problem), one solve per
         broadcast element; it needs ``|creepage| <= 1`` and ``|spin| max(a0, b0) <= 1``.
@@ -478,6 +484,11 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         5e-6 of mu N against 1e-8 (measured on the 21 cases at 40x20 and 80x20) and saves
         about 30 % of the time against 1e-6; the times quoted above are for 1e-6 (at 1e-4:
         (40, 20) 23 / 13 ms; extrapolated (30, 20) 49 / 24 ms, (40, 20) 73 / 41 ms). [-]
+    **method_options
+        Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
+        (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
+        ``friction_decay``, ``rolling_speed``): see :func:`railcontact.fastsim.fastsim_force_3d`,
+        :func:`railcontact.fastsim.fastrip_force_3d`, :func:`railcontact.polach.polach_force_3d`.
 
     Returns
     -------
@@ -500,6 +511,12 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     ----------
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Secs. 2.5-2.6.
     """
+    if method in COMPARISON_METHODS:
+        tx, ty = _comparison(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                             youngs_modulus, poisson_ratio, friction_coefficient, method,
+                             method_options)[:2]
+        return CreepForce3D(tx, ty)
+    _no_options(method, method_options)
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
@@ -509,10 +526,36 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     return CreepForce3D(tx[()], ty[()])
 
 
+_OPTIONS = {"fastsim": ("n_strips", "n_elements"), "fastrip": ("n_strips", "n_elements"),
+            "polach": ("reduction_adhesion", "reduction_slip", "friction_ratio_limit",
+                       "friction_decay", "rolling_speed")}
+
+
+def _no_options(method, method_options):
+    if method_options:
+        raise ValueError(f"method {method!r} takes no options; got "
+                         f"{sorted(method_options)!r}")
+
+
+def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options):
+    """(tx, ty, stick_area_fraction or None) of a method of COMPARISON_METHODS."""
+    unknown = sorted(set(options) - set(_OPTIONS[method]))
+    if unknown:
+        raise ValueError(f"method {method!r} takes the options {list(_OPTIONS[method])!r}; "
+                         f"got {unknown!r}")
+    if method == "polach":
+        from .polach import polach_force_3d
+        return polach_force_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, **options) + (
+            None,)
+    from . import fastsim
+    fun = fastsim.fastsim_force_3d if method == "fastsim" else fastsim.fastrip_force_3d
+    return fun(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, **options)
+
+
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
                       method="modified_strip", *, grid=EXACT_DEFAULT_GRID, extrapolate=False,
-                      tolerance=1e-4, sensitivities=False, fields=False):
+                      tolerance=1e-4, sensitivities=False, fields=False, **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -539,6 +582,11 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     fields : bool, keyword-only
         The solver's element fields (pressure, tractions, slip, stick/slip masks).
 
+    For "fastsim" and "fastrip" the stick area fraction is the method's own (its grid);
+    for "polach" (no stick zone) the modified-strip estimate, as for "she"; the other fields
+    are the modified-strip ones. Measured errors of all methods against the exact theory:
+    docs/accuracy_vs_time.md.
+
     Returns
     -------
     CreepSolution3D or ExactCreepSolution3D
@@ -552,6 +600,15 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     railcontact.reference.rolling3d.RollingConvergenceError
         ``method="exact"``: the iteration did not converge.
     """
+    if method in COMPARISON_METHODS:
+        tx, ty, stick_own = _comparison(creepage_longitudinal, creepage_lateral, spin,
+                                        normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                        friction_coefficient, method, method_options)
+        base = creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                                 b0, youngs_modulus, poisson_ratio, friction_coefficient)
+        stick = base.stick_area_fraction if stick_own is None else stick_own
+        return base._replace(tx=tx, ty=ty, stick_area_fraction=stick)
+    _no_options(method, method_options)
     if method == "exact":
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,

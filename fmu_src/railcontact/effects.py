@@ -339,6 +339,12 @@ class Creep3D(_Effect):
     reader raises (its documented behaviour) and advises the analytic theory: the FMU then uses
     the analytic modified strip theory for that step (Mz = 0) and logs a warning once.
     With ``spin = false`` the spin input is ignored (treated as 0).
+
+    FASTSIM, Polach, FaStrip (``method = "fastsim" | "polach" | "fastrip"``, analytic source
+    only): the public :func:`~railcontact.creep3d.creep_solution_3d` each step (no scalar path;
+    FASTSIM and FaStrip loop over their 40 elements per strip). Polach's 2005 parameters come
+    from ``effects.creep.polach_*`` (:data:`railcontact.scene.POLACH_KEYS`) and his slip
+    velocity from the ``rolling_speed`` input.
     """
 
     name = "creep"
@@ -363,6 +369,10 @@ class Creep3D(_Effect):
         self._force_analytic = creep3d.creep_force_3d
         self._table = None
         self._exact = self.method == "exact"
+        self._comparison = self.method in creep3d.COMPARISON_METHODS
+        polach_keys = _import("scene", "creep").POLACH_KEYS
+        self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
+                        in polach_keys.items()}
         #: Output ``creep_table_error_estimate``: :func:`table_error_estimate` of the table in
         #: use (read once here), :data:`NOT_ESTIMATED` for the analytic source.
         self.table_error_estimate = NOT_ESTIMATED
@@ -399,7 +409,17 @@ class Creep3D(_Effect):
             self._aux_args = None
             return
         spin = c.spin if self.use_spin else 0.0
-        if self._table is None:
+        if self._comparison:
+            # FASTSIM, Polach, FaStrip: the public function (no scalar path; it checks inputs)
+            res = self._solve(c.creepage_longitudinal, c.creepage_lateral, spin,
+                              c.normal_force, c.a0, c.b0, self._e, self._nu,
+                              c.friction_coefficient, self.method, **self._options(c))
+            c.Fx, c.Fy = float(res.tx), float(res.ty)
+            c.stick_area_fraction = float(res.stick_area_fraction)
+            c.stick_width_ratio = float(res.stick_width_ratio)
+            c.r_a0 = 1.0 - min(float(res.normalised_creepage), 1.0)
+            c.creep_within_validity = bool(res.within_validity)
+        elif self._table is None:
             mu = c.friction_coefficient
             # scalar path; outside its assumptions the public function (it names the input)
             solve = (self._solve_scalar if 0.0 <= mu < math.inf and c.a0 > 0.0
@@ -432,6 +452,12 @@ class Creep3D(_Effect):
                     c.creep_table_error_estimate = NOT_ESTIMATED
             c.Fx, c.Fy = float(out[0]), float(out[1])
             self._aux_args = args
+
+    def _options(self, c):
+        """Method options: Polach's 2005 parameters, the slip velocity from rolling_speed."""
+        if self.method != "polach":
+            return {}
+        return dict(self._polach, rolling_speed=max(getattr(c, "rolling_speed", 0.0), 0.0))
 
     def _exact_fallback(self, args):
         try:    # the fast path declines extreme magnitudes too: the array path takes those

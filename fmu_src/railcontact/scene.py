@@ -214,7 +214,17 @@ EFFECTS = ("velocity_friction", "nonsteady", "creep", "roughness", "corrugation"
 #: contact), Kalker's exact theory (``"exact"``, from the shipped table ``creep_exact`` of
 #: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory
 #: (:func:`railcontact.carter.carter_creep_force`, line contact, ``geometry.kind = "line"``).
-CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "exact", "carter")
+CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "exact", "carter", "fastsim",
+                 "polach", "fastrip")
+#: Polach's 2005 parameters in ``[effects.creep]`` (method = "polach" only): scene key ->
+#: (keyword of :func:`railcontact.polach.polach_force_3d`, unit, lower, upper, lower_closed,
+#: default). Defaults: Polach 1999 (no reduction, constant friction).
+POLACH_KEYS = {
+    "polach_reduction_adhesion": ("reduction_adhesion", "-", 0.0, 1.0, False, 1.0),
+    "polach_reduction_slip": ("reduction_slip", "-", 0.0, 1.0, False, 1.0),
+    "polach_friction_ratio_limit": ("friction_ratio_limit", "-", 0.0, 1.0, True, 1.0),
+    "polach_friction_decay": ("friction_decay", "s/m", 0.0, None, True, 0.0),
+}
 #: Defaults of the accuracy knobs of the smooth friction law's iteration (those of
 #: :func:`railcontact.friction.solve_velocity_friction_normalised`).
 FRICTION_SERIES_DEGREE = 128
@@ -267,7 +277,7 @@ _SECTION_KEYS = {
     "simulation": {"start_time", "stop_time", "step_size"},
 }
 _EFFECT_KEYS = {
-    "creep": {"enabled", "method", "source", "spin", "table"},
+    "creep": {"enabled", "method", "source", "spin", "table", *POLACH_KEYS},
     "corrugation": {"enabled", "source", "method", "wavelengths", "amplitudes_cos",
                     "amplitudes_sin", "surface_file"},
     "wear": {"enabled", "source", "wear_coefficient", "wear_model", "evolve", "section_length"},
@@ -660,6 +670,7 @@ def scene_from_dict(data, base_dir=None):
                                  f"{opts['table']!r}")
             if opts["source"] == "table":
                 _check_table_exists("effects.creep.table", opts["table"])
+            _check_polach_keys(opts)
         elif name == "corrugation":
             opts["method"] = _choice("effects.corrugation.method", opts.get("method", "exact"),
                                      ("exact", "linear"))
@@ -780,6 +791,27 @@ def _check_roughness_combination(effects, geometry):
         if other in effects:
             raise SceneError(f"effects.roughness cannot be combined with effects.{other} "
                              f"({why})")
+def _check_polach_keys(opts):
+    """Polach's falling friction and reduction factors: ranges, k_S <= k_A (Polach 2005), only
+    with method = "polach" (a non-default value with another method is a SceneError)."""
+    for key, (_, unit, lower, upper, lower_closed, default) in POLACH_KEYS.items():
+        value = _number(f"effects.creep.{key}", opts.get(key, default), unit, lower, upper,
+                        lower_closed=lower_closed)
+        if opts["method"] != "polach":
+            if value != default:
+                raise SceneError(f"effects.creep.{key} applies to method = 'polach' only; got "
+                                 f"{value:g} with method {opts['method']!r}")
+            opts.pop(key, None)          # (the FMU passes every parameter at its start value)
+        else:
+            opts[key] = value
+    if opts["method"] == "polach" and (opts["polach_reduction_slip"]
+                                       > opts["polach_reduction_adhesion"]):
+        raise SceneError("effects.creep.polach_reduction_slip must be <= "
+                         "effects.creep.polach_reduction_adhesion (k_S <= k_A, Polach 2005); "
+                         f"got {opts['polach_reduction_slip']:g} > "
+                         f"{opts['polach_reduction_adhesion']:g}")
+
+
 def _check_table_sources(effects, data):
     """The method/source combinations the shipped tables allow (see "Table sources" in the
     module docstring); SceneError naming the dotted key otherwise."""
@@ -939,8 +971,22 @@ FMU_PARAMETERS = (
     ParameterSpec("friction_coefficient", ("friction", "friction_coefficient"), "real", "1",
                   "Coulomb friction coefficient mu, >= 0"),
     ParameterSpec("creep_method", ("effects", "creep", "method"), "string", "",
-                  "Creep theory: linear | she | strip | modified_strip (3-D), exact (Kalker's "
-                  "exact theory, table source only), carter (2-D, geometry_kind = 'line')"),
+                  "Creep theory: linear | she | strip | modified_strip | fastsim | polach | "
+                  "fastrip (3-D), exact (Kalker's exact theory, table source only), carter "
+                  "(2-D, geometry_kind = 'line')"),
+    ParameterSpec("polach_reduction_adhesion", ("effects", "creep", "polach_reduction_adhesion"),
+                  "real", "1", "Polach 2005 k_A, reduction of the initial slope, in (0, 1] "
+                               "(creep_method = 'polach'; 1 = Polach 1999)"),
+    ParameterSpec("polach_reduction_slip", ("effects", "creep", "polach_reduction_slip"),
+                  "real", "1", "Polach 2005 k_S, reduction of the slope in the slip area, in "
+                               "(0, k_A] (creep_method = 'polach')"),
+    ParameterSpec("polach_friction_ratio_limit",
+                  ("effects", "creep", "polach_friction_ratio_limit"), "real", "1",
+                  "Polach 2005 A = mu_inf/mu0 of mu = mu0 ((1 - A) exp(-B w) + A), w the slip "
+                  "velocity, in [0, 1]; 1 = constant friction (creep_method = 'polach')"),
+    ParameterSpec("polach_friction_decay", ("effects", "creep", "polach_friction_decay"),
+                  "real", "s/m", "Polach 2005 B, rate of the friction decrease with slip "
+                                 "velocity, >= 0 (creep_method = 'polach')"),
     ParameterSpec("creep_source", ("effects", "creep", "source"), "string", "",
                   "Creep forces from the 'analytic' solver or the shipped 'table'"),
     ParameterSpec("creep_spin", ("effects", "creep", "spin"), "boolean", "",
@@ -1058,6 +1104,8 @@ _EFFECT_PARAMETER_DEFAULTS = {
     "velocity_friction_source": "analytic",
     "nonsteady_enabled": False, "nonsteady_pseudo_width_ratio": 20.0,
     "nonsteady_model": "carter",
+    "polach_reduction_adhesion": 1.0, "polach_reduction_slip": 1.0,
+    "polach_friction_ratio_limit": 1.0, "polach_friction_decay": 0.0,
 }
 
 
