@@ -19,7 +19,7 @@ def test_package_functions_cache_in_the_user_directory(tmp_path, monkeypatch):
     py_func = rolling3d._sweep_solver.py_func
     locator = _numba_cache.RailcontactCacheLocator.from_function(py_func, rolling3d.__file__)
     path = Path(locator.get_cache_path())
-    assert path.parent == tmp_path / "numba" and path.name.startswith("rolling3d-")
+    assert path.parent == tmp_path / "numba" and path.name.startswith("railcontact.reference.rolling3d-")
     assert path.is_dir()  # created (and checked writable) by numba's locator protocol
     # not for code outside the package
     assert _numba_cache.RailcontactCacheLocator.from_function(py_func, __file__) is None

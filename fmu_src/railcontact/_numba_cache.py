@@ -12,7 +12,8 @@ stores the cache in
     (``%LOCALAPPDATA%\\railcontact\\Cache``, ``~/Library/Caches/railcontact``,
     ``$XDG_CACHE_HOME/railcontact`` or ``~/.cache/railcontact``), sub-folder ``numba``,
 
-one folder per module and source content (the first 16 hex digits of its SHA-256), so the
+one folder per module import name and source content (the first 16 hex digits of its
+SHA-256), so the
 cache survives re-extraction and two versions of the package do not overwrite each other's
 entries. numba still checks the source stamp (a content hash in numba >= 0.61) and the
 target machine before it loads an entry. A user's ``NUMBA_CACHE_DIR`` keeps precedence; if the
@@ -54,7 +55,10 @@ class RailcontactCacheLocator(caching._SourceFileBackedLocatorMixin, caching._Ca
         self._lineno = py_func.__code__.co_firstlineno
         with open(py_file, "rb") as fh:
             digest = hashlib.sha256(fh.read()).hexdigest()[:16]
-        self._cache_path = str(user_cache_dir() / "numba" / f"{Path(py_file).stem}-{digest}")
+        # keyed by the module's import name too: the FMU bundles the same file under another
+        # package name, and numba's cached environment re-imports the module by that name
+        module = getattr(py_func, "__module__", None) or Path(py_file).stem
+        self._cache_path = str(user_cache_dir() / "numba" / f"{module}-{digest}")
 
     def get_cache_path(self):
         return self._cache_path

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from functools import lru_cache
 from pathlib import Path
 
@@ -388,9 +389,19 @@ class TensorSpline:
 # Files
 # --------------------------------------------------------------------------------------------
 
+def _package_directory():
+    """This package's directory now: its ``__path__``, which the FMU slave points at each new
+    instance's extraction, rather than ``__file__``: a second load of the same FMU in one
+    process reuses the imported module, whose first extraction an importer may have deleted."""
+    package = sys.modules.get(__package__)
+    paths = list(getattr(package, "__path__", None) or ())
+    return Path(paths[0]) if paths else Path(__file__).resolve().parent
+
+
 def tables_directory():
-    """The shipped ``tables/`` directory of an editable checkout (may not exist)."""
-    here = Path(__file__).resolve().parent
+    """The shipped ``tables/`` directory of an editable checkout (may not exist); inside an FMU
+    the current instance's (:func:`_package_directory`)."""
+    here = _package_directory()
     for candidate in (here / "tables", here.parent.parent / "tables"):
         if candidate.is_dir():
             return candidate
@@ -421,7 +432,7 @@ def default_table_path(name, directory=None):
         Naming every place searched and the command that builds the table.
     """
     fname = name if str(name).endswith(".nc") else f"{name}.nc"
-    here = Path(__file__).resolve().parent
+    here = _package_directory()
     places = []
     if directory is not None:
         places.append(Path(directory))
