@@ -20,7 +20,7 @@ Outputs that are documented as possibly infinite are not counted as failures: th
 creepage z and the spin coefficient Phi (inf without contact or for pure spin) of
 ``creep_solution_3d`` and ``normalised_creepage_3d``/``spin_coefficient``.
 
-Covered: railcontact.creep_force_3d (four methods), creep_solution_3d,
+Covered: railcontact.creep_force_3d (every method, "exact" included), creep_solution_3d,
 normalised_creepage_3d, saturation_creepage_3d, spin_coefficient, kalker_coefficients,
 hertz_3d, hertz_2d, carter_creep_force, carter_stick_ratio, carter_critical_creepage,
 nonsteady.relax_creepage, tables.CreepTable (creep_force_3d scalar and array,
@@ -181,6 +181,8 @@ def make_cases(tables):
         "creep_force_3d[modified_strip]": creep("modified_strip"),
         "creep_force_3d[she]": creep("she"), "creep_force_3d[strip]": creep("strip"),
         "creep_force_3d[linear]": creep("linear"), "creep_solution_3d": solution,
+        "creep_force_3d[fastsim]": creep("fastsim"), "creep_force_3d[polach]": creep("polach"),
+        "creep_force_3d[fastrip]": creep("fastrip"), "creep_force_3d[exact]": creep("exact"),
         "normalised_creepage_3d": normalised, "saturation_creepage_3d": saturation,
         "spin_coefficient": spin, "kalker_coefficients": kalker, "hertz_3d": hertz3,
         "hertz_2d": hertz2, "carter_creep_force": carter, "carter_stick_ratio": carter_stick,

@@ -15,6 +15,7 @@ import pytest
 from railcontact import (creep_force_3d, creep_solution_3d, kalker_coefficients,
                          normalised_creepage_3d)
 from railcontact.fastsim import fastrip_force_3d, fastsim_force_3d
+import railcontact as rc
 
 DATA = Path(__file__).parent / "data"
 E, NU, MU, N = 210e9, 0.28, 0.3, 1e5
@@ -196,3 +197,27 @@ def test_input_errors():
         creep_force_3d(1e-3, 0, 0, *args, method="fastsim", reduction_slip=0.5)
     with pytest.raises(ValueError, match=r"method 'she' takes no options"):
         creep_force_3d(1e-3, 0, 0, *args, method="she", n_strips=4)
+
+
+@pytest.mark.parametrize("method", ["fastsim", "fastrip", "polach"])
+def test_extreme_magnitudes_by_similarity(method):
+    """FASTSIM, FaStrip and Polach are evaluated on a similar reference contact (forces over
+    mu N depend on a0/b0, nu and the creepages over mu p0 / G only), so extreme loads, sizes,
+    moduli and creepages give the same T/(mu N) or a ValueError, never NaN (found by a seeded
+    fuzz: xi = 1e308, a0 = 2e-308 gave NaN, a subnormal mu gave |T| > mu N)."""
+    base = [1e-3, -5e-4, 0.1, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3]
+    ref = rc.creep_force_3d(*base, method=method)
+    # N = 1e300 with E scaled by 1e295 (same mu p0 / G): the same T/(mu N)
+    big = list(base)
+    big[3], big[6] = 1e300, 210e9 * 1e295
+    f = rc.creep_force_3d(*big, method=method)
+    assert f.tx / (0.3 * 1e300) == pytest.approx(ref.tx / (0.3 * 1e5), rel=1e-9)
+    assert f.ty / (0.3 * 1e300) == pytest.approx(ref.ty / (0.3 * 1e5), rel=1e-9)
+    # creepage 1e308: full sliding, |T| = mu N (to the method's own sliding limit)
+    slide = rc.creep_force_3d(1e308, 0.0, 0.0, *base[3:], method=method)
+    assert np.hypot(slide.tx, slide.ty) == pytest.approx(0.3e5, rel=2e-3) and slide.tx < 0
+    # subnormal friction: |T| <= mu N as rounded
+    tiny = rc.creep_force_3d(*base[:8], 5e-324, method=method)
+    assert np.hypot(tiny.tx, tiny.ty) <= 5e-324 * 1e5
+    with pytest.raises(ValueError, match=r"a0/b0 must be in \[0.01, 100\]"):
+        rc.creep_force_3d(*base[:4], 2.2e-308, 5e-3, *base[6:], method=method)

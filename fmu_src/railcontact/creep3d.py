@@ -538,18 +538,129 @@ def _no_options(method, method_options):
 
 
 def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options):
-    """(tx, ty, stick_area_fraction or None) of a method of COMPARISON_METHODS."""
+    """(tx, ty, stick_area_fraction or None) of a method of COMPARISON_METHODS.
+
+    Inputs are range-checked here, then each case is evaluated on the similar reference
+    contact (:func:`_similar_reference`): FASTSIM, FaStrip and Polach's forces over mu N
+    depend only on a0/b0, nu and the creepages over mu p0 / G (Polach 2005's slip velocity
+    V |xi| is kept by scaling the speed back), so no product of the inputs can overflow."""
     unknown = sorted(set(options) - set(_OPTIONS[method]))
     if unknown:
         raise ValueError(f"method {method!r} takes the options {list(_OPTIONS[method])!r}; "
                          f"got {unknown!r}")
+    xi_x = check_range("creepage_longitudinal", xi_x, "-")
+    xi_y = check_range("creepage_lateral", xi_y, "-")
+    phi = check_range("spin", phi, "1/m")
+    n_load, a0, b0, e_mod, nu, mu = _check_common(n_load, a0, b0, e_mod, nu, mu)
+    lo, hi = COMPARISON_AXIS_RATIO_RANGE
+    ratio = _axis_ratio(a0, b0)
+    has_area = (np.asarray(a0) > 0.0) & (np.asarray(b0) > 0.0)
+    check_range("a0/b0", np.where(has_area, ratio, 1.0), "-", lo, hi,
+                condition=f"semi-axis ratio for method={method!r}, the range the strip "
+                          "discretisation resolves")
+    ref, force_scale, speed_scale = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod,
+                                                       nu, mu)
+    options = dict(options)
+    if "rolling_speed" in options:
+        speed = check_range("rolling_speed", options["rolling_speed"], "m/s", 0.0, None)
+        with np.errstate(over="ignore", invalid="ignore"):
+            options["rolling_speed"] = np.where(speed > 0.0, speed * speed_scale, 0.0)
     if method == "polach":
         from .polach import polach_force_3d
-        return polach_force_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, **options) + (
-            None,)
-    from . import fastsim
-    fun = fastsim.fastsim_force_3d if method == "fastsim" else fastsim.fastrip_force_3d
-    return fun(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, **options)
+        tx, ty = polach_force_3d(*ref, **options)
+        stick = None
+    else:
+        from . import fastsim
+        fun = fastsim.fastsim_force_3d if method == "fastsim" else fastsim.fastrip_force_3d
+        tx, ty, stick = fun(*ref, **options)
+    tx, ty = _coulomb_clipped(tx * force_scale, ty * force_scale, n_load, mu)
+    return tx[()], ty[()], stick
+
+
+def _coulomb_clipped(tx, ty, n_load, mu):
+    """(tx, ty) with |T| <= mu N as the caller computes mu N (the product, rounded; a few ulp
+    of scaling back from the reference contact, or a subnormal mu N, could exceed it)."""
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        tx, ty = np.asarray(tx, dtype=float) + 0.0, np.asarray(ty, dtype=float) + 0.0
+        mu_n = np.broadcast_to(np.asarray(mu, dtype=float) * np.asarray(n_load, dtype=float),
+                               tx.shape)
+        t_abs = np.hypot(tx, ty)
+        over = t_abs > mu_n
+        factor = np.where(over, mu_n / np.where(over, t_abs, 1.0), 1.0)
+        tx, ty = tx * factor, ty * factor
+        for _ in range(3):     # rounding (a subnormal mu N has few digits): step towards 0
+            over = np.hypot(tx, ty) > mu_n
+            tx = np.where(over, np.nextafter(tx, 0.0), tx)
+            ty = np.where(over, np.nextafter(ty, 0.0), ty)
+    return tx, ty
+
+
+#: a0/b0 range of FASTSIM, FaStrip and Polach here (as method="exact"). [-]
+COMPARISON_AXIS_RATIO_RANGE = (0.01, 100.0)
+#: The contact FASTSIM, FaStrip and Polach are evaluated on (by similarity, see
+#: :func:`_similar_reference`). [N, Pa, -, m^2]
+SIMILAR_REFERENCE_CONTACT = {"normal_load": 1e5, "youngs_modulus": 210e9,
+                             "friction_coefficient": 0.3, "area": 36e-6}
+#: Creepages beyond this many saturation creepages (mu p0 / G) are evaluated at it, the
+#: direction of (xi_x, xi_y, phi) kept: every element slides there, and the force is the
+#: full-sliding force to about 1e-4 of mu N.
+SIMILAR_CREEPAGE_CAP = 1e4
+
+
+def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
+    """The similar problem on :data:`SIMILAR_REFERENCE_CONTACT` (broadcast arrays) and the
+    factors back: ``(args, force_scale, speed_scale)``.
+
+    Creepages scale with k = (G / (mu p0)) / (G_r / (mu_r p0_r)), p0 = 3 N / (2 pi a0 b0), the
+    spin with k sqrt(a0 b0 / A_r), forces with mu N / (mu_r N_r); all in logarithms. No load,
+    friction or area gives a zero force scale (no force, as the other methods). Raises
+    ValueError where mu N leaves the float range."""
+    ref = SIMILAR_REFERENCE_CONTACT
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = np.broadcast_arrays(
+        *(np.asarray(v, dtype=float) for v in (xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)))
+    none = (n_load == 0.0) | (mu == 0.0) | (a0 == 0.0) | (b0 == 0.0)
+
+    def log(v):
+        return np.log(np.where(none, 1.0, v))
+
+    log_ratio = log(a0) - log(b0)
+    log_g = np.log(e_mod) - np.log(2.0 * (1.0 + nu))
+    log_p0 = np.log(1.5 / np.pi) + log(n_load) - log(a0) - log(b0)
+    log_g_r = np.log(ref["youngs_modulus"]) - np.log(2.0 * (1.0 + nu))
+    log_p0_r = np.log(1.5 / np.pi) + np.log(ref["normal_load"]) - np.log(ref["area"])
+    log_k = (log_g - log(mu) - log_p0) - (log_g_r - np.log(ref["friction_coefficient"])
+                                          - log_p0_r)
+    log_spin = log_k + 0.5 * (log(a0) + log(b0) - np.log(ref["area"]))
+    a_r = np.sqrt(ref["area"]) * np.exp(0.5 * log_ratio)
+    b_r = np.sqrt(ref["area"]) * np.exp(-0.5 * log_ratio)
+    with np.errstate(divide="ignore"):
+        log_parts = np.stack([np.log(np.abs(xi_x)) + log_k, np.log(np.abs(xi_y)) + log_k,
+                              np.log(np.abs(phi)) + log_spin + np.log(np.maximum(a_r, b_r))])
+    w_sat_r = (ref["friction_coefficient"] * 1.5 * ref["normal_load"]
+               / (np.pi * ref["area"]) / (ref["youngs_modulus"] / (2.0 * (1.0 + nu))))
+    log_cap = np.log(SIMILAR_CREEPAGE_CAP * w_sat_r)
+    shrink = np.minimum(0.0, log_cap - log_parts.max(axis=0))   # joint scaling, direction kept
+    with np.errstate(under="ignore"):
+        xi_r = np.where(xi_x == 0.0, 0.0, np.copysign(np.exp(log_parts[0] + shrink), xi_x))
+        eta_r = np.where(xi_y == 0.0, 0.0, np.copysign(np.exp(log_parts[1] + shrink), xi_y))
+        phi_r = np.where(phi == 0.0, 0.0,
+                         np.copysign(np.exp(log_parts[2] + shrink), phi) / np.maximum(a_r, b_r))
+    xi_r, eta_r, phi_r = (np.where(none, 0.0, v) for v in (xi_r, eta_r, phi_r))
+    log_force = log(mu) + log(n_load) - np.log(ref["friction_coefficient"] * ref["normal_load"])
+    if np.any(~none & (log(mu) + log(n_load) > 709.0)):
+        bad = (~none & (log(mu) + log(n_load) > 709.0))
+        raise ValueError("friction_coefficient * normal_load must be within the float range [N]; "
+                         f"got mu = {mu[bad].flat[0]:g}, N = {n_load[bad].flat[0]:g}")
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        direct = mu * n_load / (ref["friction_coefficient"] * ref["normal_load"])
+    usable = np.isfinite(direct) & (np.abs(direct) >= np.finfo(float).tiny)
+    force_scale = np.where(none, 0.0, np.where(usable, direct, np.exp(log_force)))
+    # Polach 2005: slip velocity V |xi| kept: V_r = V / (k e^shrink)
+    speed_scale = np.exp(np.clip(-(log_k + shrink), -709.0, 709.0))
+    args = (xi_r, eta_r, phi_r, np.full(xi_r.shape, ref["normal_load"]), a_r, b_r,
+            np.full(xi_r.shape, ref["youngs_modulus"]), nu,
+            np.full(xi_r.shape, ref["friction_coefficient"]))
+    return args, force_scale, speed_scale
 
 
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
