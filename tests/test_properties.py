@@ -712,3 +712,12 @@ def test_fmu_whole_float_range_finite_bounded_or_fmi_error(fmu_setup, values, wh
         assert within_coulomb(out[0], out[1], scene.friction_coefficient * row["normal_force"])
     finally:
         inst.fmu.freeInstance()
+        # keep the freed instance (its ctypes callbacks) alive for the rest of this process:
+        # PythonFMU's native library may still hold the logger callback of a freed instance,
+        # and collecting it while later instances are created crashed the process (a
+        # segmentation fault during garbage collection, once in a CI run)
+        _FREED_INSTANCES.append(inst)
+
+
+#: Freed FMU instances of this process, kept alive (see above).
+_FREED_INSTANCES = []
