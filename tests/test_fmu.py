@@ -998,3 +998,31 @@ def test_bundled_roughness_scene_finds_its_profile_inside_the_fmu(fmu_path):
     for name in ("contact_half_width", "Fx", "gap_curvature", "patch_shift"):
         values = bundled[name]
         assert values.max() - values.min() > 0.02 * np.abs(values).max(), name
+
+
+@pytest.mark.parametrize("method", ["fastsim", "polach", "fastrip"])
+def test_comparison_methods_through_the_fmu_equal_the_api(fmu_path, method):
+    """FASTSIM, Polach and FaStrip chosen by name in a scene (``scene_toml``): the FMU's forces
+    are those of :func:`railcontact.creep_force_3d` at the same inputs and Hertz semi-axes."""
+    toml = f"[effects.creep]\nmethod = '{method}'\n"
+    time = np.linspace(0.0, 0.01, 11)
+    names = ["time"] + list(INPUTS)
+    signals = np.zeros(time.size, dtype=[(n, float) for n in names])
+    signals["time"] = time
+    signals["normal_force"] = 1e5
+    signals["creepage_longitudinal"] = 2e-3
+    signals["creepage_lateral"] = -1e-3
+    signals["spin"] = 0.2
+    signals["rolling_speed"] = 30.0
+    result = fmpy.simulate_fmu(str(fmu_path), stop_time=0.01, output_interval=1e-3,
+                               start_values={"scene_toml": toml}, input=signals,
+                               output=["Fx", "Fy", "a0", "b0"])
+    last = result[-1]
+    from railcontact import creep_force_3d
+    from railcontact.scene import parse_scene
+    scene = parse_scene(toml)
+    want = creep_force_3d(2e-3, -1e-3, 0.2, 1e5, last["a0"], last["b0"], scene.youngs_modulus,
+                          scene.poisson_ratio, scene.friction_coefficient, method=method)
+    assert last["Fx"] == pytest.approx(float(want.tx), rel=1e-12)
+    assert last["Fy"] == pytest.approx(float(want.ty), rel=1e-12)
+    assert -0.3e5 < last["Fx"] < 0.0 < last["Fy"]
