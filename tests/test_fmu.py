@@ -582,9 +582,8 @@ def _instantiate(fmu_path, scene_path, unzipdir):
     return fmu, vr
 
 
-@pytest.mark.parametrize("scene_path", [MAIN_SCENE, CORRUGATION_SCENE],
-                         ids=lambda s: Path(s).stem)
 def _passages(fmu, vr):
+    """Passages the wear effect has counted, read from the serialised FMU state."""
     state = fmu.getFMUState()
     blob = fmu.serializeFMUstate(state)
     fmu.freeFMUState(state)
