@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["check_range", "check_choice"]
+__all__ = ["check_range", "check_choice", "check_contact_inputs", "check_creep_inputs"]
 
 
 def _fmt(value) -> str:
@@ -77,3 +77,29 @@ def check_choice(name, value, choices):
     if value not in choices:
         raise ValueError(f"{name} must be one of {sorted(choices)}; got {value!r}")
     return value
+
+
+def check_contact_inputs(normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                         friction_coefficient):
+    """The contact inputs every 3-D creep method takes, checked: N, a0, b0, mu >= 0, E > 0,
+    nu in [0, 0.5). Returns them as float arrays in that order."""
+    return (check_range("normal_load", normal_load, "N", 0.0, None),
+            check_range("a0", a0, "m", 0.0, None),
+            check_range("b0", b0, "m", 0.0, None),
+            check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False),
+            check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False),
+            check_range("friction_coefficient", friction_coefficient, "-", 0.0, None))
+
+
+def check_creep_inputs(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                       youngs_modulus, poisson_ratio, friction_coefficient,
+                       creepage_bound=None):
+    """The inputs of a 3-D creep-force function, checked: finite creepages (within
+    ``+-creepage_bound`` if given) and spin, then :func:`check_contact_inputs`. Returns the nine
+    as float arrays in that order."""
+    bound = (None, None) if creepage_bound is None else (-creepage_bound, creepage_bound)
+    return (check_range("creepage_longitudinal", creepage_longitudinal, "-", *bound),
+            check_range("creepage_lateral", creepage_lateral, "-", *bound),
+            check_range("spin", spin, "1/m"),
+            *check_contact_inputs(normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                  friction_coefficient))

@@ -75,7 +75,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from ._validation import check_choice, check_range
+from ._validation import (check_choice, check_contact_inputs, check_creep_inputs,
+                          check_range)
 from ._floats import _NO_EXP, _TINY_SUBNORMAL, _hypot_scaled, _root_ab, _scaled, _value
 from .kalker import A0_OVER_B0_MAX, _coefficients_cached, kalker_coefficients
 
@@ -136,16 +137,6 @@ def _f_over_z(z):
     # the strip tractions in tests/test_creep3d.py::test_strip_formula_2_87_against_quadrature.
     r = np.sqrt(np.maximum(1.0 - z * z, 0.0))
     return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * np.arccos(z)
-
-
-def _check_common(normal_load, a0, b0, youngs_modulus, poisson_ratio, friction_coefficient):
-    n_load = check_range("normal_load", normal_load, "N", 0.0, None)
-    a0 = check_range("a0", a0, "m", 0.0, None)
-    b0 = check_range("b0", b0, "m", 0.0, None)
-    e_mod = check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False)
-    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False)
-    mu = check_range("friction_coefficient", friction_coefficient, "-", 0.0, None)
-    return n_load, a0, b0, e_mod, nu, mu
 
 
 def _axis_ratio(a0, b0):
@@ -278,11 +269,9 @@ def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal
         creepage.
     """
     check_choice("method", method, ("modified_strip", "strip"))
-    xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-")
-    xi_y = check_range("creepage_lateral", creepage_lateral, "-")
-    phi = check_range("spin", spin, "1/m")
-    n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
-                                                  poisson_ratio, friction_coefficient)
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
+        creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+        poisson_ratio, friction_coefficient)
     c11, c22, c23 = _coefficients(a0, b0, nu, method)
     _, _, w_m, w_e = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23)
     s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
@@ -329,8 +318,8 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
         s_sat >= 0. [-] (0 when N = 0 or mu = 0.)
     """
     check_choice("method", method, ("modified_strip", "strip"))
-    n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
-                                                  poisson_ratio, friction_coefficient)
+    n_load, a0, b0, e_mod, nu, mu = check_contact_inputs(normal_load, a0, b0, youngs_modulus,
+                                                         poisson_ratio, friction_coefficient)
     a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
     b0 = check_range("b0", b0, "m", 0.0, None, lower_closed=False)
     theta = check_range("direction", direction, "rad")
@@ -351,11 +340,9 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
 def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
            friction_coefficient, method):
     check_choice("method", method, METHODS + COMPARISON_METHODS + ("exact",))  # dispatched
-    xi_x = check_range("creepage_longitudinal", xi_x, "-")
-    xi_y = check_range("creepage_lateral", xi_y, "-")
-    phi = check_range("spin", phi, "1/m")
-    n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
-                                                  poisson_ratio, friction_coefficient)
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
+        xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
+        friction_coefficient)
     shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (
         np.broadcast_to(v, shape) for v in (xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
@@ -548,18 +535,10 @@ def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options)
     if unknown:
         raise ValueError(f"method {method!r} takes the options {list(_OPTIONS[method])!r}; "
                          f"got {unknown!r}")
-    xi_x = check_range("creepage_longitudinal", xi_x, "-")
-    xi_y = check_range("creepage_lateral", xi_y, "-")
-    phi = check_range("spin", phi, "1/m")
-    n_load, a0, b0, e_mod, nu, mu = _check_common(n_load, a0, b0, e_mod, nu, mu)
-    lo, hi = COMPARISON_AXIS_RATIO_RANGE
-    ratio = _axis_ratio(a0, b0)
-    has_area = (np.asarray(a0) > 0.0) & (np.asarray(b0) > 0.0)
-    check_range("a0/b0", np.where(has_area, ratio, 1.0), "-", lo, hi,
-                condition=f"semi-axis ratio for method={method!r}, the range the strip "
-                          "discretisation resolves")
-    ref, force_scale, speed_scale = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod,
-                                                       nu, mu)
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
+    sim = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
+    ref, force_scale, speed_scale = sim["args"], sim["force_scale"], sim["speed_scale"]
     options = dict(options)
     if "rolling_speed" in options:
         speed = check_range("rolling_speed", options["rolling_speed"], "m/s", 0.0, None)
@@ -595,27 +574,39 @@ def _coulomb_clipped(tx, ty, n_load, mu):
     return tx, ty
 
 
-#: a0/b0 range of FASTSIM, FaStrip and Polach here (as method="exact"). [-]
-COMPARISON_AXIS_RATIO_RANGE = (0.01, 100.0)
-#: The contact FASTSIM, FaStrip and Polach are evaluated on (by similarity, see
-#: :func:`_similar_reference`). [N, Pa, -, m^2]
-SIMILAR_REFERENCE_CONTACT = {"normal_load": 1e5, "youngs_modulus": 210e9,
-                             "friction_coefficient": 0.3, "area": 36e-6}
-#: Creepages beyond this many saturation creepages (mu p0 / G) are evaluated at it, the
-#: direction of (xi_x, xi_y, phi) kept: every element slides there, and the force is the
-#: full-sliding force to about 1e-4 of mu N.
+#: The contact every case of method "exact", "fastsim", "polach" and "fastrip" is evaluated
+#: on (by similarity, see :func:`_similar_reference`); also the exact table's reference
+#: contact (:data:`railcontact.tables.EXACT_REFERENCE_CONTACT`). a0 b0 = area_radius^2.
+#: [N, Pa, -, m]
+REFERENCE_CONTACT = dict(normal_load=1.0e5, youngs_modulus=210e9, friction_coefficient=0.3,
+                         area_radius=6.0e-3)
+#: a0/b0 range of the methods evaluated on the reference contact (their grids resolve it). [-]
+SIMILAR_AXIS_RATIO_RANGE = (0.01, 100.0)
+#: FASTSIM, FaStrip, Polach: creepages beyond this many saturation creepages (mu p0 / G) are
+#: evaluated at it, the direction of (xi_x, xi_y, phi) kept: every element slides there, and
+#: the force is the full-sliding force to about 1e-4 of mu N. (method "exact" refuses
+#: creepages beyond its solver's domain instead.)
 SIMILAR_CREEPAGE_CAP = 1e4
 
 
-def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
-    """The similar problem on :data:`SIMILAR_REFERENCE_CONTACT` (broadcast arrays) and the
-    factors back: ``(args, force_scale, speed_scale)``.
+def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
+    """The similar problem on :data:`REFERENCE_CONTACT` (broadcast arrays) and the factors
+    back: a dict with ``args`` (the nine inputs there), ``force_scale``, ``speed_scale``
+    (Polach 2005: V_r = V speed_scale keeps the slip velocity), and for ``method="exact"``
+    ``moment_scale``, ``creepage_scale`` (d xi_r / d xi) and ``spin_scale`` (d phi_r / d phi).
 
     Creepages scale with k = (G / (mu p0)) / (G_r / (mu_r p0_r)), p0 = 3 N / (2 pi a0 b0), the
-    spin with k sqrt(a0 b0 / A_r), forces with mu N / (mu_r N_r); all in logarithms. No load,
-    friction or area gives a zero force scale (no force, as the other methods). Raises
-    ValueError where mu N leaves the float range."""
-    ref = SIMILAR_REFERENCE_CONTACT
+    spin with k sqrt(a0 b0 / A_r), forces with mu N / (mu_r N_r), the spin moment with that
+    times sqrt(a0 b0 / A_r); all in logarithms, so no product of the inputs overflows. No load,
+    friction or area gives a zero force scale (no force, as the other methods).
+
+    Raises ValueError where a0/b0 is outside :data:`SIMILAR_AXIS_RATIO_RANGE`, where mu N (or
+    the spin moment) leaves the float range, and for ``"exact"`` where the similar creepages
+    are beyond the solver's domain (|xi| <= 1, |phi| max(a0, b0) <= 1 on the reference
+    contact: some 200 times the saturation creepage); the other methods cap them at
+    :data:`SIMILAR_CREEPAGE_CAP` saturation creepages instead."""
+    ref = REFERENCE_CONTACT
+    area_r = ref["area_radius"] ** 2
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = np.broadcast_arrays(
         *(np.asarray(v, dtype=float) for v in (xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)))
     none = (n_load == 0.0) | (mu == 0.0) | (a0 == 0.0) | (b0 == 0.0)
@@ -623,44 +614,69 @@ def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
     def log(v):
         return np.log(np.where(none, 1.0, v))
 
-    log_ratio = log(a0) - log(b0)
+    # the ratio is checked wherever both semi-axes are > 0, as the analytic methods do; "exact"
+    # skips the cases without load or friction, which it answers with zero before solving
+    has_area = (a0 > 0.0) & (b0 > 0.0) & ~(none if method == "exact" else False)
+    log_ratio = np.where(has_area, np.log(np.where(has_area, a0, 1.0))
+                         - np.log(np.where(has_area, b0, 1.0)), 0.0)
+    lo, hi = SIMILAR_AXIS_RATIO_RANGE
+    check_range("a0/b0", np.exp(np.clip(log_ratio, -700.0, 700.0)), "-", lo, hi,
+                condition=f"semi-axis ratio for method={method!r}, the range its grid resolves")
     log_g = np.log(e_mod) - np.log(2.0 * (1.0 + nu))
     log_p0 = np.log(1.5 / np.pi) + log(n_load) - log(a0) - log(b0)
     log_g_r = np.log(ref["youngs_modulus"]) - np.log(2.0 * (1.0 + nu))
-    log_p0_r = np.log(1.5 / np.pi) + np.log(ref["normal_load"]) - np.log(ref["area"])
+    log_p0_r = np.log(1.5 / np.pi) + np.log(ref["normal_load"]) - np.log(area_r)
     log_k = (log_g - log(mu) - log_p0) - (log_g_r - np.log(ref["friction_coefficient"])
                                           - log_p0_r)
-    log_spin = log_k + 0.5 * (log(a0) + log(b0) - np.log(ref["area"]))
-    a_r = np.sqrt(ref["area"]) * np.exp(0.5 * log_ratio)
-    b_r = np.sqrt(ref["area"]) * np.exp(-0.5 * log_ratio)
+    log_spin = log_k + 0.5 * (log(a0) + log(b0) - np.log(area_r))
+    a_r = ref["area_radius"] * np.exp(0.5 * log_ratio)
+    b_r = ref["area_radius"] * np.exp(-0.5 * log_ratio)
+    values = (xi_x, xi_y, phi)
     with np.errstate(divide="ignore"):
         log_parts = np.stack([np.log(np.abs(xi_x)) + log_k, np.log(np.abs(xi_y)) + log_k,
                               np.log(np.abs(phi)) + log_spin + np.log(np.maximum(a_r, b_r))])
-    w_sat_r = (ref["friction_coefficient"] * 1.5 * ref["normal_load"]
-               / (np.pi * ref["area"]) / (ref["youngs_modulus"] / (2.0 * (1.0 + nu))))
-    log_cap = np.log(SIMILAR_CREEPAGE_CAP * w_sat_r)
-    shrink = np.minimum(0.0, log_cap - log_parts.max(axis=0))   # joint scaling, direction kept
+    if method == "exact":
+        shrink = 0.0
+        for part, value, name, unit in zip(log_parts, values,
+                                           ("creepage_longitudinal", "creepage_lateral", "spin"),
+                                           ("-", "-", "1/m")):
+            beyond = ~none & (part > 0.0)       # |similar value| > 1: beyond the domain
+            if np.any(beyond):
+                raise ValueError(
+                    f"{name} must be in the exact solver's domain: at most 1 on the similar "
+                    f"reference contact (creepage, or rigid spin slip |phi| max(a0, b0); about "
+                    f"200 times the saturation creepage mu p0 / G) [{unit}]; got "
+                    f"{value[beyond].flat[0]:g} (similar value e^{part[beyond].flat[0]:.3g})")
+    else:
+        w_sat_r = (ref["friction_coefficient"] * 1.5 * ref["normal_load"] / (np.pi * area_r)
+                   / (ref["youngs_modulus"] / (2.0 * (1.0 + nu))))
+        log_cap = np.log(SIMILAR_CREEPAGE_CAP * w_sat_r)
+        shrink = np.minimum(0.0, log_cap - log_parts.max(axis=0))   # direction kept
     with np.errstate(under="ignore"):
-        xi_r = np.where(xi_x == 0.0, 0.0, np.copysign(np.exp(log_parts[0] + shrink), xi_x))
-        eta_r = np.where(xi_y == 0.0, 0.0, np.copysign(np.exp(log_parts[1] + shrink), xi_y))
-        phi_r = np.where(phi == 0.0, 0.0,
-                         np.copysign(np.exp(log_parts[2] + shrink), phi) / np.maximum(a_r, b_r))
-    xi_r, eta_r, phi_r = (np.where(none, 0.0, v) for v in (xi_r, eta_r, phi_r))
-    log_force = log(mu) + log(n_load) - np.log(ref["friction_coefficient"] * ref["normal_load"])
-    if np.any(~none & (log(mu) + log(n_load) > 709.0)):
-        bad = (~none & (log(mu) + log(n_load) > 709.0))
-        raise ValueError("friction_coefficient * normal_load must be within the float range [N]; "
-                         f"got mu = {mu[bad].flat[0]:g}, N = {n_load[bad].flat[0]:g}")
+        xi_r, eta_r, phi_r = (np.where((value == 0.0) | none, 0.0,
+                                       np.copysign(np.exp(part + shrink), value))
+                              for part, value in zip(log_parts, values))
+    phi_r = phi_r / np.maximum(a_r, b_r)
+    log_mu_n = log(mu) + log(n_load)
+    log_force = log_mu_n - np.log(ref["friction_coefficient"] * ref["normal_load"])
+    log_moment = log_force + 0.5 * (log(a0) + log(b0) - np.log(area_r))
+    over = ~none & (np.maximum(log_mu_n, log_moment if method == "exact" else -np.inf)
+                    > 709.0)
+    if np.any(over):
+        raise ValueError("friction_coefficient * normal_load must be within the float range "
+                         f"[N] (and the spin moment with it); got mu = {mu[over].flat[0]:g}, "
+                         f"N = {n_load[over].flat[0]:g}")
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
         direct = mu * n_load / (ref["friction_coefficient"] * ref["normal_load"])
     usable = np.isfinite(direct) & (np.abs(direct) >= np.finfo(float).tiny)
-    force_scale = np.where(none, 0.0, np.where(usable, direct, np.exp(log_force)))
-    # Polach 2005: slip velocity V |xi| kept: V_r = V / (k e^shrink)
-    speed_scale = np.exp(np.clip(-(log_k + shrink), -709.0, 709.0))
-    args = (xi_r, eta_r, phi_r, np.full(xi_r.shape, ref["normal_load"]), a_r, b_r,
-            np.full(xi_r.shape, ref["youngs_modulus"]), nu,
-            np.full(xi_r.shape, ref["friction_coefficient"]))
-    return args, force_scale, speed_scale
+    full = np.full(xi_r.shape, 1.0)
+    return {"args": (xi_r, eta_r, phi_r, ref["normal_load"] * full, a_r, b_r,
+                     ref["youngs_modulus"] * full, nu, ref["friction_coefficient"] * full),
+            "force_scale": np.where(none, 0.0, np.where(usable, direct, np.exp(log_force))),
+            "moment_scale": np.where(none, 0.0, np.exp(np.minimum(log_moment, 709.0))),
+            "creepage_scale": np.exp(np.minimum(log_k + shrink, 709.0)),
+            "spin_scale": np.exp(np.minimum(log_spin + shrink, 709.0)),
+            "speed_scale": np.exp(np.clip(-(log_k + shrink), -709.0, 709.0))}
 
 
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
@@ -917,72 +933,6 @@ iterations : Gauss-Seidel sweeps used (summed over both grids with ``extrapolate
 """
 
 
-#: The contact the exact solver is run on: every case is mapped to it by the exact theory's
-#: similarity (forces over mu N depend only on a0/b0, nu and the creepages over
-#: mu p0 / G, the spin times sqrt(a0 b0) likewise), so that extreme magnitudes of load,
-#: size, modulus or friction never reach the solver's arithmetic. [N, Pa, -, m^2]
-EXACT_REFERENCE_CONTACT = {"normal_load": 1e5, "youngs_modulus": 210e9,
-                           "friction_coefficient": 0.3, "area": 36e-6}
-#: Range of a0/b0 the grid resolves (elements per semi-axis scale with it). [-]
-EXACT_AXIS_RATIO_RANGE = (0.01, 100.0)
-
-
-def _exact_reference_problem(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
-    """The similar problem on :data:`EXACT_REFERENCE_CONTACT` and the factors back.
-
-    Creepages scale with k = (G / (mu p0)) / (G_r / (mu_r p0_r)), p0 = 3 N / (2 pi a0 b0), the
-    spin with k sqrt(a0 b0 / A_r), forces with mu N / (mu_r N_r), the spin moment with that
-    times sqrt(a0 b0 / A_r); all in logarithms, so no product overflows. Raises ValueError
-    where a0/b0 is outside :data:`EXACT_AXIS_RATIO_RANGE`, where the similar creepages are
-    beyond the solver's domain (|xi| <= 1, |phi| max(a0, b0) <= 1 on the reference contact:
-    some 200 times the saturation creepage) or where mu N leaves the float range."""
-    log = math.log
-    ref = EXACT_REFERENCE_CONTACT
-    log_ratio = log(a0) - log(b0)
-    lo, hi = EXACT_AXIS_RATIO_RANGE
-    if not log(lo) <= log_ratio <= log(hi):
-        raise ValueError(f"a0/b0 must be in [{lo:g}, {hi:g}] [-] with method='exact' (the "
-                         f"grid must resolve both semi-axes); got {math.exp(log_ratio):g}"
-                         if abs(log_ratio) < 700 else
-                         f"a0/b0 must be in [{lo:g}, {hi:g}] [-] with method='exact'; got "
-                         f"a0 = {a0:g}, b0 = {b0:g}")
-    log_g = log(e_mod) - log(2.0 * (1.0 + nu))
-    log_p0 = log(1.5 / math.pi) + log(n_load) - log(a0) - log(b0)
-    log_g_r = log(ref["youngs_modulus"]) - log(2.0 * (1.0 + nu))
-    log_p0_r = log(1.5 / math.pi) + log(ref["normal_load"]) - log(ref["area"])
-    log_k = (log_g - log(mu) - log_p0) - (log_g_r - log(ref["friction_coefficient"])
-                                           - log_p0_r)
-    log_spin = log_k + 0.5 * (log(a0) + log(b0) - log(ref["area"]))
-
-    def scaled(value, log_factor, name, unit):
-        if value == 0.0:
-            return 0.0
-        exponent = log(abs(value)) + log_factor
-        if exponent > 0.0:       # |similar value| > 1: beyond the solver's domain
-            raise ValueError(
-                f"{name} must be in the exact solver's domain: at most 1 on the similar "
-                f"reference contact (creepage, or rigid spin slip |phi| max(a0, b0); about 200 "
-                f"times the saturation creepage mu p0 / G) [{unit}]; got {value:g} (similar "
-                f"value e^{exponent:.3g})")
-        return math.copysign(math.exp(exponent), value)
-
-    a_r = math.sqrt(ref["area"]) * math.exp(0.5 * log_ratio)
-    b_r = math.sqrt(ref["area"]) * math.exp(-0.5 * log_ratio)
-    xi_r = scaled(xi_x, log_k, "creepage_longitudinal", "-")
-    eta_r = scaled(xi_y, log_k, "creepage_lateral", "-")
-    phi_r = scaled(phi, log_spin + log(max(a_r, b_r)), "spin", "1/m") / max(a_r, b_r)
-    log_force = log(mu) + log(n_load) - log(ref["friction_coefficient"] * ref["normal_load"])
-    log_moment = log_force + 0.5 * (log(a0) + log(b0) - log(ref["area"]))
-    if max(log(mu) + log(n_load), log_moment) > 709.0:
-        raise ValueError("friction_coefficient * normal_load must be within the float range "
-                         f"[N] (and the spin moment with it); got mu = {mu:g}, N = {n_load:g}")
-    return {"args": (xi_r, eta_r, phi_r, ref["normal_load"], a_r, b_r, ref["youngs_modulus"],
-                     nu, ref["friction_coefficient"]),
-            "force_scale": math.exp(log_force), "moment_scale": math.exp(log_moment),
-            "creepage_scale": math.exp(min(log_k, 709.0)),      # d xi_r / d xi
-            "spin_scale": math.exp(min(log_spin, 709.0))}      # d phi_r / d phi
-
-
 def _check_exact_grid(grid):
     try:
         mx, my = (int(v) for v in grid)
@@ -1001,13 +951,12 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
     """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`."""
     from .reference.rolling3d import solve_rolling_3d
 
-    xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-", -1.0, 1.0)
-    xi_y = check_range("creepage_lateral", creepage_lateral, "-", -1.0, 1.0)
-    phi = check_range("spin", spin, "1/m")
-    n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
-                                                  poisson_ratio, friction_coefficient)
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
+        creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+        poisson_ratio, friction_coefficient, creepage_bound=1.0)
     mx, my = _check_exact_grid(grid)
     tolerance = float(check_range("tolerance", tolerance, "-", 0.0, 0.1, lower_closed=False))
+    sim = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, "exact")
     args = np.broadcast_arrays(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
     shape = args[0].shape
     tx, ty, mz = np.zeros(shape), np.zeros(shape), np.zeros(shape)
@@ -1019,23 +968,23 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         x_, y_, p_, n_, a_, b_, e_, v_, m_ = (float(arr[idx]) for arr in args)
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
-        ref = _exact_reference_problem(x_, y_, p_, n_, a_, b_, e_, v_, m_)
+        similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
         kw = dict(tolerance=tolerance, sensitivities=sensitivities)
-        one = solve_rolling_3d(*ref["args"], mx=mx, my=my, **kw)
+        one = solve_rolling_3d(*similar, mx=mx, my=my, **kw)
         fine = one
         if extrapolate:  # one Richardson step in the rolling-direction element size
-            fine = solve_rolling_3d(*ref["args"], mx=2 * mx, my=my, initial_guess=one,
+            fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, initial_guess=one,
                                     **kw)  # prolongated coarse start
         w_c, w_f = (-1.0, 2.0) if extrapolate else (0.0, 1.0)
-        force, moment = ref["force_scale"], ref["moment_scale"]
+        force, moment = sim["force_scale"][idx], sim["moment_scale"][idx]
         tx[idx] = (w_f * fine.tx + w_c * one.tx) * force
         ty[idx] = (w_f * fine.ty + w_c * one.ty) * force
         mz[idx] = (w_f * fine.mz + w_c * one.mz) * moment
         iters[idx] = one.iterations + (fine.iterations if extrapolate else 0)
         if sensitivities:
             rows = np.array([force, force, moment])[:, None]
-            cols = np.array([ref["creepage_scale"], ref["creepage_scale"],
-                             ref["spin_scale"]])[None, :]
+            cols = np.array([sim["creepage_scale"][idx], sim["creepage_scale"][idx],
+                             sim["spin_scale"][idx]])[None, :]
             with np.errstate(over="ignore", invalid="ignore"):
                 sens[idx] = (w_f * fine.sensitivity + w_c * one.sensitivity) * rows * cols
             if not np.all(np.isfinite(sens[idx])):
@@ -1044,7 +993,7 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
                                  "within the float range [N, N m per unit creepage]; got "
                                  f"N = {n_:g}, a0 = {a_:g}, b0 = {b_:g}, E = {e_:g}, "
                                  f"mu = {m_:g}")
-        a_ref, b_ref = ref["args"][4], ref["args"][5]
+        a_ref, b_ref = similar[4], similar[5]
         dx = fine.x[1] - fine.x[0]
         dy = fine.y[1] - fine.y[0]
         stick[idx] = fine.adhesion.sum() * dx * dy / (np.pi * a_ref * b_ref)

@@ -92,7 +92,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validation import check_range
+from ._validation import check_creep_inputs
 from .kalker import kalker_coefficients
 
 __all__ = ["fastsim_force_3d", "fastrip_force_3d", "FASTSIM_STRIPS", "FASTSIM_ELEMENTS"]
@@ -103,12 +103,9 @@ FASTSIM_ELEMENTS = 40    # default number of steps along each strip
 
 def _check_inputs(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
                   friction_coefficient, n_strips, n_elements):
-    from .creep3d import _check_common      # (creep3d dispatches to this module)
-    xi_x = check_range("creepage_longitudinal", xi_x, "-")
-    xi_y = check_range("creepage_lateral", xi_y, "-")
-    phi = check_range("spin", phi, "1/m")
-    n_load, a0, b0, e_mod, nu, mu = _check_common(normal_load, a0, b0, youngs_modulus,
-                                                  poisson_ratio, friction_coefficient)
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
+        xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
+        friction_coefficient)
     for name, n in (("n_strips", n_strips), ("n_elements", n_elements)):
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 2 <= n <= 10000:
             raise ValueError(f"{name} must be an integer in [2, 10000] [-]; got {n!r}")

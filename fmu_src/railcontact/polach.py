@@ -60,7 +60,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validation import check_range
+from ._validation import check_creep_inputs, check_range
 from .kalker import kalker_coefficients
 
 __all__ = ["polach_force_3d", "polach_friction", "POLACH_DRY", "POLACH_WET"]
@@ -153,12 +153,9 @@ def polach_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, 
     .. [1] O. Polach, Vehicle System Dynamics 33 Suppl. (1999) 728-739.
     .. [2] O. Polach, Wear 258 (2005) 992-1000.
     """
-    from .creep3d import _check_common      # (creep3d dispatches to this module)
-    xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-")
-    xi_y = check_range("creepage_lateral", creepage_lateral, "-")
-    phi = check_range("spin", spin, "1/m")
-    n_load, a0, b0, e_mod, nu, mu0 = _check_common(normal_load, a0, b0, youngs_modulus,
-                                                   poisson_ratio, friction_coefficient)
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0 = check_creep_inputs(
+        creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+        poisson_ratio, friction_coefficient)
     k_a, k_s, a_ratio, b_decay, speed = _check_polach(
         reduction_adhesion, reduction_slip, friction_ratio_limit, friction_decay, rolling_speed)
     shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0, k_a, k_s, a_ratio,

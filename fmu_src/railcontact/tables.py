@@ -52,7 +52,7 @@ from scipy.interpolate import make_interp_spline
 
 from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from ._validation import check_range
-from .creep3d import _moderate
+from .creep3d import REFERENCE_CONTACT, _moderate
 
 __all__ = [
     "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
@@ -1004,8 +1004,7 @@ class CreepTable:
 
 #: Reference contact on which the normalised exact table is computed (any contact gives the
 #: same normalised forces: checked in tests/test_tables.py). a0 b0 = 36 mm^2.
-EXACT_REFERENCE_CONTACT = dict(normal_load=1.0e5, youngs_modulus=210e9,
-                               friction_coefficient=0.3, area_radius=6.0e-3)
+EXACT_REFERENCE_CONTACT = REFERENCE_CONTACT
 
 
 def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
