@@ -15,6 +15,7 @@ checkout); ``"synchronous"`` computes in this process (tests, debugging).
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import os
 import sys
@@ -23,7 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from railcontact.tables import bspline_knots, fit_tensor_bspline, TensorSpline
+from railcontact.tables import (TensorSpline, bspline_knots, fit_tensor_bspline,
+                                periodic_bspline_knots, periodic_stored_nodes)
 
 from .netcdf import write_table
 from .registry import get_spec
@@ -141,6 +143,9 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     if why:
         raise RuntimeError(f"table {name!r} cannot be built: {why}")
     axes, points = spec.grid(resolution)
+    assemble = None
+    if spec.reduce is not None:   # symmetries: compute a fundamental part only
+        points, assemble = spec.reduce(axes)
     check = spec.make_check_points(axes, resolution)
     h = hashlib.sha1()
     for arr in (points, check):
@@ -159,13 +164,7 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     n_grid_chunks = len(_chunks(len(points), spec.chunk_size))
     grid_vals = np.concatenate([np.load(f) for f, _ in tasks[:n_grid_chunks]])
     check_vals = np.concatenate([np.load(f) for f, _ in tasks[n_grid_chunks:]])
-    shape = tuple(len(a.nodes) for a in axes)
-    values = np.moveaxis(grid_vals.reshape(shape + (len(spec.variables),)), -1, 0)
-    knots = [bspline_knots(a.nodes, a.double_knots) for a in axes]
-    coefs = fit_tensor_bspline(values, [a.nodes for a in axes], knots)
-    spline = TensorSpline([dict(name=a.name, nodes=a.nodes, knots=t, units=a.units,
-                                out_of_range=a.out_of_range) for a, t in zip(axes, knots)],
-                          coefs, [v.name for v in spec.variables], source=name)
+    values, axes, knots, coefs, spline = fit_grid_values(spec, axes, grid_vals, assemble)
     got = spline.evaluate(np.ascontiguousarray(check[:, :len(axes)]), check=False)
     accuracy = {}
     for k, v in enumerate(spec.variables):
@@ -191,6 +190,37 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
             pass
     return dict(path=path, seconds=seconds, n_points=len(points), n_check=len(check),
                 accuracy=accuracy, size_bytes=path.stat().st_size)
+
+
+def fit_grid_values(spec, axes, grid_vals, assemble=None):
+    """Spline of a spec's computed values: ``(values, stored_axes, knots, coefficients,
+    spline)``.
+
+    ``grid_vals`` (m, n_var) are the point function's results, on every grid point in C order
+    or, with ``assemble`` (from ``spec.reduce``), on the fundamental points only. Periodic axes
+    are fitted periodically and stored with :func:`railcontact.tables.periodic_stored_nodes`
+    (their stored values are the spline's).
+    """
+    if assemble is None:
+        shape = tuple(len(a.nodes) for a in axes)
+        values = np.moveaxis(grid_vals.reshape(shape + (len(spec.variables),)), -1, 0)
+    else:
+        values = np.asarray(assemble(grid_vals), dtype=float)
+    knots = [periodic_bspline_knots(a.nodes) if a.periodic
+             else bspline_knots(a.nodes, a.double_knots) for a in axes]
+    coefs = fit_tensor_bspline(values, [a.nodes for a in axes], knots,
+                               periodic=[a.periodic for a in axes])
+    stored = [dataclasses.replace(a, nodes=periodic_stored_nodes(a.nodes)) if a.periodic
+              else a for a in axes]
+    spline = TensorSpline([dict(name=a.name, nodes=a.nodes, knots=t, units=a.units,
+                                out_of_range=a.out_of_range) for a, t in zip(stored, knots)],
+                          coefs, [v.name for v in spec.variables], source=spec.name)
+    if any(a.periodic for a in axes):
+        mesh = np.meshgrid(*[a.nodes for a in stored], indexing="ij")
+        pts = np.ascontiguousarray(np.stack([m.ravel() for m in mesh], axis=1))
+        values = np.moveaxis(spline.evaluate(pts, check=False).reshape(
+            coefs.shape[1:] + (len(spec.variables),)), -1, 0)
+    return values, stored, knots, coefs, spline
 
 
 def check_table(name, path=None, n_points=None, seed=1, scheduler=None, workers=None,

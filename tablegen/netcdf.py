@@ -78,10 +78,14 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "double_knots": np.asarray(a.double_knots, dtype=float),
             "out_of_range": a.out_of_range,
             "spline_knots": f"{a.name}_knots",
+            "periodic": np.int32(bool(getattr(a, "periodic", False))),
             "comment": a.comment or "grid nodes (the spline interpolates the values here)"})
         data_vars[f"{a.name}_knots"] = (f"{a.name}_knot", np.asarray(t, float), {
             "units": a.units, "long_name": f"cubic B-spline knot vector along {a.name}",
-            "comment": "not-a-knot interpolation; double knots repeat a node"})
+            "comment": ("periodic cubic interpolation over [first node, last node] (one period; "
+                        "the knots continue periodically beyond it, so C2 across the seam)"
+                        if getattr(a, "periodic", False) else
+                        "not-a-knot interpolation; double knots repeat a node")})
     for k, v in enumerate(spec.variables):
         acc = accuracy[v.name]
         met = acc["max_abs_error"] <= v.error_target

@@ -39,6 +39,11 @@ class Axis:
         it is always an error.
     comment : str
         Why the nodes are where they are.
+    periodic : bool
+        The tabulated functions are periodic along this axis with period
+        ``nodes[-1] - nodes[0]`` (the values at both ends are equal): the spline is the
+        periodic cubic interpolant, C2 across the seam (stored with two extra nodes, see
+        :func:`railcontact.tables.periodic_stored_nodes`).
     """
 
     name: str
@@ -48,6 +53,7 @@ class Axis:
     double_knots: tuple = ()
     out_of_range: str = "error"
     comment: str = ""
+    periodic: bool = False
 
     def __post_init__(self):
         self.nodes = np.asarray(self.nodes, dtype=float)
@@ -55,6 +61,8 @@ class Axis:
             raise ValueError(f"axis {self.name!r}: nodes must be strictly ascending, >= 4")
         if self.out_of_range not in ("error", "hold"):
             raise ValueError(f"axis {self.name!r}: out_of_range must be 'error' or 'hold'")
+        if self.periodic and self.double_knots:
+            raise ValueError(f"axis {self.name!r}: a periodic axis has no double knots")
 
 
 @dataclass
@@ -116,6 +124,11 @@ class TableSpec:
     build_attributes : callable, optional
         ``build_attributes() -> dict`` of global attributes computed at build time (e.g. the
         hash of the solver's source file).
+    reduce : callable, optional
+        ``reduce(axes) -> (points, assemble)`` for tables with symmetries: ``function`` is
+        called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
+        to the values on the whole grid, shape (n_var, n_1, ..., n_D). Default: every grid
+        point is computed.
     """
 
     name: str
@@ -133,6 +146,7 @@ class TableSpec:
     attributes: dict = field(default_factory=dict)
     hidden: bool = False
     build_attributes: Callable | None = None
+    reduce: Callable | None = None
 
     def available(self):
         """``None`` if buildable, else the reason (a module that does not import)."""

@@ -58,6 +58,7 @@ __all__ = [
     "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
     "TensorSpline", "Table", "CreepTable", "ExactCreepTable", "default_table_path",
     "tables_directory", "exact_table_coordinates", "exact_table_inverse",
+    "periodic_bspline_knots", "periodic_stored_nodes",
 ]
 
 #: Version of the table file layout this reader understands (global attribute
@@ -117,7 +118,35 @@ def bspline_knots(nodes, double_knots=()):
     return np.concatenate([np.full(4, x[0]), interior, np.full(4, x[-1])])
 
 
-def fit_tensor_bspline(values, nodes, knots):
+def periodic_bspline_knots(nodes):
+    """Knot vector of the periodic cubic interpolating spline on uniform ``nodes``.
+
+    ``nodes[0]`` and ``nodes[-1]`` are one period apart (the same point); the knots are the
+    nodes continued periodically by three on each side, as
+    ``scipy.interpolate.make_interp_spline(..., bc_type="periodic")`` makes them, so the
+    spline has ``len(nodes) + 2`` coefficients and is C2 everywhere, the seam included.
+    """
+    x = np.asarray(nodes, dtype=float)
+    period = x[-1] - x[0]
+    return np.concatenate([x[-4:-1] - period, x, x[1:4] + period])
+
+
+def periodic_stored_nodes(nodes):
+    """The nodes a periodic axis is stored with: ``nodes`` plus the midpoints of the first
+    and last intervals.
+
+    A table file keeps as many nodes as coefficients along each axis (``len(knots) ==
+    len(nodes) + 4``); the periodic spline has two coefficients more than distinct nodes, so
+    two points inside the period, where the file stores the spline's values, fill the count.
+    Any de Boor evaluator reading the stored knots gives the periodic spline on
+    ``[nodes[0], nodes[-1]]``.
+    """
+    x = np.asarray(nodes, dtype=float)
+    return np.concatenate([x[:1], [0.5 * (x[0] + x[1])], x[1:-1],
+                           [0.5 * (x[-2] + x[-1])], x[-1:]])
+
+
+def fit_tensor_bspline(values, nodes, knots, periodic=()):
     """Coefficients of the tensor-product cubic B-spline interpolating ``values``.
 
     Parameters
@@ -126,18 +155,29 @@ def fit_tensor_bspline(values, nodes, knots):
         Values at the grid nodes (a leading variable axis is allowed when ``values.ndim`` is
         ``len(nodes) + 1``).
     nodes, knots : sequence of array_like
-        Per axis: the nodes and the knot vector (from :func:`bspline_knots`).
+        Per axis: the nodes and the knot vector (from :func:`bspline_knots`, or
+        :func:`periodic_bspline_knots` for a periodic axis).
+    periodic : sequence of bool, optional
+        Per axis (missing entries False): periodic interpolation (the values at the first and
+        last node must be equal); that axis then has ``len(nodes) + 2`` coefficients.
 
     Returns
     -------
     ndarray
-        Coefficients, same shape as ``values``.
+        Coefficients, same shape as ``values`` (two more along each periodic axis).
     """
     c = np.asarray(values, dtype=float)
     lead = c.ndim - len(nodes)
-    for axis, (x, t) in enumerate(zip(nodes, knots)):
-        spl = make_interp_spline(np.asarray(x, float), c, k=SPLINE_DEGREE,
-                                 t=np.asarray(t, float), axis=axis + lead)
+    periodic = tuple(periodic) + (False,) * (len(nodes) - len(periodic))
+    for axis, (x, t, per) in enumerate(zip(nodes, knots, periodic)):
+        if per:   # values at both ends equal; coefficients: len(x) + 2
+            spl = make_interp_spline(np.asarray(x, float), c, k=SPLINE_DEGREE,
+                                     bc_type="periodic", axis=axis + lead)
+            if not np.allclose(spl.t, t, rtol=0.0, atol=1e-12 * max(1.0, np.abs(t).max())):
+                raise ValueError("knots of a periodic axis must be periodic_bspline_knots(nodes)")
+        else:
+            spl = make_interp_spline(np.asarray(x, float), c, k=SPLINE_DEGREE,
+                                     t=np.asarray(t, float), axis=axis + lead)
         c = np.moveaxis(spl.c, 0, axis + lead)  # BSpline.c has the spline axis first
     return np.ascontiguousarray(c)
 

@@ -861,7 +861,8 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     youngs_modulus : float
         Young's modulus of both bodies. [Pa]
     poisson_ratio : float
-        Poisson's ratio of both bodies, in [0, 0.5). [-]
+        Poisson's ratio of both bodies, in [0, 0.5] (0.5: incompressible; nothing in the
+        half-space influence functions is singular there). [-]
     friction_coefficient : float or callable
         Coulomb friction coefficient, or a vectorised function ``mu(slip)`` of the slip
         magnitude ``|s|`` (slip velocity over rolling speed) [-] (tabulated on 0 and
@@ -932,8 +933,7 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     b0 = float(check_range("b0", b0, "m", 0.0, None, lower_closed=False))
     youngs_modulus = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
                                        lower_closed=False))
-    poisson_ratio = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5,
-                                      upper_closed=False))
+    poisson_ratio = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5))
     mx = int(check_range("mx", mx, "-", 4, 4096))
     my = int(check_range("my", my, "-", 4, 4096))
     scale = float(check_range("scale", scale, "-", 1.0, 10.0,
