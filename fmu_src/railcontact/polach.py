@@ -44,12 +44,14 @@ then decays, as in the exact theory.
     mu = mu0 ((1 - A) exp(-B w) + A),
 
 A = mu_inf / mu0 the ratio of the friction at infinite slip velocity to the maximum, B [s/m]
-the rate of the exponential decrease ([2]; the same law in CONTACT, [4] Sec. "friction laws",
-with B in s/m as in [2]); here w = V s_C (V the rolling speed), the slip velocity of the
-resultant creepage that [2] uses for the force; and the reduction factors k_A (initial slope in
-the area of adhesion) and k_S (slope in the area of slip), 0 < k_S <= k_A <= 1 ([2]: they model
-the reduced initial slope measured on real, contaminated rails). The spin part is not reduced
-([2] applies k_A, k_S to Eq. (2) only) but uses the falling mu. The 1999 method is the default
+the rate of the exponential decrease ([2]; the same law in CONTACT, [3] Eq. "polach_law", which
+notes [2]'s B in s/m); here w = V s_C (V the rolling speed): our reading, the slip velocity of
+the resultant creepage that enters eps (Open Rails, which has no spin, uses V xi_x); and the
+reduction factors k_A (initial slope in the area of adhesion) and k_S (slope in the area of
+slip), 0 < k_S <= k_A <= 1 ([2]: they model the reduced initial slope measured on real,
+contaminated rails). k_A and k_S reduce the creep part only (the 1999 Eq. (2) of [2]); the spin
+part keeps its 1999 form with the falling mu (whether [2] reduces it too could not be checked:
+no source we could read has both). The 1999 method is the default
 here (k_A = k_S = 1, A = 1): the exact theory it is measured against has neither. Polach's
 recommended parameter sets ([2]; tests/data/polach2005_parameters.csv): dry rail k_A = 1.00,
 k_S = 0.40, mu0 = 0.55, A = 0.40, B = 0.60 s/m; wet rail k_A = 0.30, k_S = 0.10, mu0 = 0.30,
@@ -59,16 +61,21 @@ Coulomb bound: F_y + F_yS can exceed mu Q slightly when lateral creepage and spi
 (the two parts are superposed); the result is scaled back onto |T| = mu Q there (this package's
 guarantee for every bounded method, not part of [1]).
 
-Sources. The published papers themselves were not available to us; the equations above were
-checked against (i) the text of [2] (its Eqs. (2), (3) and the friction law, as quoted in public
-copies), (ii) a public transcription of the FORTRAN subroutine printed in [1]
-(github.com/leo-bart/mbs-flex-rail, ``polachContactForces.pyx``, 2024: s_C in eps and in the
-components, c_jj from s, |s_yC| in eps_M, a longitudinal; its spin test is inverted there,
-``|s_y + phi a| <= |s_y|``, which would give no force for pure spin, so the published ">" of
-[1], [3] is kept), (iii) Open Rails' implementation of [2] (github.com/openrails/openrails,
-``Axle.cs``, class PolachCalculator: eps with s_C, F_x = F s_x / s_C; its parameters vary
-linearly with mu0 through exactly the dry and wet sets above) and (iv) [3], which restates [1]
-and [2]. No code was taken from (ii) or (iii).
+Sources. The published papers themselves were not available to us. The equations above were
+checked against (i) the text of [2] as quoted in a public copy of its first pages (Eq. (2), F
+without k_A, k_S; Eq. (3), eps with s; the friction law), (ii) a public transcription of the
+FORTRAN subroutine printed in [1] (github.com/leo-bart/mbs-flex-rail, ``polachContactForces.pyx``,
+2024: c_jj from s, s_C in eps and in the components, |s_yC| in eps_M, the factor
+1 + 6.3 (1 - exp(-a/b)), K_M, delta and F_yS as above, a "in longitudinal direction"; its spin
+test reads ``|s_y + phi a| <= |s_y|``, which gives pure spin no force at all, so we keep ">",
+the only reading under which Polach's spin part acts for pure spin) and (iii) Open Rails'
+implementation of [2] (github.com/openrails/openrails, ``Axle.cs``, class PolachCalculator,
+longitudinal only: c_jj from s, eps with s_C, F_x = F s_x / s_C, the k_A, k_S form of F (its
+denominator is 1 + k_A eps^2 instead of 1 + (k_A eps)^2), the friction law; its k_A, k_S, A, B
+are straight lines in mu0 through exactly the dry and wet sets above). (ii) and (iii) agree on
+everything they share. No code was taken from either. The formulas as first written here (eps
+with s, components xi / s, eps_M with s_C) were closer to the exact theory with spin (max
+11.7 % against 15.6 % of mu N on CONTACT's 21 cases) but were not Polach's.
 
 References
 ----------
@@ -76,9 +83,7 @@ References
    33 Suppl. (1999) 728-739 (with the FORTRAN listing).
 .. [2] O. Polach, Creep forces in simulations of traction vehicles running on adhesion limit,
    Wear 258 (2005) 992-1000.
-.. [3] M. Spiryagin, O. Polach, C. Cole, Creep force modelling for rail traction vehicles based
-   on the Fastsim algorithm, Vehicle System Dynamics 51 (2013) 1765-1783.
-.. [4] E.A.H. Vollebregt, CONTACT user guide (github.com/eve70a/CONTACT, doc/user-guide.tex),
+.. [3] E.A.H. Vollebregt, CONTACT user guide (github.com/eve70a/CONTACT, doc/user-guide.tex),
    Polach's exponential friction law.
 """
 
