@@ -69,13 +69,17 @@ def test_full_sliding_and_falling_friction():
     t = creep_force_3d(0.5 * np.cos(th), 0.5 * np.sin(th), 0.0, *args, method="polach")
     np.testing.assert_allclose(np.hypot(t.tx, t.ty), MU * N, rtol=1e-3)
     np.testing.assert_allclose(np.arctan2(-t.ty, -t.tx), np.angle(np.exp(1j * th)), atol=1e-12)
+    # with spin too: at creepage 0.5 and phi a0 = 5e-3 the spin part has decayed (K_M -> 0) and
+    # s / s_C -> 1, so |T| -> mu N in the direction of the creepage
+    t = creep_force_3d(0.5 * np.cos(th), 0.5 * np.sin(th), 1.0, *args, method="polach")
+    np.testing.assert_allclose(np.hypot(t.tx, t.ty), MU * N, rtol=1e-2)
     tx, _ = polach_force_3d(0.5, 0, 0, *args, friction_ratio_limit=0.4, friction_decay=0.6,
                             rolling_speed=30.0)
     assert -tx == pytest.approx(0.4 * MU * N, rel=1e-3)
     tx0, _ = polach_force_3d(0.5, 0, 0, *args, friction_ratio_limit=0.4, friction_decay=0.6,
                              rolling_speed=0.0)
     assert -tx0 == pytest.approx(MU * N, rel=1e-3)
-    # the 2005 creep curve has a maximum and then falls (Polach 2005 Fig. 4)
+    # the 2005 creep curve has a maximum and then falls (Polach 2005: the adhesion optimum)
     s = np.geomspace(1e-4, 0.3, 200)
     tx, _ = polach_force_3d(s, 0, 0, N, 5e-3, 6e-3, E, NU, 0.55, rolling_speed=20.0,
                             **POLACH_DRY)
