@@ -1,9 +1,13 @@
 """Tests of railcontact.polach (Polach 1999 with spin; 2005 falling friction, k_A, k_S).
 
 Independent checks: Kalker's linear theory at small creepage (C11, C22 and, through Polach's
-spin formula, C23); mu N at full sliding; the initial slope (k_A + k_S)/2 that the 2005 reduction
-factors give by their definition; the falling-friction limit A mu0 N; CONTACT's converged exact
-theory (tests/data/contact_hertz3d_grid_convergence.csv).
+spin formula, C23, also for lateral creepage with spin of either sign); mu N at full sliding; the
+initial slope (k_A + k_S)/2 that the 2005 reduction factors give by their definition; the
+falling-friction limit A mu0 N; Polach's recommended parameter sets (tests/data/
+polach2005_parameters.csv); CONTACT's converged exact theory (tests/data/
+contact_hertz3d_grid_convergence.csv). No numeric creep-force values of Polach's method are
+published in a form we could obtain (his papers show measured-vs-computed curves only), so the
+formulas are tested against these limits, not against printed forces.
 """
 
 from pathlib import Path
@@ -31,6 +35,22 @@ def test_linear_limit_is_kalker(a0, b0):
     assert tp == pytest.approx(-G * a0 * b0 * np.sqrt(a0 * b0) * c.c23 * s, rel=1e-6)
 
 
+@pytest.mark.parametrize("a0, b0", [(2e-3, 8e-3), (6e-3, 6e-3), (8e-3, 2e-3)])
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_linear_limit_with_spin_is_kalker(a0, b0, sign):
+    """Lateral creepage with spin of the same or the opposite sign (both branches of Polach's
+    s_yC): T_y -> -G a0 b0 (C22 xi_y + sqrt(a0 b0) C23 phi), Kalker's linear theory; with
+    longitudinal creepage and spin, T_x stays -G a0 b0 C11 xi_x (the resultant creepage s_C
+    enters eps and the components alike)."""
+    c = kalker_coefficients(a0 / b0, NU)
+    xi_y, phi = 1e-9, sign * 0.5e-9 / max(a0, b0)
+    ty = creep_force_3d(0, xi_y, phi, N, a0, b0, E, NU, MU, method="polach").ty
+    assert ty == pytest.approx(-G * a0 * b0 * (c.c22 * xi_y + np.sqrt(a0 * b0) * c.c23 * phi),
+                               rel=1e-6)
+    tx = creep_force_3d(xi_y, 0, phi, N, a0, b0, E, NU, MU, method="polach").tx
+    assert tx == pytest.approx(-G * a0 * b0 * c.c11 * xi_y, rel=1e-6)
+
+
 def test_reduction_factors_scale_the_initial_slope():
     """dF/deps at 0 = (2 Q mu/pi)(k_A + k_S): the slope is (k_A + k_S)/2 of Kalker's."""
     a0, b0, s = 5e-3, 6e-3, 1e-9
@@ -49,13 +69,17 @@ def test_full_sliding_and_falling_friction():
     t = creep_force_3d(0.5 * np.cos(th), 0.5 * np.sin(th), 0.0, *args, method="polach")
     np.testing.assert_allclose(np.hypot(t.tx, t.ty), MU * N, rtol=1e-3)
     np.testing.assert_allclose(np.arctan2(-t.ty, -t.tx), np.angle(np.exp(1j * th)), atol=1e-12)
+    # with spin too: at creepage 0.5 and phi a0 = 5e-3 the spin part has decayed (K_M -> 0) and
+    # s / s_C -> 1, so |T| -> mu N in the direction of the creepage
+    t = creep_force_3d(0.5 * np.cos(th), 0.5 * np.sin(th), 1.0, *args, method="polach")
+    np.testing.assert_allclose(np.hypot(t.tx, t.ty), MU * N, rtol=1e-2)
     tx, _ = polach_force_3d(0.5, 0, 0, *args, friction_ratio_limit=0.4, friction_decay=0.6,
                             rolling_speed=30.0)
     assert -tx == pytest.approx(0.4 * MU * N, rel=1e-3)
     tx0, _ = polach_force_3d(0.5, 0, 0, *args, friction_ratio_limit=0.4, friction_decay=0.6,
                              rolling_speed=0.0)
     assert -tx0 == pytest.approx(MU * N, rel=1e-3)
-    # the 2005 creep curve has a maximum and then falls (Polach 2005 Fig. 4)
+    # the 2005 creep curve has a maximum and then falls (Polach 2005: the adhesion optimum)
     s = np.geomspace(1e-4, 0.3, 200)
     tx, _ = polach_force_3d(s, 0, 0, N, 5e-3, 6e-3, E, NU, 0.55, rolling_speed=20.0,
                             **POLACH_DRY)
@@ -93,16 +117,38 @@ def test_pure_spin_odd_and_bounded():
 
 
 def test_published_parameter_sets():
-    """Polach 2005 (locomotive, dry and wet rail): k_A, k_S, A, B, as quoted in the module."""
-    assert POLACH_DRY == {"reduction_adhesion": 1.0, "reduction_slip": 0.4,
-                          "friction_ratio_limit": 0.4, "friction_decay": 0.6}
-    assert POLACH_WET == {"reduction_adhesion": 0.3, "reduction_slip": 0.1,
-                          "friction_ratio_limit": 0.4, "friction_decay": 0.2}
+    """POLACH_DRY / POLACH_WET are Polach's recommended sets (tests/data/
+    polach2005_parameters.csv, source and cross-check there); with them the creep curve rises
+    with the reduced slope (k_A + k_S)/2 of Kalker's, peaks below mu0 N and falls towards
+    A mu0 N at large slip velocity."""
+    import csv
+    with open(DATA / "polach2005_parameters.csv") as f:
+        rows = {r["condition"]: r for r in csv.DictReader(
+            line for line in f if not line.startswith("#"))}
+    for name, params in (("dry", POLACH_DRY), ("wet", POLACH_WET)):
+        r = rows[name]
+        assert params == {"reduction_adhesion": float(r["k_A"]),
+                          "reduction_slip": float(r["k_S"]),
+                          "friction_ratio_limit": float(r["A"]),
+                          "friction_decay": float(r["B_s_per_m"])}
+        mu0 = float(r["mu0"])
+        s = np.geomspace(1e-5, 1.0, 400)
+        tx, _ = polach_force_3d(s, 0, 0, N, 5e-3, 6e-3, E, NU, mu0, rolling_speed=20.0,
+                                **params)
+        f = -tx / (mu0 * N)
+        # at s = 1 (w = 20 m/s) exp(-B w) < 0.02 and (2/pi)(k_A eps/(1 + (k_A eps)^2) +
+        # arctan(k_S eps)) is within 2 % of 1 (wet, k_S = 0.1; 0.3 % dry)
+        assert np.all(f < 1.0) and f.max() > 0.5 and f[-1] == pytest.approx(
+            float(r["A"]), abs=0.01)
+        assert f.argmax() < len(s) - 1 and f[-1] < 0.85 * f.max()
 
 
-# Measured over the 21 cases (% of mu N): max 11.7 (a/b = 0.2, pure spin), 8.6 (a/b = 0.2,
-# combined creepage: Polach's force is parallel to (xi_x, xi_y), the exact one closer to
-# (C11 xi_x, C22 xi_y)). Tolerance 12 %.
+# Measured over the 21 cases (% of mu N): max 15.6 (a/b = 5, lateral creepage with spin,
+# Phi = 1: Polach's creep part F xi_y / s_C shrinks as the spin raises s_C while his spin part
+# saturates, -0.779 against -0.935), 13.4 (a/b = 1, the same case), 11.9 (a/b = 5, longitudinal
+# creepage with spin: |s_yC| < s_C reduces the spin part), 11.7 (a/b = 0.2, pure spin), 8.6
+# (a/b = 0.2, combined creepage: Polach's force is parallel to (xi_x, xi_y), the exact one closer
+# to (C11 xi_x, C22 xi_y)); RMS 6.9. Tolerance 16 %.
 def test_against_contact_exact():
     import csv
     with open(DATA / "contact_hertz3d_grid_convergence.csv") as f:
@@ -119,7 +165,7 @@ def test_against_contact_exact():
                                t.ty / mu_n - float(r["fy_over_mu_fn"])))
     errors = np.array(errors)
     print(f"polach max {errors.max() * 100:.2f} % rms {np.sqrt(np.mean(errors**2)) * 100:.2f} %")
-    assert len(errors) == 21 and errors.max() < 0.12
+    assert len(errors) == 21 and errors.max() < 0.16
 
 
 def test_input_errors():

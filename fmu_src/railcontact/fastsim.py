@@ -65,6 +65,19 @@ FaStrip ([3], [4]; CONTACT's "original FaStrip", [5] ``m_solvpt.f90: original_fa
     slips, FASTSIM's direction is taken with Kalker's single weighted flexibility ([1], [5]), so
     that full sliding acts against the rigid slip.
 
+    Sources. Sichani et al.'s papers [3], [4] were not available to us; the equations above are
+    those of CONTACT's implementation of the original method ([5], ``original_fastrip``, which
+    CONTACT's user guide lists as "Original FaStrip method cf. Sichani", M = 6, and "with full
+    sliding correction", M = 7), checked term by term: the non-dimensional creepages, d, kappa,
+    lambda, lambda', the stick tractions, Sichani's heuristic normal force for FASTSIM's
+    parabolic bound, the one-flexibility pass for strips whose leading element slips, and the
+    Hertz bound in the slip zone. CONTACT publishes output only of its *modified* FaStrip (M = 5,
+    examples/fastsim.ref_out), so no printed number of the original method could be compared;
+    the tests compare with the exact theory instead (tests/test_fastsim.py: CONTACT's 21
+    converged cases, max 4.3 % of mu N; six contacts with spin against ``method="exact"``, max
+    5.6 % of mu N on CONTACT's FASTSIM example, a/b = 2 with lateral creepage and spin, where
+    CONTACT's modified FaStrip is 1.9 % off).
+
     FASTSIM with three flexibilities, by contrast, keeps the direction of the *weighted* rigid
     slip (w_x/L1, w_y/L2) even in full sliding: for pure creepage at full sliding its force is
     parallel to (C11 xi_x, C22 xi_y), not to (xi_x, xi_y) as in the exact theory (a known
