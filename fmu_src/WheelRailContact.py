@@ -201,6 +201,17 @@ LIMITS = {
     "friction_table_error_estimate": {"min": -1.0},
 }
 
+#: Jacobian outputs d(Fx, Fy, Mz)/d(xi_x, xi_y, phi) (railcontact.effects.JACOBIAN_FIELDS).
+for _f, _fu in (("Fx", "N"), ("Fy", "N"), ("Mz", "N.m")):
+    for _v, _vn, _per_m in (("xi_x", "longitudinal creepage xi_x", False),
+                            ("xi_y", "lateral creepage xi_y", False), ("phi", "spin phi", True)):
+        OUTPUTS[f"d{_f}_d{_v}"] = (
+            {"N": "N.m", "N.m": "N.m2"}[_fu] if _per_m else _fu,
+            f"Derivative of {_f} with respect to the {_vn}, from the spline of the exact-theory "
+            "table (creep_method = 'exact', source table; 0 for the other methods): the "
+            "creep-force Jacobian for implicit integrators", f"d{_f}_d{_v}")
+
+
 def _described(description, unit):
     """The description with its unit in brackets (``[1]`` = dimensionless)."""
     return f"{description} [{unit}]" if unit else description
@@ -215,6 +226,7 @@ UNITS = {
     "1": {}, "N": {"kg": 1, "m": 1, "s": -2}, "m": {"m": 1}, "Pa": {"kg": 1, "m": -1, "s": -2},
     "1/m": {"m": -1}, "m/s": {"m": 1, "s": -1}, "N.m": {"kg": 1, "m": 2, "s": -2},
     "s": {"s": 1}, "m2/N": {"kg": -1, "m": 1, "s": 2}, "s/m": {"m": -1, "s": 1},
+    "N.m2": {"kg": 1, "m": 3, "s": -2},
     "1/m2": {"m": -2}, "1/m3": {"m": -3},
 }
 

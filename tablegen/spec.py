@@ -11,8 +11,9 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["Axis", "Variable", "TableSpec", "REGISTRY", "register", "get_spec",
-           "RESOLUTIONS"]
+__all__ = ["Axis", "Variable", "TableSpec", "RESOLUTIONS"]
+
+
 
 #: Resolution names accepted by every spec (the spec maps them to node counts).
 RESOLUTIONS = ("coarse", "default", "fine")

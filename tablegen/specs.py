@@ -276,7 +276,8 @@ def exact_creep_function(points):
     out = np.empty((len(points), 4))
     finite = points[:, 2] < 1.0
     out[~finite] = (1.0, 0.0, 0.0, 0.0)
-    phys = exact_table_inverse(*points[:, :5].T, contact=REFERENCE_CONTACT)
+    phys = exact_table_inverse(*np.where(finite[:, None], points[:, :5], 0.0).T,
+                               contact=REFERENCE_CONTACT)
     previous = {}
 
     def solve(kw, mx, key):

@@ -37,7 +37,8 @@ from railcontact.nonsteady import relaxation_length, relaxation_step  # noqa: E4
 from railcontact.wear import mean_wear, wear_coefficients  # noqa: E402
 from railcontact import roughness as rough_mod  # noqa: E402
 from railcontact.scene import INPUTS, load_scene  # noqa: E402
-from railcontact.tables import CreepTable, ExactCreepTable, Table, tables_directory  # noqa: E402
+from railcontact.exact_table import ExactCreepTable  # noqa: E402
+from railcontact.tables import CreepTable, Table, tables_directory  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))
@@ -266,7 +267,9 @@ def reference_result(scene, inputs=None, source=None):
     mz = np.zeros(n_load.shape)
     if opts["method"] == "exact" and source != "analytic":
         table = ExactCreepTable.from_file(ROOT / "tables" / f"{opts['table']}.nc")
-        tx, ty, mz, stick, z = table.creep_solution_3d(*args)
+        sol = table.creep_solution_3d(*args, sensitivities=False)
+        tx, ty, mz, stick, z = (sol.tx, sol.ty, sol.spin_moment, sol.stick_area_fraction,
+                                sol.normalised_creepage)
         width = np.sqrt(1.0 - np.minimum(z, 1.0) ** 2)
     elif source == "table" or (source is None and opts["source"] == "table"):
         table = CreepTable.from_file(ROOT / "tables" / f"{opts['table']}.nc")

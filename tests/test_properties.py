@@ -484,7 +484,7 @@ def test_table_no_overshoot_past_saturation(creep_table, z):
 
 @pytest.fixture(scope="module")
 def exact_table():
-    from railcontact.tables import ExactCreepTable
+    from railcontact.exact_table import ExactCreepTable
 
     return ExactCreepTable.from_file()
 

@@ -126,24 +126,34 @@ def test_package_exports():
     assert tablegen.build_table is build_table
 
 
-def test_exact_spec_grid_and_inverse_coordinates():
-    """The exact creep table's grid covers a0/b0 in [0.1, 10], has the saturation rho = 1 on
-    a grid line, and its coordinate map round-trips through the physical inputs."""
-    from railcontact.tables import exact_table_coordinates, exact_table_inverse
+def test_exact_spec_grid_covers_every_sign_and_computes_a_quarter():
+    """The exact creep table's axes: a0/b0 in [0.1, 10], nu in [0, 0.5], the signed creepage
+    coordinate over [-1, 1] (1: full sliding) with rho = 1.03 near the saturation, the
+    creepage angle periodic over [-pi, pi], the signed spin coordinate to +-20; the solver is
+    called on the quarter s >= 0, |theta| <= pi/2, tau >= 0 only, and the check points lie
+    there."""
+    from railcontact.exact_table import creepage_magnitude
 
     spec = get_spec("creep_exact")
-    axes, pts = spec.grid("coarse")
-    names = [a.name for a in axes]
-    assert names == ["log_aspect_ratio", "normalised_creepage", "creepage_angle",
-                     "normalised_spin"]
-    assert np.exp(axes[0].nodes[[0, -1]]) == pytest.approx([0.1, 10.0])
-    assert 1.0 in axes[1].nodes
+    axes, full = spec.grid("default")
+    assert [a.name for a in axes] == ["log_aspect_ratio", "poisson_ratio",
+                                      "creepage_coordinate", "creepage_angle",
+                                      "spin_coordinate"]
+    g, nu, s, theta, tau = (a.nodes for a in axes)
+    assert np.exp(g[[0, -1]]) == pytest.approx([0.1, 10.0])
+    assert nu[[0, -1]] == pytest.approx([0.0, 0.5])
+    assert s[[0, -1]] == pytest.approx([-1.0, 1.0]) and np.all(s == -s[::-1])
+    assert np.all(tau == -tau[::-1]) and tau[-1] == 20.0
+    assert axes[3].periodic and theta[[0, -1]] == pytest.approx([-np.pi, np.pi])
+    assert np.any(np.abs(creepage_magnitude(s[np.abs(s) < 1]) - 1.03) < 1e-12)
+    points, assemble = spec.reduce(axes)
+    assert np.all(points[:, 2] >= 0) and np.all(np.abs(points[:, 3]) <= np.pi / 2 + 1e-12)
+    assert np.all(points[:, 4] >= 0)
+    assert len(points) * 4 < len(full)       # a quarter (plus the planes it shares)
     check = spec.make_check_points(axes, "coarse")
-    assert check.shape[1] == 5          # last column: Poisson's ratio in the stated range
-    assert np.all((check[:, 4] >= 0.25) & (check[:, 4] <= 0.31))
-    phys = exact_table_inverse(*check[:, :4].T, check[:, 4])
-    back = exact_table_coordinates(**phys)
-    np.testing.assert_allclose(np.column_stack(back[:4]), check[:, :4], atol=1e-12)
+    assert check.shape[1] == 5
+    assert np.all(check[:, 2] >= 0) and np.all(np.abs(check[:, 3]) <= np.pi / 2)
+    assert np.all((check[:, 1] >= 0) & (check[:, 1] <= 0.5))
 
 
 def test_check_table_rewrites_accuracy_attributes(tmp_path):

@@ -15,7 +15,7 @@ import pytest
 from scipy.interpolate import NdBSpline
 
 from railcontact import creep_force_3d, creep_solution_3d, kalker_coefficients
-from railcontact.tables import (CreepTable, ExactCreepTable, Table, TableFileError, TensorSpline,
+from railcontact.tables import (CreepTable, Table, TableFileError, TensorSpline,
                                 bspline_knots, default_table_path, fit_tensor_bspline,
                                 tables_directory)
 
@@ -329,160 +329,6 @@ def test_creep_table_bad_input_names_parameter(creep_table, name, value):
 
 
 # --------------------------------------------------------------------------------------------
-# Exact-theory creep table (creep_exact) against the 3-D solver
-# --------------------------------------------------------------------------------------------
-
-HAVE_EXACT = (tables_directory() / "creep_exact.nc").exists()
-needs_exact = pytest.mark.skipif(not HAVE_EXACT, reason="tables/creep_exact.nc not built")
-
-
-@pytest.fixture(scope="module")
-def exact_table():
-    from railcontact.tables import ExactCreepTable
-
-    return ExactCreepTable.from_file()
-
-
-def _solver(case):
-    import warnings
-
-    from railcontact.reference.rolling3d import solve_rolling_3d
-    from tablegen.specs import EXACT_SOLVER
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return solve_rolling_3d(**case, **EXACT_SOLVER)
-
-
-def test_exact_normalisation_and_symmetry_against_solver():
-    """The table's claim: normalised forces depend only on (a0/b0, nu, u_x, u_y, sigma), and
-    the symmetry reduction (xi_x -> |xi_x|, phi -> |phi|) holds. A physical case with a
-    different load, modulus, friction and size, negative xi_x and negative spin, solved
-    directly, equals the spec's point function at the mapped coordinates."""
-    from railcontact.tables import exact_table_coordinates
-    from tablegen.specs import exact_creep_function
-
-    case = dict(creepage_longitudinal=-8e-4, creepage_lateral=5e-4, spin=-0.9,
-                normal_load=4e4, a0=4e-3, b0=7e-3, youngs_modulus=190e9, poisson_ratio=0.28,
-                friction_coefficient=0.45)
-    direct = _solver(case)
-    s, rho, theta, sig, sx, sy, mu_n, _ = exact_table_coordinates(**case)
-    f_par, f_perp, *_ = exact_creep_function(np.array([[s, rho, theta, sig]]))[0]
-    c, s_ = np.cos(theta), np.sin(theta)
-    assert direct.tx / mu_n == pytest.approx(-sx * (f_par * c - f_perp * s_), abs=2e-6)
-    assert direct.ty / mu_n == pytest.approx(-sy * (f_par * s_ + f_perp * c), abs=2e-6)
-
-
-@needs_exact
-def test_exact_table_recorded_accuracy_rechecked_off_grid(exact_table):
-    """Re-check the file's recorded accuracy on fresh seeded off-grid physical cases."""
-    rng = np.random.default_rng(21)
-    acc = exact_table.table.accuracy()
-    worst = 0.0
-    for _ in range(6):
-        g = np.exp(rng.uniform(np.log(0.15), np.log(7.0)))
-        case = dict(creepage_longitudinal=rng.uniform(-3e-3, 3e-3),
-                    creepage_lateral=rng.uniform(-3e-3, 3e-3), spin=rng.uniform(-1.5, 1.5),
-                    normal_load=rng.uniform(3e4, 1.2e5), a0=6e-3 * np.sqrt(g),
-                    b0=6e-3 / np.sqrt(g), youngs_modulus=210e9,
-                    poisson_ratio=rng.uniform(0.26, 0.30),
-                    friction_coefficient=rng.uniform(0.2, 0.5))
-        try:
-            tab = exact_table.creep_force_3d(**case)
-        except ValueError:      # beyond rho = 3: the reader raises by design
-            continue
-        ref = _solver(case)
-        mu_n = case["normal_load"] * case["friction_coefficient"]
-        worst = max(worst, np.hypot(tab.tx - ref.tx, tab.ty - ref.ty) / mu_n)
-    # |dT|/(mu N) = |(d f_par, d f_perp)| (rotation of the frame)
-    recorded = np.hypot(acc["force_ratio_parallel"]["max_abs_error"],
-                        acc["force_ratio_perpendicular"]["max_abs_error"])
-    assert worst <= 1.5 * recorded, (worst, recorded)
-
-
-@needs_exact
-def test_exact_table_never_exceeds_coulomb_and_is_odd(exact_table):
-    rng = np.random.default_rng(22)
-    n = 20000
-    g = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
-    case = dict(creepage_longitudinal=rng.uniform(-1.5e-3, 1.5e-3, n),
-                creepage_lateral=rng.uniform(-1.5e-3, 1.5e-3, n), spin=rng.uniform(-0.3, 0.3, n),
-                normal_load=1e5, a0=6e-3 * np.sqrt(g), b0=6e-3 / np.sqrt(g),
-                youngs_modulus=210e9, poisson_ratio=0.28, friction_coefficient=0.3)
-    t = exact_table.creep_force_3d(**case)
-    assert np.all(np.hypot(t.tx, t.ty) <= 3e4)
-    flipped = dict(case, creepage_longitudinal=-case["creepage_longitudinal"])
-    f = exact_table.creep_force_3d(**flipped)
-    np.testing.assert_allclose(f.tx, -t.tx, rtol=0, atol=1e-9)
-    np.testing.assert_allclose(f.ty, t.ty, rtol=0, atol=1e-9)
-
-
-@needs_exact
-def test_exact_table_linear_regime(exact_table):
-    """Tiny creepage: relative agreement with the solver (both linear in the creepage).
-
-    Measured with the shipped default table: 4.6e-3 relative (the slope of the spline at
-    rho = 0 from the first node at rho = 0.075); tolerance 1e-2."""
-    case = dict(creepage_longitudinal=2e-7, creepage_lateral=-1e-7, spin=0.0, normal_load=1e5,
-                a0=6e-3, b0=6e-3, youngs_modulus=210e9, poisson_ratio=0.28,
-                friction_coefficient=0.3)
-    tab = exact_table.creep_force_3d(**case)
-    ref = _solver(case)
-    assert tab.tx / ref.tx == pytest.approx(1.0, abs=1e-2)
-    assert tab.ty / ref.ty == pytest.approx(1.0, abs=1e-2)
-    zero = exact_table.creep_force_3d(**dict(case, creepage_longitudinal=0.0,
-                                             creepage_lateral=0.0))
-    assert zero.tx == 0.0 and zero.ty == 0.0
-
-
-@needs_exact
-@pytest.mark.parametrize("name, kwargs", [
-    ("a0/b0", dict(a0=6e-3, b0=2e-4)),
-    ("poisson_ratio", dict(poisson_ratio=0.4)),
-    ("normalised_creepage", dict(creepage_longitudinal=0.1)),
-])
-def test_exact_table_out_of_grid_raises(exact_table, name, kwargs):
-    case = dict(creepage_longitudinal=1e-3, creepage_lateral=0.0, spin=0.0, normal_load=1e5,
-                a0=6e-3, b0=6e-3, youngs_modulus=210e9, poisson_ratio=0.28,
-                friction_coefficient=0.3)
-    case.update(kwargs)
-    with pytest.raises(ValueError, match=name.replace("/", "/")):
-        exact_table.creep_force_3d(**case)
-
-
-@needs_exact
-def test_exact_table_jacobian_consistent(exact_table):
-    case = (1e-3, -4e-4, 0.5, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3)
-    jac = exact_table.creep_force_jacobian_3d(*case)
-    h = 1e-6
-    tp = exact_table.creep_force_3d(case[0] + h, *case[1:])
-    tm = exact_table.creep_force_3d(case[0] - h, *case[1:])
-    assert jac[0, 0] == pytest.approx((tp.tx - tm.tx) / (2 * h), rel=1e-3)
-    assert jac[0, 0] < 0.0   # force opposes creepage
-
-
-@needs_exact
-@pytest.mark.slow
-def test_exact_table_recorded_rms_rechecked_on_many_points(exact_table):
-    """Slow: 60 fresh off-grid table points against the solver; the RMS error must agree
-    with the recorded RMS within a factor 2 and the maximum stay below 1.5x the recorded."""
-    from tablegen.specs import exact_creep_function
-
-    spec_axes = exact_table.table.axes
-    rng = np.random.default_rng(23)
-    lo = np.array([a["nodes"][0] for a in spec_axes])
-    hi = np.array([a["nodes"][-1] for a in spec_axes])
-    pts = lo + (hi - lo) * rng.random((60, 4))
-    ref = exact_creep_function(pts)
-    got = exact_table.table.spline.evaluate(pts)
-    for k, name in enumerate(exact_table.table.variables[:2]):
-        err = np.abs(got[:, k] - ref[:, k])
-        acc = exact_table.table.accuracy()[name]
-        assert err.max() <= 1.5 * acc["max_abs_error"], (name, err.max(), acc)
-        assert np.sqrt(np.mean(err**2)) <= 2.0 * acc["rms_error"], (name, acc)
-
-
-# --------------------------------------------------------------------------------------------
 # Corrugation / wear response table against railcontact.wear.linear_response
 # --------------------------------------------------------------------------------------------
 
@@ -510,19 +356,16 @@ def test_corrugation_table_rechecked_against_linear_response():
 def test_subnormal_friction_coefficient_gives_zero_or_clear_error():
     """mu ~ 5e-324: w_sat (carried as mantissa and exponent) no longer underflows, so the
     modified-strip reader gives the saturated force, |T| = mu N ~ 5e-319 N (the analytic
-    theory's value); the exact-table reader raises its documented out-of-range ValueError;
-    neither raises ZeroDivisionError (found by the FMU speed work)."""
+    theory's value), no ZeroDivisionError (found by the FMU speed work; the exact-table
+    reader's case is in tests/test_exact_table.py)."""
     from railcontact import creep_force_3d
-    from railcontact.tables import CreepTable, ExactCreepTable, default_table_path
+    from railcontact.tables import CreepTable, default_table_path
 
     args = (1e-3, 1e-4, 0.1, 1e5, 6e-3, 9e-3, 210e9, 0.28, 5e-324)
     strip = CreepTable.from_file(default_table_path("creep_modified_strip"))
     got = tuple(float(v) for v in strip.creep_force_3d(*args))
     assert got == tuple(float(v) for v in creep_force_3d(*args))
     assert 0.0 < math.hypot(*got) <= 5e-324 * 1e5
-    exact = ExactCreepTable.from_file(default_table_path("creep_exact"))
-    with pytest.raises(ValueError, match="normalised_creepage"):
-        exact.creep_force_3d(*args)
 
 
 # --------------------------------------------------------------------------------------------
@@ -572,35 +415,6 @@ def test_creep_table_scalar_stick_equals_array_path(creep_table):
     assert seen_beyond > 100 and seen_full_stick > 100
 
 
-@needs_exact
-def test_exact_table_scalar_solution_equals_array_path(exact_table):
-    """All five outputs within 4 eps (forces and Mz relative to mu N and mu N sqrt(a0 b0),
-    stick absolute, rho relative); None exactly where the array path raises (out of the
-    table)."""
-    outside = 0
-    lo, hi = exact_table.poisson_ratio_range
-    rng = np.random.default_rng(73)
-    for args in _scalar_cases(72, 600):
-        # nu within the file's range (outside it the array path raises even without contact,
-        # where both scalar paths of the reader return the no-contact result)
-        args = args[:7] + (float(rng.uniform(lo, hi)),) + args[8:]
-        one = exact_table._scalar_solution(*args)
-        try:
-            ref = [float(v) for v in exact_table.creep_solution_3d(*args)]
-        except ValueError:
-            assert one is None, args
-            outside += 1
-            continue
-        assert one is not None, args
-        mu_n = args[3] * args[8]
-        scales = (mu_n, mu_n, mu_n * np.sqrt(args[4] * args[5]), 1.0, ref[4])
-        for k, scale in enumerate(scales):
-            assert abs(one[k] - ref[k]) <= 4 * _EPS * scale, (args, k)
-        # the force part is the reader's own scalar path
-        assert one[:2] == exact_table._scalar(*args)
-    assert 0 < outside < 600
-
-
 # --------------------------------------------------------------------------------------------
 # Inputs anywhere in the float range (the creep3d mantissa/exponent arithmetic)
 # --------------------------------------------------------------------------------------------
@@ -643,24 +457,6 @@ def test_creep_table_array_b0_1e_300(method):
     args[4] = np.array([1e-300, 6e-3])
     out = getattr(table, method)(*args)
     assert all(np.all(np.isfinite(v)) for v in out[:2])
-
-
-def test_exact_table_tiny_youngs_modulus_and_no_contact():
-    """E = 5e-324 raised ZeroDivisionError (pi a0 b0 E underflowed): w_sat is huge, the
-    normalised creepage ~ 1e-300 and the force ~ 0; mu = 0 with huge creepage and spin gave
-    NaN coordinates (ZeroDivisionError in the evaluator): zero force."""
-    table = ExactCreepTable.from_file()
-    tx, ty = table.creep_force_3d(*_with(6, 5e-324))
-    assert np.isfinite(tx) and np.isfinite(ty) and math.hypot(tx, ty) <= 0.3 * 1e5
-    args = _with(8, 0.0)
-    args[1], args[2] = -np.finfo(float).max, np.array([1e300, 0.1])
-    tx, ty = table.creep_force_3d(*args)
-    assert np.all(tx == 0.0) and np.all(ty == 0.0)
-    with pytest.raises(ValueError, match=r"creepage_longitudinal: the finite-difference step "
-                                         r"relative_step \* w_sat / C must be finite and > 0"):
-        table.creep_force_jacobian_3d(*_with(6, 5e-324))
-    with pytest.raises(ValueError, match=r"friction_coefficient \* normal_load"):
-        table.creep_force_3d(*_with(3, 1e308)[:8], 10.0)
 
 
 @pytest.mark.parametrize("edit, match", [
@@ -712,14 +508,3 @@ def test_tensor_spline_refuses_unknown_out_of_range():
         TensorSpline([axis], np.zeros((1, 5)), ["v"])
 
 
-def test_exact_table_spin_moment_beyond_float_range_raises():
-    """N = 1e300 on a large ellipse: the forces are finite (|T| = mu N ~ 3e299) but the spin
-    moment ~ mu N sqrt(a0 b0) ~ 3e395 is not; it was -inf."""
-    table = ExactCreepTable.from_file()
-    args = (1e-3, -5e-4, 0.1, 1e300, 1.5e96, 1.2e96, 210e9, 0.28, 0.3)
-    tx, ty = table.creep_force_3d(*args)
-    assert math.hypot(tx, ty) <= 0.3 * 1e300
-    with pytest.raises(ValueError, match=r"spin moment Mz ~ mu N sqrt\(a0 b0\) must be in "
-                                         r"\[0, 1.79769e\+308\] \[N m\]; got inf \(overflow at "
-                                         r"normal_load = 1e\+300"):
-        table.creep_solution_3d(*args)

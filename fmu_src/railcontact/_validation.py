@@ -82,12 +82,13 @@ def check_choice(name, value, choices):
 def check_contact_inputs(normal_load, a0, b0, youngs_modulus, poisson_ratio,
                          friction_coefficient):
     """The contact inputs every 3-D creep method takes, checked: N, a0, b0, mu >= 0, E > 0,
-    nu in [0, 0.5). Returns them as float arrays in that order."""
+    nu in [0, 0.5] (0.5: incompressible, for which Kalker tabulates his coefficients). Returns
+    them as float arrays in that order."""
     return (check_range("normal_load", normal_load, "N", 0.0, None),
             check_range("a0", a0, "m", 0.0, None),
             check_range("b0", b0, "m", 0.0, None),
             check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False),
-            check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False),
+            check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5),
             check_range("friction_coefficient", friction_coefficient, "-", 0.0, None))
 
 

@@ -303,7 +303,7 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
     youngs_modulus : array_like
         Young's modulus E, > 0. [Pa]
     poisson_ratio : array_like
-        Poisson's ratio nu, in [0, 0.5). [-]
+        Poisson's ratio nu, in [0, 0.5]. [-]
     friction_coefficient : array_like
         Coulomb friction coefficient mu, >= 0. [-]
     direction : array_like, optional
@@ -339,7 +339,7 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
            friction_coefficient, method):
-    check_choice("method", method, METHODS + COMPARISON_METHODS + ("exact",))  # dispatched
+    check_choice("method", method, METHODS + COMPARISON_METHODS + ("exact", "exact_table"))  # dispatched
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
         xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
         friction_coefficient)
@@ -441,12 +441,17 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     youngs_modulus : array_like
         Young's modulus E of both bodies, > 0. [Pa]
     poisson_ratio : array_like
-        Poisson's ratio nu of both bodies, in [0, 0.5). [-]
+        Poisson's ratio nu of both bodies, in [0, 0.5]. [-]
     friction_coefficient : array_like
         Coulomb friction coefficient mu, >= 0. [-]
-    method : {"modified_strip", "strip", "she", "linear", "exact", "fastsim", "polach", "fastrip"}
+    method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model. "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016):
-        :mod:`railcontact.fastsim`; "polach" (Polach 1999/2005): :mod:`railcontact.polach`. ``"exact"`` is Kalker's exact theory, discretised
+        :mod:`railcontact.fastsim`; "polach" (Polach 1999/2005): :mod:`railcontact.polach`.
+        ``"exact_table"``: Kalker's exact theory from the shipped table ``creep_exact``
+        (:class:`railcontact.exact_table.ExactCreepTable`: a C2 spline over a0/b0, nu and every
+        creepage and spin, built from the extrapolated solver below; about a microsecond per
+        call, error in docs/tables.md; beyond its a0/b0 range 0.1-10 or spin coordinate 20 it
+        calls the solver). ``"exact"`` is Kalker's exact theory, discretised
         (:func:`railcontact.reference.rolling3d.solve_rolling_3d`: the Hertzian normal problem
         solved on the grid, then the frictional steady rolling problem), one solve per
         broadcast element; it needs ``|creepage| <= 1`` and ``|spin| max(a0, b0) <= 1``.
@@ -504,6 +509,12 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
                              method_options)[:2]
         return CreepForce3D(tx, ty)
     _no_options(method, method_options)
+    if method == "exact_table":
+        from .exact_table import default_exact_table  # noqa: PLC0415  (loads the table once)
+
+        return default_exact_table().creep_force_3d(
+            creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+            poisson_ratio, friction_coefficient)
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
@@ -736,6 +747,15 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
         stick = base.stick_area_fraction if stick_own is None else stick_own
         return base._replace(tx=tx, ty=ty, stick_area_fraction=stick)
     _no_options(method, method_options)
+    if method == "exact_table":
+        from .exact_table import default_exact_table  # noqa: PLC0415
+
+        if fields:
+            raise ValueError("fields needs method='exact' (the table holds no traction "
+                             "fields); got method='exact_table'")
+        return default_exact_table().creep_solution_3d(
+            creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+            poisson_ratio, friction_coefficient, sensitivities=sensitivities)
     if method == "exact":
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,

@@ -73,15 +73,16 @@ def table_error_estimate(table):
     * ``creep_modified_strip`` (:class:`railcontact.tables.CreepTable`): the force is
       ``-mu N F(z) w/|w|`` with the direction exact, so the error of the force over mu N is that
       of ``force_ratio``.
-    * ``creep_exact`` (:class:`railcontact.tables.ExactCreepTable`): the force over mu N has the
+    * ``creep_exact`` (:class:`railcontact.exact_table.ExactCreepTable`): the force over mu N has the
       components ``force_ratio_parallel`` and ``force_ratio_perpendicular``; the returned bound on
       the error of the force vector is ``hypot`` of their two recorded maxima. It is against the
-      discretised solver the table was built with (file attribute ``solver_grid``), not against
-      the continuum exact theory.
+      solver the table was built with (file attribute ``solver_grid``: Richardson-extrapolated
+      40 x 20 / 80 x 20 elements), whose own error against the converged exact theory is in
+      docs/tables.md.
 
     Parameters
     ----------
-    table : railcontact.tables.CreepTable or railcontact.tables.ExactCreepTable
+    table : railcontact.tables.CreepTable or railcontact.exact_table.ExactCreepTable
         A loaded creep table.
 
     Returns
@@ -179,6 +180,12 @@ class _ResponseTable:
                 complex(mod.tangential_force_response(ratio, r)), w)
 
 
+#: The Jacobian fields of :class:`ContactPoint`, row by row (Fx, Fy, Mz) and column by column
+#: (xi_x, xi_y, phi), as :meth:`railcontact.exact_table.ExactCreepTable.step` returns them.
+JACOBIAN_FIELDS = ("dFx_dxi_x", "dFx_dxi_y", "dFx_dphi", "dFy_dxi_x", "dFy_dxi_y", "dFy_dphi",
+                   "dMz_dxi_x", "dMz_dxi_y", "dMz_dphi")
+
+
 class ContactPoint:
     """Inputs and outputs of one wheel/rail contact at the current communication point.
 
@@ -197,7 +204,11 @@ class ContactPoint:
                  "step_size", "relaxation_length", "relaxed_creepage_longitudinal",
                  "relaxed_creepage_lateral", "relaxed_spin",
                  # rough rail (Roughness effect)
-                 "gap_curvature", "gap_skewness", "gap_flatness", "critical_creepage")
+                 "gap_curvature", "gap_skewness", "gap_flatness", "critical_creepage",
+                 # creep-force Jacobian d(Fx, Fy, Mz)/d(xi_x, xi_y, phi) (exact table)
+                 "dFx_dxi_x", "dFx_dxi_y", "dFx_dphi", "dFy_dxi_x", "dFy_dxi_y", "dFy_dphi",
+                 "dMz_dxi_x", "dMz_dxi_y", "dMz_dphi")
+
 
     def __init__(self):
         for name in self.__slots__:
@@ -331,13 +342,14 @@ class Creep3D(_Effect):
     sliding); the FMU logs a warning the first time this is seen (when the stick outputs are
     evaluated). ``creep_table_error_estimate`` is :func:`table_error_estimate` of the table.
     Kalker's exact theory (``method = "exact"``, table source only): the shipped table
-    ``creep_exact`` (:class:`railcontact.tables.ExactCreepTable`, the discretised exact theory of
-    :mod:`railcontact.reference.rolling3d`), the only method that gives the spin moment ``Mz``
-    (0 for the others); stick area fraction from the table, ``stick_width_ratio`` and ``r_a0``
-    the strip-theory estimates at the table's normalised creepage (as
-    :func:`~railcontact.creep3d.creep_solution_3d` does for SHE). Out of the table's range the
-    reader raises (its documented behaviour) and advises the analytic theory: the FMU then uses
-    the analytic modified strip theory for that step (Mz = 0) and logs a warning once.
+    ``creep_exact`` (:class:`railcontact.exact_table.ExactCreepTable`, the extrapolated exact
+    solver of :mod:`railcontact.reference.rolling3d` over a0/b0, nu and every creepage and
+    spin), the only method that gives the spin moment ``Mz`` and the Jacobian outputs
+    ``dFx_dxi_x`` ... ``dMz_dphi`` (0 for the others): one spline evaluation per step gives
+    forces, moment, stick area fraction and Jacobian together (:meth:`ExactCreepTable.step`);
+    ``stick_width_ratio`` and ``r_a0`` are the strip-theory estimates at the table's normalised
+    creepage. Beyond the table's a0/b0 range (0.1-10) or spin coordinate (20) the reader calls
+    the solver itself (milliseconds per step), so every input gets the exact theory.
     With ``spin = false`` the spin input is ignored (treated as 0).
 
     FASTSIM, Polach, FaStrip (``method = "fastsim" | "polach" | "fastrip"``, analytic source
@@ -382,7 +394,10 @@ class Creep3D(_Effect):
                 raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
                                  f"with source = 'table' (the shipped creep tables); got "
                                  f"{self.method!r}")
-            reader = tables.ExactCreepTable if self._exact else tables.CreepTable
+            if self._exact:
+                reader = _import("exact_table", "creep (table)").ExactCreepTable
+            else:
+                reader = tables.CreepTable
             try:
                 path = table_path or tables.default_table_path(opts["table"])
                 self._table = reader.from_file(path)
@@ -437,19 +452,18 @@ class Creep3D(_Effect):
             args = (c.creepage_longitudinal, c.creepage_lateral, spin, c.normal_force, c.a0,
                     c.b0, self._e, self._nu, c.friction_coefficient)
             if self._exact:
-                # the spin moment output (read after the step), |Mz| < ~mu N sqrt(a0 b0)
-                scale = c.friction_coefficient * c.normal_force * math.sqrt(c.a0 * c.b0)
-                if not scale < _FLOAT_MAX / 4.0:
-                    raise ValueError(
-                        f"the spin moment scale mu N sqrt(a0 b0) must be in [0, "
-                        f"{_FLOAT_MAX / 4.0:g}] [N m]; got {scale:g} (normal_force = "
-                        f"{c.normal_force:g} N, friction_coefficient = "
-                        f"{c.friction_coefficient:g})")
+                # one evaluation: forces, moment, stick area, normalised creepage, Jacobian
+                c.Fx, c.Fy, c.Mz, stick, z, jac = self._table.step(*args)
+                zc = z if z < 1.0 else 1.0
+                c.stick_area_fraction = stick
+                c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
+                c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
+                c.creep_within_validity = True
+                for name, value in zip(JACOBIAN_FIELDS, jac.flat):
+                    setattr(c, name, float(value))
+                self._aux_args = None
+                return
             out = self._force(*args)
-            if out is None:                # exact table only: out of its range (or extreme)
-                out, analytic = self._exact_fallback(args)
-                if analytic:
-                    c.creep_table_error_estimate = NOT_ESTIMATED
             c.Fx, c.Fy = float(out[0]), float(out[1])
             self._aux_args = args
 
@@ -459,16 +473,6 @@ class Creep3D(_Effect):
             return {}
         return dict(self._polach, rolling_speed=max(getattr(c, "rolling_speed", 0.0), 0.0))
 
-    def _exact_fallback(self, args):
-        try:    # the fast path declines extreme magnitudes too: the array path takes those
-            return self._table.creep_force_3d(*args), False
-        except ValueError as exc:          # out of the table: the reader's own message
-            reason = str(exc)
-        self._warn("creep-exact-range",
-                   f"creep table {self._table.table.path.name}: input outside the table "
-                   f"({reason}); the analytic modified strip theory is used there (Mz = 0)")
-        return self._force_analytic(*args, "modified_strip"), True
-
     def auxiliary(self, c):
         """Fill the stick measures and the validity flag of the last table step (lazily)."""
         # (nothing to do after the first read of a step: Mz and the stick measures of this step
@@ -476,23 +480,15 @@ class Creep3D(_Effect):
         args, self._aux_args = self._aux_args, None
         if args is None:
             return
-        # scalar paths of the readers (inputs as checked for the step; see step)
-        if self._exact:
-            res = self._table._scalar_solution(*args)
-            if res is None:                # out of the table: analytic fallback (see step)
-                res = self._solve_scalar(*args, "modified_strip")
-                stick, z, c.Mz = res.stick_area_fraction, res.normalised_creepage, 0.0
-            else:
-                _, _, c.Mz, stick, z = res
-        else:
-            stick, z = self._table._scalar_stick(*args)
+        # scalar path of the reader (inputs as checked for the step; see step)
+        stick, z = self._table._scalar_stick(*args)
         zc = z if z < 1.0 else 1.0
         c.stick_area_fraction = stick
         c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
         c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
-        c.creep_within_validity = self._exact or self._spin_scalar(
+        c.creep_within_validity = self._spin_scalar(
             args[0], args[1], args[2], args[4], args[5]) <= 1.0
-        if not self._exact and z > self._z_max:
+        if z > self._z_max:
             self._warn("creep-table-range",
                        f"creep table {self._table.table.path.name}: normalised creepage "
                        f"z = {z:.4g} beyond the grid (last node {self._z_max:g}); the reader "

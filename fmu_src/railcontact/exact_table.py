@@ -142,3 +142,492 @@ def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, a0, b
     tau = phi * np.hypot(b0 * c11, a0 * c22) / w_sat
     rho = np.hypot(v_x, v_y)
     return (np.log(a0 / b0), nu, creepage_coordinate(rho), np.arctan2(v_y, v_x), tau)
+
+
+# --------------------------------------------------------------------------------------------
+# Reader: one compiled kernel for the scalar (FMU) and the vectorised path
+# --------------------------------------------------------------------------------------------
+
+import math  # noqa: E402
+from functools import lru_cache  # noqa: E402
+
+from numba import njit  # noqa: E402
+
+from . import _numba_cache  # noqa: E402,F401  (the user cache, before any njit is compiled)
+from .creep3d import CreepForce3D, ExactCreepSolution3D  # noqa: E402
+
+#: Table name and the axes it must have, in order.
+TABLE_NAME = "creep_exact"
+AXES = ("log_aspect_ratio", "poisson_ratio", "creepage_coordinate", "creepage_angle",
+        "spin_coordinate")
+VARIABLES = ("force_ratio_parallel", "force_ratio_perpendicular", "spin_moment_ratio",
+             "stick_area_fraction")
+#: Below this combined creepage |v| the Jacobian is taken at |v| = JACOBIAN_RHO_MIN in the
+#: same direction (the polar coordinates divide by |v|; the Jacobian is continuous there). [-]
+JACOBIAN_RHO_MIN = 1e-6
+
+
+@njit(cache=True)
+def _span(t, n_coef, x):
+    """``i`` with ``t[i] <= x < t[i+1]``, clamped to ``3 .. n_coef - 1``."""
+    lo = 3
+    hi = n_coef
+    if x >= t[hi]:
+        return hi - 1
+    if x <= t[lo]:
+        return lo
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if t[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True)
+def _cubic_basis(t, i, x, b, db, w):
+    """The four non-zero cubic B-splines at ``x`` in span ``i`` into ``b`` and their first
+    derivatives into ``db`` (Cox-de Boor; The NURBS Book, Algs. A2.2/A2.3); ``w`` (12,) is
+    scratch."""
+    # w[0:4] left, w[4:8] right, w[8:11] the degree-2 basis (for the derivative)
+    b[0] = 1.0
+    for j in range(1, 4):
+        w[j] = x - t[i + 1 - j]
+        w[4 + j] = t[i + j] - x
+        saved = 0.0
+        for r in range(j):
+            temp = b[r] / (w[5 + r] + w[j - r])
+            b[r] = saved + w[5 + r] * temp
+            saved = w[j - r] * temp
+        b[j] = saved
+        if j == 2:
+            w[8] = b[0]
+            w[9] = b[1]
+            w[10] = b[2]
+    # d/dx N_{i-3+r,3} = 3 (N_{i-3+r,2} / (t[i+r] - t[i-3+r]) - N_{i-2+r,2} / (t[i+r+1] - t[i-2+r]))
+    for r in range(4):
+        d = 0.0
+        if r >= 1:
+            d += w[7 + r] / (t[i + r] - t[i - 3 + r])
+        if r <= 2:
+            d -= w[8 + r] / (t[i + r + 1] - t[i - 2 + r])
+        db[r] = 3.0 * d
+
+
+@njit(cache=True)
+def _spline_point(coef, slab, use_slab, knots, kstart, x0, x1, x2, x3, x4, out, work):
+    """Values and first partials in (s, theta, tau) of the four variables at one point.
+
+    ``coef`` (n0, n1, n2, n3, n4, 4): the file's coefficients, variable last; ``slab``
+    (n2, n3, n4, 4): the coefficients already summed over (ln g, nu) for one contact (used
+    when ``use_slab``); ``knots``: the five knot vectors concatenated, axis d from
+    ``kstart[d]``. ``out`` (4, 4): rows value, d/ds, d/dtheta, d/dtau. ``work``: scratch of
+    at least 320 floats.
+    """
+    n2, n3, n4 = coef.shape[2], coef.shape[3], coef.shape[4]
+    t2 = knots[kstart[2]:kstart[3]]
+    t3 = knots[kstart[3]:kstart[4]]
+    t4 = knots[kstart[4]:]
+    scratch = work[0:12]
+    b2 = work[12:16]
+    d2 = work[16:20]
+    b3 = work[20:24]
+    d3 = work[24:28]
+    b4 = work[28:32]
+    d4 = work[32:36]
+    b0 = work[36:40]
+    b1 = work[44:48]
+    db = work[52:56]
+    block = work[64:320]    # (a, c, e, v) -> ((a * 4 + c) * 4 + e) * 4 + v
+    i2 = _span(t2, n2, x2)
+    i3 = _span(t3, n3, x3)
+    i4 = _span(t4, n4, x4)
+    _cubic_basis(t2, i2, x2, b2, d2, scratch)
+    _cubic_basis(t3, i3, x3, b3, d3, scratch)
+    _cubic_basis(t4, i4, x4, b4, d4, scratch)
+    if use_slab:
+        for a in range(4):
+            for c in range(4):
+                for e in range(4):
+                    for v in range(4):
+                        block[((a * 4 + c) * 4 + e) * 4 + v] = slab[i2 - 3 + a, i3 - 3 + c,
+                                                                     i4 - 3 + e, v]
+    else:
+        t0 = knots[kstart[0]:kstart[1]]
+        t1 = knots[kstart[1]:kstart[2]]
+        i0 = _span(t0, coef.shape[0], x0)
+        i1 = _span(t1, coef.shape[1], x1)
+        _cubic_basis(t0, i0, x0, b0, db, scratch)
+        _cubic_basis(t1, i1, x1, b1, db, scratch)
+        for k in range(256):
+            block[k] = 0.0
+        for p in range(4):
+            for q in range(4):
+                w = b0[p] * b1[q]
+                for a in range(4):
+                    for c in range(4):
+                        for e in range(4):
+                            for v in range(4):
+                                block[((a * 4 + c) * 4 + e) * 4 + v] += w * coef[
+                                    i0 - 3 + p, i1 - 3 + q, i2 - 3 + a, i3 - 3 + c,
+                                    i4 - 3 + e, v]
+    for k in range(4):
+        for v in range(4):
+            out[k, v] = 0.0
+    for a in range(4):
+        for c in range(4):
+            w23 = b2[a] * b3[c]
+            w2d = d2[a] * b3[c]
+            w3d = b2[a] * d3[c]
+            for v in range(4):
+                s_e = 0.0
+                ds_e = 0.0
+                for e in range(4):
+                    x = block[((a * 4 + c) * 4 + e) * 4 + v]
+                    s_e += b4[e] * x
+                    ds_e += d4[e] * x
+                out[0, v] += w23 * s_e
+                out[1, v] += w2d * s_e
+                out[2, v] += w3d * s_e
+                out[3, v] += w23 * ds_e
+
+
+@njit(cache=True)
+def _creep_point(coef, slab, use_slab, knots, kstart, tau_max, xi_x, xi_y, phi, mu_n, a0, b0,
+                 w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work):
+    """Forces, moment, stick fraction and their Jacobian at one contact, from the table.
+
+    ``res`` (14,) <- tx [N], ty [N], mz [N m], stick fraction, |v|, then the (3, 3)
+    d(tx, ty, mz)/d(xi_x, xi_y, phi) row by row (rows tx, ty, mz; columns xi_x, xi_y, phi).
+    ``work``: scratch of at least 336 floats. Returns False when |tau| > tau_max (the caller
+    falls back to the solver).
+    """
+    root_ab = math.sqrt(a0 * b0)
+    h = math.hypot(b0 * c11, a0 * c22)
+    v_x = c11 * xi_x / w_sat
+    v_y = (c22 * xi_y + root_ab * c23 * phi) / w_sat
+    tau = phi * h / w_sat
+    if not abs(tau) <= tau_max:
+        return False
+    rho = math.hypot(v_x, v_y)
+    s = 1.0 if rho > 1e150 else rho / math.sqrt(1.0 + rho * rho)
+    theta = math.atan2(v_y, v_x)
+    out = work[320:336].reshape((4, 4))
+    _spline_point(coef, slab, use_slab, knots, kstart, log_g, nu, s, theta, tau, out, work)
+    f_par = out[0, 0]
+    f_perp = out[0, 1]
+    mag = math.hypot(f_par, f_perp)
+    k = 1.0 if mag <= 1.0 else (1.0 - 2.0**-51) / mag   # |T| <= mu N
+    c = math.cos(theta)
+    sn = math.sin(theta)
+    res[0] = -mu_n * k * (f_par * c - f_perp * sn)
+    res[1] = -mu_n * k * (f_par * sn + f_perp * c)
+    res[2] = mu_n * root_ab * out[0, 2]
+    st = out[0, 3]
+    res[3] = 0.0 if st < 0.0 else (1.0 if st > 1.0 else st)
+    res[4] = rho
+    if not want_jacobian:
+        return True
+    if rho < JACOBIAN_RHO_MIN:   # the polar Jacobian at a point just off the origin
+        rho = JACOBIAN_RHO_MIN
+        s = rho / math.sqrt(1.0 + rho * rho)
+        _spline_point(coef, slab, use_slab, knots, kstart, log_g, nu, s, theta, tau, out,
+                      work)
+        f_par = out[0, 0]
+        f_perp = out[0, 1]
+    # Cartesian force over mu N and its partials in (s, theta, tau)
+    fx_s = -(out[1, 0] * c - out[1, 1] * sn)
+    fy_s = -(out[1, 0] * sn + out[1, 1] * c)
+    fx_t = -(out[2, 0] * c - f_par * sn - out[2, 1] * sn - f_perp * c)
+    fy_t = -(out[2, 0] * sn + f_par * c + out[2, 1] * c - f_perp * sn)
+    fx_u = -(out[3, 0] * c - out[3, 1] * sn)
+    fy_u = -(out[3, 0] * sn + out[3, 1] * c)
+    if mag > 1.0:   # clipped: d(f / |f|) = (I - f^ f^T) df / |f|  (k = 1/|f| already)
+        fx = -(f_par * c - f_perp * sn) / mag
+        fy = -(f_par * sn + f_perp * c) / mag
+        dot = fx * fx_s + fy * fy_s
+        fx_s, fy_s = fx_s - fx * dot, fy_s - fy * dot
+        dot = fx * fx_t + fy * fy_t
+        fx_t, fy_t = fx_t - fx * dot, fy_t - fy * dot
+        dot = fx * fx_u + fy * fy_u
+        fx_u, fy_u = fx_u - fx * dot, fy_u - fy * dot
+    ds = (1.0 - s * s) ** 1.5                  # ds/drho
+    # d/dv_x = cos ds/drho d/ds - sin/rho d/dtheta ; d/dv_y = sin ds/drho d/ds + cos/rho d/dtheta
+    m_s, m_t, m_u = out[1, 2], out[2, 2], out[3, 2]
+    for j in range(3):
+        dvx = c11 / w_sat if j == 0 else 0.0
+        dvy = 0.0 if j == 0 else (c22 / w_sat if j == 1 else root_ab * c23 / w_sat)
+        dtu = h / w_sat if j == 2 else 0.0
+        gs = (c * dvx + sn * dvy) * ds         # ds-part weight
+        gt = (-sn * dvx + c * dvy) / rho       # dtheta-part weight
+        res[5 + j] = mu_n * k * (fx_s * gs + fx_t * gt + fx_u * dtu)
+        res[8 + j] = mu_n * k * (fy_s * gs + fy_t * gt + fy_u * dtu)
+        res[11 + j] = mu_n * root_ab * (m_s * gs + m_t * gt + m_u * dtu)
+    return True
+
+
+@njit(cache=True)
+def _creep_batch(coef, slab, use_slab, knots, kstart, tau_max, xi_x, xi_y, phi, mu_n, a0, b0,
+                 w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok):
+    """:func:`_creep_point` over flat arrays (the same kernel as the scalar path); ``res``
+    (n, 14)."""
+    work = np.empty(336)
+    for i in range(xi_x.shape[0]):
+        ok[i] = _creep_point(coef, slab, use_slab, knots, kstart, tau_max, xi_x[i], xi_y[i],
+                             phi[i], mu_n[i], a0[i], b0[i], w_sat[i], c11[i], c22[i], c23[i],
+                             log_g[i], nu[i], want_jacobian, res[i], work)
+
+
+@lru_cache(maxsize=256)
+def _kalker_pair(a0_over_b0, poisson_ratio):
+    """Kalker's (C11, C22, C23) for one contact (cached: a vehicle's contact keeps its a0/b0)."""
+    from .kalker import kalker_coefficients  # noqa: PLC0415
+
+    c = kalker_coefficients(a0_over_b0, poisson_ratio)
+    return float(c.c11), float(c.c22), float(c.c23)
+
+
+_SCALAR = (float, int, np.floating, np.integer)
+
+
+class ExactCreepTable:
+    """Kalker's exact theory from the table ``creep_exact``: forces, spin moment, stick area
+    and their Jacobian, at the speed of a lookup.
+
+    The table (see the module docstring for its coordinates) was computed by the discretised
+    solver :func:`railcontact.reference.rolling3d.solve_rolling_3d`, Richardson-extrapolated
+    from 40 x 20 and 80 x 20 elements; its recorded accuracy (file attributes, per variable:
+    ``max_abs_error``, ``rms_error`` on off-node check points against that solver) and the
+    solver's own error against the converged exact theory are in ``docs/tables.md``.
+
+    **Domain.** Every creepage and spin of either sign; Poisson's ratio 0-0.5; a0/b0 and the
+    spin coordinate |tau| within the file's axes (0.1-10 and 20). Outside them the reader
+    falls back to the solver itself, ``creep_force_3d(method="exact", grid=(40, 20),
+    extrapolate=True)`` (the table's own setting, milliseconds per call; documented choice,
+    so every finite input gets an answer). |T| <= mu N always; the spline is C2 in every input
+    (across xi_x = 0 and phi = 0 too), C1 only where it clips an overshoot to mu N.
+    """
+
+    def __init__(self, table):
+        names = tuple(a["name"] for a in table.axes)
+        if names != AXES or tuple(table.variables) != VARIABLES:
+            from .tables import TableFileError  # noqa: PLC0415
+
+            raise TableFileError(f"table file {str(table.path)!r} has axes {names} and "
+                                 f"variables {tuple(table.variables)}; this reader needs "
+                                 f"{AXES} and {VARIABLES} (rebuild with `python -m tablegen "
+                                 "build --only creep_exact`)")
+        self.table = table
+        self.path = table.path
+        self._knot_list = [np.ascontiguousarray(a["knots"], dtype=float) for a in table.axes]
+        self._knots = np.ascontiguousarray(np.concatenate(self._knot_list))
+        self._kstart = np.cumsum([0] + [len(t) for t in self._knot_list[:-1]]).astype(np.int64)
+        coef = table.spline._coef.reshape((len(VARIABLES),) + tuple(table.spline._shape))
+        self._coef = np.ascontiguousarray(np.moveaxis(coef, 0, -1))
+        self._empty_slab = np.zeros((1, 1, 1, 4))
+        self._slab_key = None
+        self._slab = self._empty_slab
+        self._g_range = tuple(float(np.exp(table.axes[0]["nodes"][k])) for k in (0, -1))
+        self._log_g = (float(table.axes[0]["nodes"][0]), float(table.axes[0]["nodes"][-1]))
+        self.tau_max = float(table.axes[4]["nodes"][-1])
+        self._res = np.zeros(14)
+        self._work = np.empty(336)
+        self._point = _creep_point    # the compiled kernel (see _fast_kernel)
+
+    @classmethod
+    def from_file(cls, path=None, directory=None):
+        """Load ``creep_exact.nc`` (default: :func:`railcontact.tables.default_table_path`)."""
+        from .tables import Table, default_table_path  # noqa: PLC0415
+
+        path = default_table_path(TABLE_NAME, directory) if path is None else path
+        return cls(Table.from_file(path, expected_name=TABLE_NAME))
+
+    # -- one contact's (ln g, nu) summed out once -------------------------------------------
+    def _slab_for(self, log_g, nu):
+        key = (log_g, nu)
+        if key != self._slab_key:
+            w = []
+            for d, x in ((0, log_g), (1, nu)):
+                t = self._knot_list[d]
+                i = _span(t, self._coef.shape[d], x)
+                b, db = np.empty(4), np.empty(4)
+                _cubic_basis(t, i, x, b, db, np.empty(12))
+                w.append((i, b))
+            (i0, w0), (i1, w1) = w
+            block = self._coef[i0 - 3:i0 + 1, i1 - 3:i1 + 1]
+            self._slab = np.ascontiguousarray(np.einsum("p,q,pq...->...", w0, w1, block))
+            self._slab_key = key
+        return self._slab
+
+    # -- scalar path (FMU) ------------------------------------------------------------------
+    def step(self, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
+             friction_coefficient, jacobian=True):
+        """One contact, plain floats: ``(tx, ty, mz, stick_area_fraction,
+        normalised_creepage, jacobian)``.
+
+        The FMU's path: one kernel call evaluates forces [N], moment [N m], stick area
+        fraction [-], the normalised creepage |v| (the modified strip theory's z) [-] and
+        (``jacobian=True``) the (3, 3) array d(tx, ty, mz)/d(xi_x, xi_y, phi) [N, N, N m per
+        unit creepage and per 1/m] together. Inputs are checked as in
+        :meth:`creep_solution_3d` (same errors); beyond the table the solver answers.
+        """
+        args = (xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                friction_coefficient)
+        if not self._plain(args):
+            return self._step_array(args, jacobian)
+        n_load, mu = float(normal_load), float(friction_coefficient)
+        a0, b0, nu = float(a0), float(b0), float(poisson_ratio)
+        if n_load == 0.0 or mu == 0.0 or a0 == 0.0 or b0 == 0.0:
+            return 0.0, 0.0, 0.0, 1.0, 0.0, (np.zeros((3, 3)) if jacobian else None)
+        g = a0 / b0
+        c11, c22, c23 = _kalker_pair(g, nu)
+        w_sat = math.pi * (1.0 + nu) * friction_coefficient * 1.5 * n_load / (
+            a0 * b0 * youngs_modulus)
+        log_g = math.log(g)
+        if self._log_g[0] <= log_g <= self._log_g[1] and w_sat > 0.0:
+            slab = self._slab if (log_g, nu) == self._slab_key else self._slab_for(log_g, nu)
+            r = self._res
+            if self._point(self._coef, slab, True, self._knots, self._kstart, self.tau_max,
+                           float(xi_x), float(xi_y), float(phi), mu * n_load, a0, b0, w_sat,
+                           c11, c22, c23, log_g, nu, jacobian, r, self._work):
+                if self._point is _creep_point:   # compiled now: skip numba's dispatch
+                    self._point = _creep_point.overloads[_creep_point.signatures[0]].entry_point
+                tx, ty, mz, stick = r[0], r[1], r[2], r[3]
+                if math.isfinite(tx) and math.isfinite(ty) and math.isfinite(mz):
+                    return (float(tx), float(ty), float(mz), float(stick), float(r[4]),
+                            r[5:].reshape(3, 3).copy() if jacobian else None)
+        return self._step_array(args, jacobian)      # beyond the table: the solver
+
+    def _step_array(self, args, jacobian):
+        res, jac, _ = self._evaluate(args, jacobian)
+        if res.ndim != 1:
+            raise ValueError("step takes one contact (scalar inputs); got arrays of shape "
+                             f"{res.shape[:-1]} (use creep_solution_3d)")
+        return (float(res[0]), float(res[1]), float(res[2]), float(res[3]), float(res[4]),
+                jac if jacobian else None)
+
+    @staticmethod
+    def _plain(args):
+        """All plain finite floats in the moderate range the float arithmetic handles."""
+        for v in args:
+            if not isinstance(v, _SCALAR) or isinstance(v, bool) or not math.isfinite(v):
+                return False
+            if v != 0.0 and not 1e-50 <= abs(v) <= 1e50:
+                return False
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = args
+        return (n_load >= 0.0 and a0 >= 0.0 and b0 >= 0.0 and e_mod > 0.0
+                and 0.0 <= nu <= 0.5 and mu >= 0.0)
+
+    # -- vectorised path ----------------------------------------------------------------------
+    def _evaluate(self, args, jacobian):
+        from ._validation import check_creep_inputs  # noqa: PLC0415
+
+        checked = check_creep_inputs(*args)   # any creepage: the table reaches full sliding
+        arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in checked))
+        shape = arrays[0].shape
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.ravel(v) for v in arrays)
+        n = xi_x.size
+        res = np.zeros((n, 5))
+        res[:, 3] = 1.0
+        jac = np.zeros((n, 3, 3))
+        contact = (n_load > 0.0) & (mu > 0.0) & (a0 > 0.0) & (b0 > 0.0)
+        with np.errstate(all="ignore"):
+            g = np.where(contact, a0 / np.where(b0 > 0.0, b0, 1.0), 1.0)
+            log_g = np.log(g)
+            w_sat = np.pi * (1.0 + nu) * mu * 1.5 * n_load / (a0 * b0 * e_mod)
+        inside = contact & (log_g >= self._log_g[0]) & (log_g <= self._log_g[1]) \
+            & np.isfinite(w_sat) & (w_sat > 0.0)
+        idx = np.nonzero(inside)[0]
+        ok = np.zeros(n, dtype=bool)
+        if idx.size:
+            one = bool(np.all(log_g[idx] == log_g[idx[0]]) and np.all(nu[idx] == nu[idx[0]]))
+            if one:
+                c = [np.full(idx.size, v) for v in _kalker_pair(float(g[idx[0]]),
+                                                                float(nu[idx[0]]))]
+                slab = self._slab_for(float(log_g[idx[0]]), float(nu[idx[0]]))
+            else:
+                from .kalker import kalker_coefficients  # noqa: PLC0415
+
+                kc = kalker_coefficients(g[idx], nu[idx])
+                c = [np.ascontiguousarray(np.broadcast_to(v, idx.shape), dtype=float)
+                     for v in (kc.c11, kc.c22, kc.c23)]
+                slab = self._empty_slab
+            r = np.zeros((idx.size, 14))
+            o = np.zeros(idx.size, dtype=bool)
+            with np.errstate(all="ignore"):
+                _creep_batch(self._coef, slab, one, self._knots, self._kstart, self.tau_max,
+                             xi_x[idx], xi_y[idx], phi[idx], mu[idx] * n_load[idx], a0[idx],
+                             b0[idx], w_sat[idx], c[0], c[1], c[2], log_g[idx], nu[idx],
+                             jacobian, r, o)
+            o &= np.isfinite(r[:, :3]).all(axis=1)
+            res[idx[o]] = r[o, :5]
+            jac[idx[o]] = r[o, 5:].reshape(-1, 3, 3)
+            ok[idx[o]] = True
+        fallback = contact & ~ok
+        if np.any(fallback):    # beyond the table: the solver at the table's own setting
+            from .creep3d import creep_solution_3d  # noqa: PLC0415
+
+            f = np.nonzero(fallback)[0]
+            sol = creep_solution_3d(xi_x[f], xi_y[f], phi[f], n_load[f], a0[f], b0[f],
+                                    e_mod[f], nu[f], mu[f], method="exact", grid=(40, 20),
+                                    extrapolate=True, sensitivities=jacobian)
+            res[f, 0], res[f, 1], res[f, 2] = sol.tx, sol.ty, sol.spin_moment
+            res[f, 3] = sol.stick_area_fraction
+            res[f, 4] = sol.normalised_creepage
+            if jacobian:
+                jac[f] = sol.sensitivity
+        return res.reshape(shape + (5,)), jac.reshape(shape + (3, 3)), checked
+
+    def creep_force_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                       youngs_modulus, poisson_ratio, friction_coefficient):
+        """Creep force on the wheel, ``CreepForce3D(tx, ty)`` [N]; inputs as
+        :func:`railcontact.creep_force_3d`."""
+        args = (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
+                youngs_modulus, poisson_ratio, friction_coefficient)
+        if self._plain(args):
+            tx, ty = self.step(*args, jacobian=False)[:2]
+            return CreepForce3D(tx, ty)
+        res = self._evaluate(args, False)[0]
+        return CreepForce3D(res[..., 0][()], res[..., 1][()])
+
+    def creep_solution_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                          b0, youngs_modulus, poisson_ratio, friction_coefficient,
+                          sensitivities=True):
+        """Forces, spin moment, stick area and (``sensitivities``) the Jacobian, as
+        :class:`railcontact.creep3d.ExactCreepSolution3D` (``stick_width_ratio``, ``fields``
+        and ``iterations`` are not tabulated: None)."""
+        from .creep3d import normalised_creepage_3d, spin_coefficient  # noqa: PLC0415
+
+        res, jac, checked = self._evaluate(
+            (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
+             poisson_ratio, friction_coefficient), sensitivities)
+        xi_x, xi_y, phi, n_load, a0_, b0_, e_mod, nu, mu = checked
+        shape = res.shape[:-1]
+        z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0_, b0_, e_mod, nu,
+                                                   mu), shape)
+        phi_c = np.broadcast_to(spin_coefficient(xi_x, xi_y, phi, a0_, b0_), shape)
+        return ExactCreepSolution3D(
+            res[..., 0][()], res[..., 1][()], res[..., 3][()], None, np.asarray(z)[()],
+            np.asarray(phi_c)[()], np.ones(shape, dtype=bool)[()], res[..., 2][()],
+            jac[()] if sensitivities else None, None, None)
+
+    def creep_force_jacobian_3d(self, creepage_longitudinal, creepage_lateral, spin,
+                                normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                friction_coefficient):
+        """d(tx, ty, mz)/d(xi_x, xi_y, phi), shape ``(..., 3, 3)``: rows tx [N], ty [N],
+        mz [N m]; columns per unit xi_x [-], xi_y [-], phi [1/m]."""
+        return self._evaluate((creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                               b0, youngs_modulus, poisson_ratio, friction_coefficient),
+                              True)[1][()]
+
+
+_DEFAULT = {}
+
+
+def default_exact_table():
+    """The shipped ``creep_exact`` table, loaded once per process."""
+    table = _DEFAULT.get("table")
+    if table is None:
+        table = _DEFAULT["table"] = ExactCreepTable.from_file()
+    return table

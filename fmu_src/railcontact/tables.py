@@ -52,13 +52,12 @@ from scipy.interpolate import make_interp_spline
 
 from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from ._validation import check_range
-from .creep3d import REFERENCE_CONTACT, _moderate
+from .creep3d import _moderate
 
 __all__ = [
     "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
-    "TensorSpline", "Table", "CreepTable", "ExactCreepTable", "default_table_path",
-    "tables_directory", "exact_table_coordinates", "exact_table_inverse",
-    "periodic_bspline_knots", "periodic_stored_nodes",
+    "TensorSpline", "Table", "CreepTable", "default_table_path",
+    "tables_directory", "periodic_bspline_knots", "periodic_stored_nodes",
 ]
 
 #: Version of the table file layout this reader understands (global attribute
@@ -69,6 +68,9 @@ TABLE_FORMAT_VERSION = 1
 TABLES_DIR_ENV = "RAILCONTACT_TABLES_DIR"
 
 SPLINE_DEGREE = 3
+
+#: Node values a table load re-evaluates at most (integrity check; every node below it).
+_INTEGRITY_NODES = 20000
 
 
 class TableFileError(ValueError):
@@ -663,11 +665,17 @@ class Table:
             coefs.append(np.asarray(coef, float))
             vattrs[name] = a
         table = cls(path, attrs, axes, var_names, vattrs, values, np.stack(coefs))
-        # integrity: the stored spline reproduces the stored node values
-        grids = np.meshgrid(*[a["nodes"] for a in axes], indexing="ij")
-        pts = np.stack([g.ravel() for g in grids], axis=1)
+        # integrity: the stored spline reproduces the stored node values (every node, or for
+        # large tables the corners and a fixed sample of 20,000: a load stays fast)
+        n_nodes = int(np.prod(shape))
+        flat = np.arange(n_nodes) if n_nodes <= _INTEGRITY_NODES else np.unique(np.r_[
+            np.ravel_multi_index(tuple(np.array(c) * (np.array(shape) - 1) for c in zip(
+                *np.ndindex(*(2,) * len(shape)))), shape),
+            np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
+        idx = np.unravel_index(flat, shape)
+        pts = np.stack([a["nodes"][i] for a, i in zip(axes, idx)], axis=1)
         got = table.spline.evaluate(pts, check=False)
-        want = np.stack([values[v].ravel() for v in var_names], axis=1)
+        want = np.stack([values[v][idx] for v in var_names], axis=1)
         scale = np.maximum(1.0, np.abs(want).max(axis=0))
         bad = np.abs(got - want).max(axis=0) / scale
         if np.any(~np.isfinite(bad)) or np.any(bad > 1e-9):
@@ -1037,365 +1045,3 @@ class CreepTable:
                             youngs_modulus, poisson_ratio, friction_coefficient),
                            jacobian=True)[4]
 
-
-# --------------------------------------------------------------------------------------------
-# Exact-theory creep table (3-D discretised solver railcontact.reference.rolling3d)
-# --------------------------------------------------------------------------------------------
-
-#: Reference contact on which the normalised exact table is computed (any contact gives the
-#: same normalised forces: checked in tests/test_tables.py). a0 b0 = 36 mm^2.
-EXACT_REFERENCE_CONTACT = REFERENCE_CONTACT
-
-
-def exact_table_coordinates(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-                            youngs_modulus, poisson_ratio, friction_coefficient,
-                            coefficients=None):
-    r"""Table coordinates of the exact-theory creep table, and the symmetry signs.
-
-    With Kalker's coefficients C_ij(a0/b0, nu), ``w_sat = pi^2 (1 + nu) mu p0 / E`` and
-    ``p0 = 3 N / (2 pi a0 b0)``, the normalised creepages are
-
-        u_x = C11 xi_x / w_sat,   u_y = C22 xi_y / w_sat,   sigma = sqrt(a0 b0) C23 phi / w_sat,
-        tau = |phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat.
-
-    In these units Kalker's linear theory reads ``T / (mu N) = -(3 pi / 4) v`` with the
-    combined creepage ``v = (u_x, u_y + sigma)``, and the modified strip theory is
-    ``T / (mu N) = -F(|v|) v / |v|``, saturating at ``|v| = 1``. The steady rolling problem with
-    Hertzian pressure depends on the inputs only through a0/b0, nu and (u_x, u_y, sigma) (scale
-    invariance of the half-space equations). Symmetries: T_x is odd and T_y even in u_x;
-    mirroring y maps (u_y, sigma, T_y) to their negatives. So the table covers v_x >= 0,
-    sigma >= 0, with coordinates
-
-        rho = |v|,  theta = atan2(v_y, v_x) in [-pi/2, pi/2],  tau >= 0.
-
-    tau measures the spin by the rigid slip it causes at the edges of the ellipse (phi b0 in
-    x, phi a0 in y) in units of the saturation creepages w_sat/C11, w_sat/C22; sigma (the
-    linear theory's measure) would crowd the effect of spin on T_x into a tiny range for
-    a0 < b0, where C23 is small.
-
-    and holds the force in the frame of v: ``T / (mu N) = -(f_par e + f_perp e_perp)`` with
-    ``e = (cos theta, sin theta)``, ``e_perp = (-sin theta, cos theta)``. Then f_par is close to
-    the modified strip theory's F(rho) and f_perp small, so the tabulated functions are smooth
-    and nearly independent of theta.
-
-    Returns
-    -------
-    tuple of ndarray
-        ``(log_aspect_ratio, rho, theta, tau, sign_x, sign_y, mu N, w_sat)``; the forces of
-        the reduced problem are multiplied by ``sign_x`` (T_x) and ``sign_y`` (T_y).
-    """
-    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.asarray(v, dtype=float) for v in (
-        creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
-        poisson_ratio, friction_coefficient))
-    from . import creep3d as c3  # noqa: PLC0415  (the overflow-safe arithmetic)
-
-    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
-        g = a0 / b0
-    c11, c22, c23 = coefficients if coefficients is not None else _kalker(g, nu)
-    # w_sat and the quotients by it in (mantissa, exponent) form (railcontact.creep3d._scaled):
-    # the same roundings as the plain expressions where they stay in range, and no overflow of
-    # an intermediate for any finite input (a coordinate beyond the float range is inf, which
-    # the reader rejects as out of range)
-    s_m, s_e = c3._saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
-    pos = s_m > 0.0
-    w_sat_pair = (np.where(pos, s_m, 1.0), s_e)
-    w_sat = c3._value(s_m, s_e)
-
-    def over_w_sat(*factors):
-        m, e = c3._scaled(factors, (w_sat_pair,))
-        # w_sat = 0 (no contact): infinite coordinates, which the reader rejects as out of
-        # range (its documented error); 0/0 stays a visible NaN
-        return np.where(pos, c3._value(m, e), np.where(m != 0.0, np.copysign(np.inf, m), np.nan))
-
-    u_x = over_w_sat(c11, xi_x)
-    u_y = over_w_sat(c22, xi_y)
-    sig = over_w_sat(c3._root_ab(a0, b0), c23, phi)
-    tau = over_w_sat(np.abs(phi), c3._hypot_scaled(c3._scaled((b0, c11)), c3._scaled((a0, c22))))
-    sign_x = np.where(u_x < 0.0, -1.0, 1.0)
-    sign_y = np.where(sig < 0.0, -1.0, 1.0)
-    v_x = np.abs(u_x)
-    sig = np.abs(sig)
-    with np.errstate(invalid="ignore"):       # inf - inf (beyond the grid): NaN, rejected
-        v_y = u_y * sign_y + sig
-    rho = np.hypot(v_x, v_y)
-    theta = np.arctan2(v_y, v_x)
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        return np.log(g), rho, theta, tau, sign_x, sign_y, mu * n_load, w_sat
-
-
-def exact_table_inverse(log_aspect_ratio, rho, theta, tau, poisson_ratio):
-    """Physical inputs on :data:`EXACT_REFERENCE_CONTACT` for table coordinates.
-
-    Returns
-    -------
-    dict
-        ``creepage_longitudinal``, ``creepage_lateral``, ``spin``, ``normal_load``, ``a0``,
-        ``b0``, ``youngs_modulus``, ``poisson_ratio``, ``friction_coefficient`` (arrays).
-    """
-    ref = EXACT_REFERENCE_CONTACT
-    g = np.exp(np.asarray(log_aspect_ratio, dtype=float))
-    nu = np.broadcast_to(np.asarray(poisson_ratio, dtype=float), g.shape)
-    a0 = ref["area_radius"] * np.sqrt(g)
-    b0 = ref["area_radius"] / np.sqrt(g)
-    c11, c22, c23 = _kalker(g, nu)
-    n_load, e_mod, mu = ref["normal_load"], ref["youngs_modulus"], ref["friction_coefficient"]
-    p0 = 1.5 * n_load / (np.pi * a0 * b0)
-    w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
-    v_x = rho * np.cos(theta)
-    v_y = rho * np.sin(theta)
-    phi = tau * w_sat / np.hypot(b0 * c11, a0 * c22)
-    sigma = np.sqrt(a0 * b0) * c23 * phi / w_sat
-    return dict(creepage_longitudinal=v_x * w_sat / c11,
-                creepage_lateral=(v_y - sigma) * w_sat / c22,
-                spin=phi,
-                normal_load=np.full(g.shape, n_load), a0=a0, b0=b0,
-                youngs_modulus=np.full(g.shape, e_mod), poisson_ratio=nu,
-                friction_coefficient=np.full(g.shape, mu))
-
-
-class ExactCreepTable:
-    """Creep forces of Kalker's exact theory (discretised, :mod:`railcontact.reference.rolling3d`)
-    from the shipped table ``creep_exact``; same inputs and conventions as
-    :func:`railcontact.creep_force_3d`.
-
-    The table holds the force over mu N in the frame of the combined creepage (f_par,
-    f_perp), the spin moment M_z/(mu N sqrt(a0 b0)) and the stick area fraction over
-    (ln(a0/b0), rho, theta, tau) (see :func:`exact_table_coordinates`),
-    computed by the solver at one fixed grid (file attributes ``solver_grid``): the table's
-    recorded accuracy is against that solver, whose own discretisation error is stated in the
-    file (``solver_accuracy``).
-
-    **Out of grid:** a0/b0 outside the table's range, rho or tau beyond their last nodes
-    (very large creepage or spin) and Poisson's ratio outside the file's
-    ``poisson_ratio_range`` raise ``ValueError`` (use the analytic
-    :func:`railcontact.creep_force_3d` there). theta always lies in the grid. The magnitude of the force is never above mu N: if the
-    interpolated components exceed it (spline ringing near full sliding), they are scaled back
-    to mu N (the file records the largest interpolated magnitude seen on the check points,
-    ``max_force_ratio_on_check_points``).
-    """
-
-    def __init__(self, table):
-        if table.name != "creep_exact":
-            raise TableFileError(f"table file {str(table.path)!r} holds {table.name!r}, not "
-                                 "the exact creep table 'creep_exact'")
-        self.table = table
-        self._spline = table.spline
-        self._idx = _variable_indices(table, ("force_ratio_parallel",
-                                              "force_ratio_perpendicular",
-                                              "spin_moment_ratio", "stick_area_fraction"))
-        if "poisson_ratio_range" not in table.attrs:
-            raise TableFileError(f"table file {str(table.path)!r} lacks the global attribute "
-                                 "'poisson_ratio_range'")
-        # forces only (half the work of all four variables): creep_force_3d and the fast path
-        sp = table.spline
-        self._force_spline = TensorSpline(
-            table.axes, sp._coef[self._idx[:2]].reshape((2,) + tuple(sp._shape)),
-            ["force_ratio_parallel", "force_ratio_perpendicular"], source=str(table.path))
-        self.poisson_ratio_range = tuple(_attr_list(table.attrs["poisson_ratio_range"]))
-        ax = {a["name"]: a for a in table.axes}
-        # the a0/b0 range stated by the file, widened by rounding of exp(ln(0.1)) etc.
-        self._g_range = (float(np.exp(ax["log_aspect_ratio"]["nodes"][0])) * (1 - 1e-12),
-                         float(np.exp(ax["log_aspect_ratio"]["nodes"][-1])) * (1 + 1e-12))
-        self._rho_max = float(ax["normalised_creepage"]["nodes"][-1])
-        self._sigma_max = float(ax["normalised_spin"]["nodes"][-1])
-
-    @classmethod
-    def from_file(cls, path=None, directory=None):
-        """Load ``creep_exact.nc`` (default: :func:`default_table_path`)."""
-        if path is None:
-            path = default_table_path("creep_exact", directory)
-        return cls(Table.from_file(path))
-
-    def _solve(self, args, forces_only=False):
-        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_creep_inputs(*args)
-        lo, hi = self.poisson_ratio_range
-        check_range("poisson_ratio", nu, "-", lo, hi,
-                    condition=f"range of table file {str(self.table.path)!r}")
-        shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
-        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.broadcast_to(v, shape) for v in (
-            xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
-        from .creep3d import _check_coulomb_limit  # noqa: PLC0415
-
-        _check_coulomb_limit(mu, n_load)
-        contact = (a0 > 0.0) & (b0 > 0.0) & (n_load > 0.0) & (mu > 0.0)
-        safe = lambda v, one=1.0: np.where(contact, v, one)  # noqa: E731
-        with np.errstate(over="ignore", under="ignore"):
-            g = safe(a0) / safe(b0)
-        check_range("a0/b0", np.where(contact, g, 1.0), "-", *self._g_range,
-                    condition=f"range of table file {str(self.table.path)!r}")
-        s, rho, theta, sig, sx, sy, mu_n, w_sat = exact_table_coordinates(
-            xi_x, xi_y, phi, safe(n_load), safe(a0), safe(b0), e_mod, nu, safe(mu))
-        rho = np.where(contact, rho, 0.0)
-        sig = np.where(contact, sig, 0.0)
-        theta = np.where(contact, theta, 0.0)     # (NaN without contact: inf - inf)
-        where = f"range of table file {str(self.table.path)!r}"
-        check_range("normalised_creepage", rho, "1", 0.0, self._rho_max,
-                    condition="|(C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)| / w_sat, " + where)
-        check_range("normalised_spin", sig, "1", 0.0, self._sigma_max,
-                    condition="|phi| sqrt((b0 C11)^2 + (a0 C22)^2) / w_sat, " + where)
-        pts = np.stack([np.clip(v, lo_, hi_) for v, lo_, hi_ in zip(
-            (s, rho, theta, sig), self._spline._lower, self._spline._upper)], axis=-1)
-        if forces_only:
-            vals = self._force_spline.evaluate(pts.reshape(-1, 4), check=False)
-            f_par, f_perp = (vals[:, i].reshape(shape) for i in (0, 1))
-            mz = stick = np.zeros(shape)
-        else:
-            vals = self._spline.evaluate(pts.reshape(-1, 4), check=False).reshape(shape + (-1,))
-            f_par, f_perp, mz, stick = (vals[..., i] for i in self._idx)
-        mag = np.hypot(f_par, f_perp)
-        over = mag > 1.0
-        scale = np.divide(1.0 - 2.0**-51, mag, out=np.ones(shape), where=over)
-        n_mu = np.where(contact, mu * n_load, 0.0) * scale
-        c, s_ = np.cos(theta), np.sin(theta)
-        tx = -sx * n_mu * (f_par * c - f_perp * s_)
-        ty = -sy * n_mu * (f_par * s_ + f_perp * c)
-        with np.errstate(over="ignore"):
-            mz = sx * sy * mz * np.where(contact, mu * n_load, 0.0) * np.sqrt(a0 * b0)
-        if not forces_only and not np.all(np.isfinite(mz)):
-            from ._floats import _overflow_error  # noqa: PLC0415
-
-            raise _overflow_error("spin moment Mz ~ mu N sqrt(a0 b0)", "N m", mz,
-                                  dict(normal_load=n_load, a0=a0, b0=b0,
-                                       friction_coefficient=mu))
-        stick = np.where(contact, np.clip(stick, 0.0, 1.0), 1.0)
-        return tx, ty, mz, stick, rho
-
-    def creep_force_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-                       youngs_modulus, poisson_ratio, friction_coefficient):
-        """Creep force on the wheel (``CreepForce3D``: tx, ty [N]); ``|T| <= mu N``."""
-        result = _CreepForce3D or _creep_force_type()
-        args = (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-                youngs_modulus, poisson_ratio, friction_coefficient)
-        if _fast_scalars_ok(*args):
-            out = self._scalar(*args)
-            if out is not None:
-                return result(*out)
-        tx, ty = self._solve(args, forces_only=True)[:2]
-        return result(tx[()], ty[()])
-
-    def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
-        """Scalar fast path; None if an input is out of the table's range (the vectorised
-        path then raises the message)."""
-        if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
-            return 0.0, 0.0
-        if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
-            return None     # extreme magnitudes: the overflow-safe array path
-        g = a0 / b0
-        lo, hi = self.poisson_ratio_range
-        if not (self._g_range[0] <= g <= self._g_range[1] and lo <= nu <= hi):
-            return None
-        c11, c22, c23 = _kalker_scalar(g, nu)
-        w_sat = math.pi**2 * (1.0 + nu) * mu * 1.5 * n_load / (math.pi * a0 * b0 * e_mod)
-        if w_sat <= 0.0:    # underflow (mu ~ 1e-320): out of the table, the array path says so
-            return None
-        u_x = c11 * xi_x / w_sat
-        sig = math.sqrt(a0 * b0) * c23 * phi / w_sat
-        sx = -1.0 if u_x < 0.0 else 1.0
-        sy = -1.0 if sig < 0.0 else 1.0
-        v_x = abs(u_x)
-        sig = abs(sig)
-        v_y = c22 * xi_y / w_sat * sy + sig
-        rho = math.hypot(v_x, v_y)
-        tau = abs(phi) * math.hypot(b0 * c11, a0 * c22) / w_sat
-        if rho > self._rho_max or tau > self._sigma_max:
-            return None
-        theta = math.atan2(v_y, v_x)
-        s = min(max(math.log(g), self._spline._lower[0]), self._spline._upper[0])
-        f_par, f_perp = self._force_spline.evaluate_point((s, rho, theta, tau))
-        mag = math.hypot(f_par, f_perp)
-        n_mu = mu * n_load * ((1.0 - 2.0**-51) / mag if mag > 1.0 else 1.0)
-        c, s_ = math.cos(theta), math.sin(theta)
-        return (-sx * n_mu * (f_par * c - f_perp * s_), -sy * n_mu * (f_par * s_ + f_perp * c))
-
-    def _scalar_solution(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu):
-        """Scalar path of :meth:`creep_solution_3d` for plain floats: ``(tx, ty, spin_moment,
-        stick_area_fraction, normalised_creepage)``, or None if an input is out of the
-        table's range (the array path then raises the message).
-
-        Assumes what :meth:`_scalar` assumes (inputs finite and in the ranges of
-        :meth:`creep_force_3d`; no check is made here). One evaluation of all four tabulated
-        variables with the compiled point evaluator the array path also uses; the coordinates
-        are computed as in :meth:`_scalar` (the forces are those of :meth:`_scalar` bit for
-        bit; agreement with the array path to a few ulp: tests/test_tables.py).
-        """
-        if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
-            return 0.0, 0.0, 0.0, 1.0, 0.0
-        if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
-            try:            # extreme magnitudes: the overflow-safe array path
-                out = self._solve((xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
-            except ValueError:
-                return None
-            return tuple(float(v) for v in out)
-        g = a0 / b0
-        lo, hi = self.poisson_ratio_range
-        if not (self._g_range[0] <= g <= self._g_range[1] and lo <= nu <= hi):
-            return None
-        c11, c22, c23 = _kalker_scalar(g, nu)
-        # (the operations of _scalar: its forces, bit for bit)
-        w_sat = math.pi**2 * (1.0 + nu) * mu * 1.5 * n_load / (math.pi * a0 * b0 * e_mod)
-        if w_sat <= 0.0:
-            return None
-        u_x = c11 * xi_x / w_sat
-        sig = math.sqrt(a0 * b0) * c23 * phi / w_sat
-        sx = -1.0 if u_x < 0.0 else 1.0
-        sy = -1.0 if sig < 0.0 else 1.0
-        v_x = abs(u_x)
-        sig = abs(sig)
-        v_y = c22 * xi_y / w_sat * sy + sig
-        rho = math.hypot(v_x, v_y)
-        tau = abs(phi) * math.hypot(b0 * c11, a0 * c22) / w_sat
-        if rho > self._rho_max or tau > self._sigma_max:
-            return None
-        theta = math.atan2(v_y, v_x)
-        s = min(max(math.log(g), self._spline._lower[0]), self._spline._upper[0])
-        vals = self._spline.evaluate_point((s, rho, theta, tau))
-        f_par, f_perp, mz, stick = (float(vals[i]) for i in self._idx)
-        mag = math.hypot(f_par, f_perp)
-        mu_n = mu * n_load
-        n_mu = mu_n * ((1.0 - 2.0**-51) / mag if mag > 1.0 else 1.0)
-        c, s_ = math.cos(theta), math.sin(theta)
-        return (-sx * n_mu * (f_par * c - f_perp * s_), -sy * n_mu * (f_par * s_ + f_perp * c),
-                sx * sy * mz * mu_n * math.sqrt(a0 * b0),
-                0.0 if stick < 0.0 else 1.0 if stick > 1.0 else stick, rho)
-
-    def creep_solution_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load,
-                          a0, b0, youngs_modulus, poisson_ratio, friction_coefficient):
-        """``(tx, ty, spin_moment, stick_area_fraction, normalised_creepage)``
-        [N, N, N m, -, -]; the spin moment is about the ellipse centre, on the wheel."""
-        out = self._solve((creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-                           youngs_modulus, poisson_ratio, friction_coefficient))
-        return tuple(v[()] for v in out)
-
-    def creep_force_jacobian_3d(self, creepage_longitudinal, creepage_lateral, spin,
-                                normal_load, a0, b0, youngs_modulus, poisson_ratio,
-                                friction_coefficient, relative_step=1e-5):
-        """d(tx, ty)/d(xi_x, xi_y, phi), shape (..., 2, 3), by central differences of the C2
-        interpolant (step ``relative_step`` times the saturation creepage w_sat/C_ii; the
-        truncation error is O(step^2) of the spline's third derivative)."""
-        args = [np.asarray(v, dtype=float) for v in (
-            creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-            youngs_modulus, poisson_ratio, friction_coefficient)]
-        shape = np.broadcast(*args).shape
-        self._solve(tuple(args), forces_only=True)      # range checks, naming a bad input
-        *_, w_sat = exact_table_coordinates(*args)
-        c11, c22, c23 = _kalker(args[4] / args[5], args[7])
-        with np.errstate(over="ignore", under="ignore", divide="ignore"):
-            steps = (relative_step * w_sat / c11, relative_step * w_sat / c22,
-                     relative_step * w_sat / (np.sqrt(args[4] * args[5]) * c23))
-        for h, name in zip(steps, ("creepage_longitudinal", "creepage_lateral", "spin")):
-            bad = ~(np.isfinite(h) & (h > 0.0) & np.isfinite(args[_CREEP_ARGS.index(name)] + h))
-            if np.any(bad):
-                raise ValueError(
-                    f"{name}: the finite-difference step relative_step * w_sat / C must be "
-                    f"finite and > 0 [-]; got {np.broadcast_to(h, shape)[bad].flat[0]:g} "
-                    f"(w_sat = {np.broadcast_to(w_sat, shape)[bad].flat[0]:g})")
-        jac = np.empty(shape + (2, 3))
-        for j, h in enumerate(steps):
-            plus, minus = list(args), list(args)
-            plus[j] = args[j] + h
-            minus[j] = args[j] - h
-            tp = self._solve(tuple(plus), forces_only=True)
-            tm = self._solve(tuple(minus), forces_only=True)
-            jac[..., 0, j] = (tp[0] - tm[0]) / (2 * h)
-            jac[..., 1, j] = (tp[1] - tm[1]) / (2 * h)
-        return jac

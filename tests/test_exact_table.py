@@ -1,0 +1,374 @@
+"""Tests of railcontact.exact_table: the exact-theory creep table (coordinates, symmetries,
+smoothness across the symmetry planes, slopes at zero against Kalker's published coefficients,
+Jacobian, the solver fallback, accuracy against CONTACT's converged values)."""
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from railcontact.creep3d import REFERENCE_CONTACT
+from railcontact.exact_table import (ExactCreepTable, creepage_coordinate, creepage_magnitude,
+                                     exact_table_coordinates, exact_table_inverse)
+from railcontact.kalker import kalker_coefficients, kalker_table
+from railcontact.tables import (TensorSpline, fit_tensor_bspline, periodic_bspline_knots,
+                                periodic_stored_nodes, tables_directory)
+
+DATA = Path(__file__).parent / "data"
+TABLE = tables_directory() / "creep_exact.nc"
+
+
+def _table_ok():
+    try:
+        ExactCreepTable.from_file(TABLE)
+    except (OSError, ValueError):
+        return False
+    return True
+
+
+needs_table = pytest.mark.skipif(not _table_ok(), reason="tables/creep_exact.nc not built")
+
+
+@pytest.fixture(scope="module")
+def table():
+    return ExactCreepTable.from_file(TABLE)
+
+
+CONTACT = dict(normal_load=1e5, a0=6e-3, b0=4e-3, youngs_modulus=210e9, poisson_ratio=0.28,
+               friction_coefficient=0.3)
+MU_N = 0.3 * 1e5
+
+
+def _args(xi, eta, phi, **over):
+    kw = dict(CONTACT, **over)
+    return (xi, eta, phi, kw["normal_load"], kw["a0"], kw["b0"], kw["youngs_modulus"],
+            kw["poisson_ratio"], kw["friction_coefficient"])
+
+
+# --------------------------------------------------------------------------------------------
+# Coordinates and symmetries (no table needed)
+# --------------------------------------------------------------------------------------------
+
+def test_creepage_coordinate_inverse_and_limits():
+    rho = np.array([0.0, 1e-9, 0.3, 1.0, 7.0, 1e3, 1e6, np.inf])
+    s = creepage_coordinate(rho)
+    assert s[0] == 0.0 and s[-1] == 1.0 and np.all(np.diff(s) > 0)
+    # (the inverse loses digits as s -> 1: 1 - s^2 cancels; exact enough up to rho ~ 1e3)
+    np.testing.assert_allclose(creepage_magnitude(s[:-2]), rho[:-2], rtol=1e-9)
+    assert creepage_coordinate(-2.0) == -creepage_coordinate(2.0)
+
+
+def test_coordinates_round_trip_every_sign():
+    """Coordinates of physical inputs (all signs), mapped back to the reference contact, give
+    the same coordinates: the reduction to (a0/b0, nu, v, tau) loses nothing."""
+    rng = np.random.default_rng(3)
+    n = 200
+    a0, b0 = rng.uniform(2e-3, 9e-3, n), rng.uniform(2e-3, 9e-3, n)
+    nu = rng.uniform(0.0, 0.5, n)
+    xi, eta = rng.uniform(-3e-3, 3e-3, (2, n))
+    phi = rng.uniform(-2.0, 2.0, n)
+    n_load, e_mod, mu = 7e4, 2.0e11, 0.4
+    c = kalker_coefficients(a0 / b0, nu)
+    w_sat = math.pi * (1 + nu) * mu * 1.5 * n_load / (a0 * b0 * e_mod)
+    coords = exact_table_coordinates(xi, eta, phi, a0, b0, nu, w_sat, (c.c11, c.c22, c.c23))
+    phys = exact_table_inverse(*coords, contact=REFERENCE_CONTACT)
+    c2 = kalker_coefficients(phys["a0"] / phys["b0"], phys["poisson_ratio"])
+    w2 = (math.pi * (1 + phys["poisson_ratio"]) * REFERENCE_CONTACT["friction_coefficient"]
+          * 1.5 * phys["normal_load"] / (phys["a0"] * phys["b0"] * phys["youngs_modulus"]))
+    back = exact_table_coordinates(phys["creepage_longitudinal"], phys["creepage_lateral"],
+                                   phys["spin"], phys["a0"], phys["b0"], phys["poisson_ratio"],
+                                   w2, (c2.c11, c2.c22, c2.c23))
+    for got, want in zip(back, coords):
+        np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-12)
+
+
+def test_symmetry_fill_matches_the_solver(monkeypatch):
+    """The grid filled from the computed quarter by the three symmetries equals the solver
+    run directly at nodes of every sign (coarse axes, 20 x 10 elements to be quick)."""
+    import tablegen.specs as specs
+    from tablegen.registry import get_spec
+
+    monkeypatch.setattr(specs, "EXACT_SOLVER", dict(mx=20, my=10, tolerance=1e-9,
+                                                    max_iterations=4000))
+    monkeypatch.setattr(specs, "EXACT_RICHARDSON", False)
+    spec = get_spec("creep_exact")
+    axes, _ = spec.grid("coarse")
+    g, nu, s, theta, tau = (a.nodes for a in axes)
+    points, assemble = spec.reduce(axes)
+    # the quarter restricted to one contact and one nu keeps the test fast
+    sel = (points[:, 0] == g[1]) & (points[:, 1] == nu[2])
+    values = np.zeros((len(points), 4))
+    values[sel] = specs.exact_creep_function(points[sel])
+    full = assemble(values)                       # (4, g, nu, s, theta, tau)
+    rng = np.random.default_rng(5)
+    picks = [(i, j, k) for i in range(len(s)) for j in range(len(theta)) for k in range(len(tau))
+             if abs(s[i]) < 1.0 and (s[i] < 0 or abs(theta[j]) > 0.5 * np.pi + 1e-9
+                                     or tau[k] < 0)]
+    for n in rng.choice(len(picks), 6, replace=False):
+        i, j, k = picks[n]
+        direct = specs.exact_creep_function(np.array([[g[1], nu[2], s[i], theta[j], tau[k]]]))
+        np.testing.assert_allclose(full[:3, 1, 2, i, j, k], direct[0, :3], atol=1e-7)
+        assert full[3, 1, 2, i, j, k] == pytest.approx(direct[0, 3], abs=1e-12)
+
+
+def test_periodic_axis_fit_is_scipys_periodic_spline_and_c2_across_the_seam():
+    from scipy.interpolate import make_interp_spline
+
+    x = np.linspace(-np.pi, np.pi, 13)
+    other = np.linspace(0.0, 1.0, 5)
+    vals = np.cos(x)[None, :] * (1 + other[:, None]) + 0.3 * np.sin(2 * x)[None, :]
+    vals[:, -1] = vals[:, 0]
+    knots = [np.r_[[0.0] * 4, other[2:-2], [1.0] * 4], periodic_bspline_knots(x)]
+    coef = fit_tensor_bspline(vals[None], [other, x], knots, periodic=(False, True))
+    assert coef.shape == (1, 5, 15)
+    axes = [dict(name="o", nodes=other, knots=knots[0]),
+            dict(name="t", nodes=periodic_stored_nodes(x), knots=knots[1])]
+    spl = TensorSpline(axes, coef, ["v"])
+    ref = make_interp_spline(x, vals[2], k=3, bc_type="periodic")
+    tt = np.linspace(-np.pi, np.pi, 101)
+    got = spl.evaluate(np.column_stack([np.full_like(tt, other[2]), tt]))[:, 0]
+    np.testing.assert_allclose(got, ref(tt), atol=1e-13)
+    # one-sided derivatives at the seam -pi / +pi agree to second order
+    for d in (1, 2):
+        lo = spl.evaluate([other[2], -np.pi], derivative=(0, d))[0]
+        hi = spl.evaluate([other[2], np.pi], derivative=(0, d))[0]
+        assert lo == pytest.approx(hi, abs=1e-12)
+
+
+# --------------------------------------------------------------------------------------------
+# The shipped table
+# --------------------------------------------------------------------------------------------
+
+def _one_sided(f, x0, h):
+    """Left and right difference quotients of f at x0 (second order one-sided)."""
+    left = (3 * f(x0) - 4 * f(x0 - h) + f(x0 - 2 * h)) / (2 * h)
+    right = (-3 * f(x0) + 4 * f(x0 + h) - f(x0 + 2 * h)) / (2 * h)
+    return left, right
+
+
+@needs_table
+@pytest.mark.parametrize("eta", [0.0, 2e-4])
+def test_c1_across_zero_spin(table, eta):
+    """Issue case: xi = 3e-4, a0 = 6 mm, b0 = 4 mm, N = 100 kN, mu = 0.3; Tx as a function of
+    spin is smooth through phi = 0 (the old symmetry-reduced table had slopes -0.0113 /
+    +0.0113 per 1/m there)."""
+    def tx(phi):
+        return table.creep_force_3d(*_args(3e-4, eta, phi)).tx / MU_N
+
+    left, right = _one_sided(tx, 0.0, 1e-3)
+    assert left == pytest.approx(right, abs=2e-4)
+
+
+@needs_table
+@pytest.mark.parametrize("phi", [0.0, 0.1, -0.4])
+def test_c1_across_zero_longitudinal_creepage(table, phi):
+    """Ty as a function of xi through xi = 0 with spin (the old table: slope jump 0.003 per
+    1e-3 of creepage); Tx too."""
+    def ty(xi):
+        return table.creep_force_3d(*_args(xi, 1e-4, phi)).ty / MU_N
+
+    def tx(xi):
+        return table.creep_force_3d(*_args(xi, 1e-4, phi)).tx / MU_N
+
+    for f in (ty, tx):
+        left, right = _one_sided(f, 0.0, 1e-6)
+        assert left == pytest.approx(right, abs=2e-3 * max(1.0, abs(left)))
+
+
+@needs_table
+def test_c1_through_zero_creepage_along_lines(table):
+    """Along straight lines through v = 0 (the polar origin is inside the double cover)."""
+    for direction in ((1.0, 0.0), (0.0, 1.0), (0.6, -0.8)):
+        def fx(t, d=direction):
+            return table.creep_force_3d(*_args(t * d[0], t * d[1], 0.2)).tx / MU_N
+
+        left, right = _one_sided(fx, 0.0, 2e-6)
+        assert left == pytest.approx(right, rel=1e-3, abs=1e-2)
+
+
+@needs_table
+def test_slopes_at_zero_are_kalkers_coefficients(table):
+    """d T / d creepage at zero = -G a b C_ij with Kalker's published coefficients, within
+    0.5 % (issue 16), for every nu of Kalker's table and a0/b0 across the table."""
+    g_nodes, nu_nodes, c = kalker_table()
+    worst = 0.0
+    for i in [int(np.argmin(np.abs(g_nodes - v))) for v in (0.2, 1.0, 5.0)]:
+        gi = g_nodes[i]
+        for j, nu in enumerate(nu_nodes):
+            a0, b0 = 6e-3 * math.sqrt(gi), 6e-3 / math.sqrt(gi)
+            g_mod = 210e9 / (2 * (1 + nu))
+            jac = table.creep_force_jacobian_3d(0.0, 0.0, 0.0, 1e5, a0, b0, 210e9, nu, 0.3)
+            scale = g_mod * a0 * b0
+            for got, want in ((-jac[0, 0] / scale, c[0, j, i]), (-jac[1, 1] / scale, c[1, j, i]),
+                              (-jac[1, 2] / (scale * math.sqrt(a0 * b0)), c[2, j, i])):
+                worst = max(worst, abs(got / want - 1.0))
+    assert worst < 5e-3
+
+
+@needs_table
+def test_odd_in_the_creepage_vector_and_zero_at_zero(table):
+    rng = np.random.default_rng(11)
+    xi, eta = rng.uniform(-4e-3, 4e-3, (2, 500))
+    phi = rng.uniform(-3.0, 3.0, 500)
+    plus = table.creep_solution_3d(*_args(xi, eta, phi), sensitivities=False)
+    minus = table.creep_solution_3d(*_args(-xi, -eta, -phi), sensitivities=False)
+    # exact up to the solver's tolerance: nodes on the planes theta = +-pi/2, tau = 0 are
+    # computed twice (mirror images of each other), to about 1e-7 of mu N
+    np.testing.assert_allclose(minus.tx, -plus.tx, atol=1e-6 * MU_N)
+    np.testing.assert_allclose(minus.ty, -plus.ty, atol=1e-6 * MU_N)
+    np.testing.assert_allclose(minus.spin_moment, -plus.spin_moment, atol=1e-6 * MU_N * 5e-3)
+    zero = table.creep_solution_3d(*_args(0.0, 0.0, 0.0), sensitivities=False)
+    assert abs(zero.tx) < 1e-12 * MU_N and abs(zero.ty) < 1e-12 * MU_N
+    assert zero.stick_area_fraction == pytest.approx(1.0, abs=1e-9)
+
+
+@needs_table
+def test_never_past_the_coulomb_limit(table):
+    rng = np.random.default_rng(13)
+    n = 20000
+    args = (rng.normal(0, 3e-3, n), rng.normal(0, 3e-3, n), rng.normal(0, 2.0, n), 1e5,
+            rng.uniform(2e-3, 9e-3, n), rng.uniform(2e-3, 9e-3, n), 210e9,
+            rng.uniform(0, 0.5, n), 0.3)
+    f = table.creep_force_3d(*args)
+    assert np.all(np.hypot(f.tx, f.ty) <= MU_N)
+    assert np.all(np.isfinite(f.tx)) and np.all(np.isfinite(f.ty))
+
+
+@needs_table
+def test_scalar_and_vectorised_paths_agree(table):
+    rng = np.random.default_rng(17)
+    pts = rng.uniform([-3e-3, -3e-3, -2.0], [3e-3, 3e-3, 2.0], (50, 3))
+    vec = table.creep_solution_3d(*_args(pts[:, 0], pts[:, 1], pts[:, 2]))
+    for k, p in enumerate(pts):
+        tx, ty, mz, stick, rho, jac = table.step(*_args(*p))
+        assert (tx, ty, mz, stick) == pytest.approx(
+            (vec.tx[k], vec.ty[k], vec.spin_moment[k], vec.stick_area_fraction[k]),
+            rel=1e-12, abs=1e-9)
+        np.testing.assert_allclose(jac, vec.sensitivity[k], rtol=1e-10, atol=1e-6)
+
+
+@needs_table
+@pytest.mark.parametrize("point", [(1e-3, 2e-4, 0.3), (-4e-4, 1e-3, -1.2), (2e-3, -3e-3, 0.05),
+                                   (1e-5, 0.0, 2.0)])
+def test_jacobian_is_the_derivative_of_the_table(table, point):
+    x0 = np.array(point)
+    h = np.array([1e-8, 1e-8, 1e-5])
+    jac = table.step(*_args(*x0))[5]
+    for k in range(3):
+        up, dn = x0.copy(), x0.copy()
+        up[k] += h[k]
+        dn[k] -= h[k]
+        fd = (np.array(table.step(*_args(*up))[:3]) - np.array(table.step(*_args(*dn))[:3])) \
+            / (2 * h[k])
+        np.testing.assert_allclose(jac[:, k], fd, rtol=2e-5,
+                                   atol=1e-6 * np.abs(jac).max(axis=1).max())
+
+
+@needs_table
+def test_jacobian_against_finite_differences_of_the_solver(table):
+    """The table's Jacobian against central differences of the extrapolated solver (the
+    table's own setting), within 2 % of the largest entry of each row."""
+    from railcontact import creep_force_3d
+
+    x0 = np.array([6e-4, 3e-4, 0.4])
+    h = np.array([3e-5, 3e-5, 3e-2])
+    jac = table.creep_force_jacobian_3d(*_args(*x0))
+    for k in range(2):
+        up, dn = x0.copy(), x0.copy()
+        up[k] += h[k]
+        dn[k] -= h[k]
+        fu = creep_force_3d(*_args(*up), method="exact", extrapolate=True, tolerance=1e-8)
+        fd_ = creep_force_3d(*_args(*dn), method="exact", extrapolate=True, tolerance=1e-8)
+        fd = np.array([fu.tx - fd_.tx, fu.ty - fd_.ty]) / (2 * h[k])
+        np.testing.assert_allclose(jac[:2, k], fd, atol=0.02 * np.abs(jac[:2, :2]).max())
+
+
+@needs_table
+def test_beyond_the_spin_axis_the_solver_answers(table):
+    """|tau| > 20: the documented fallback, the solver at the table's setting."""
+    from railcontact import creep_solution_3d
+
+    args = _args(1e-4, 0.0, 40.0)
+    got = table.creep_solution_3d(*args, sensitivities=False)
+    want = creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True)
+    assert got.tx == want.tx and got.ty == want.ty and got.spin_moment == want.spin_moment
+
+
+@needs_table
+@pytest.mark.parametrize("name, bad, match", [
+    ("poisson_ratio", 0.6, r"poisson_ratio must be in \[0, 0.5\]"),
+    ("normal_load", -1.0, r"normal_load must be in"),
+    ("friction_coefficient", float("nan"), r"friction_coefficient"),
+])
+def test_bad_input_names_the_parameter(table, name, bad, match):
+    kw = dict(CONTACT, **{name: bad})
+    with pytest.raises(ValueError, match=match):
+        table.creep_force_3d(1e-3, 0.0, 0.0, kw["normal_load"], kw["a0"], kw["b0"],
+                             kw["youngs_modulus"], kw["poisson_ratio"],
+                             kw["friction_coefficient"])
+
+
+def _contact_converged():
+    """CONTACT's 21 grid-convergence cases, converged value by one Richardson step from its
+    120 x 60 and 240 x 60 rows (first order in the rolling-direction element size)."""
+    rows = list(csv.DictReader(l for l in open(DATA / "contact_hertz3d_grid_convergence.csv")
+                               if not l.startswith("#")))
+    out = {}
+    for r in rows:
+        key = (r["a_over_b"], r["case"])
+        out.setdefault(key, {})[(int(r["mx"]), int(r["my"]))] = r
+    cases = []
+    for key, grids in out.items():
+        if (120, 60) in grids and (240, 60) in grids:
+            r1, r2 = grids[(120, 60)], grids[(240, 60)]
+            fx = 2 * float(r2["fx_over_mu_fn"]) - float(r1["fx_over_mu_fn"])
+            fy = 2 * float(r2["fy_over_mu_fn"]) - float(r1["fy_over_mu_fn"])
+            cases.append((r2, fx, fy))
+    return cases
+
+
+@needs_table
+def test_against_contacts_converged_values(table):
+    """Error against the converged exact theory (CONTACT 120x60 and 240x60 extrapolated) on
+    its 21 cases (a/b = 0.2, 1, 5; creepage, spin, pure spin), in units of mu N."""
+    cases = _contact_converged()
+    assert len(cases) == 21
+    errs = []
+    for r, fx, fy in cases:
+        nu = float(r["nu"])
+        e_mod = 2 * float(r["G_Pa"]) * (1 + nu)
+        f = table.creep_force_3d(float(r["cksi"]), float(r["ceta"]), float(r["cphi_per_m"]),
+                                 float(r["Fn_N"]), float(r["a_m"]), float(r["b_m"]), e_mod, nu,
+                                 float(r["mu"]))
+        mu_n = float(r["mu"]) * float(r["Fn_N"])
+        # CONTACT's forces are on the wheel as ours (docs/conventions.md)
+        errs.append(math.hypot(f.tx / mu_n - fx, f.ty / mu_n - fy))
+    errs = np.array(errs)
+    assert errs.max() < 5e-3
+    assert math.sqrt(np.mean(errs**2)) < 2.5e-3
+
+
+@needs_table
+def test_extreme_inputs_give_an_answer_or_a_value_error(table):
+    """Inputs anywhere in the float range (the cases found by fuzzing the old reader): a finite
+    answer within mu N, or a ValueError naming a parameter; never NaN or another exception."""
+    cases = [
+        _args(1e-3, 2e-4, 0.1, youngs_modulus=5e-324),        # w_sat beyond the float range
+        _args(-1.0, 1.0, 1e300, friction_coefficient=0.0),    # no friction: no force
+        (1e-3, -5e-4, 0.1, 1e300, 1.5e96, 1.2e96, 210e9, 0.28, 0.3),  # Mz beyond float range
+        _args(1e-3, 1e-4, 0.1, friction_coefficient=5e-324),  # subnormal mu
+        _args(0.0, 0.0, 1e-300),
+    ]
+    for args in cases:
+        try:
+            sol = table.creep_solution_3d(*args)
+        except ValueError as exc:
+            assert any(name in str(exc) for name in (
+                "normal_load", "a0", "b0", "youngs_modulus", "friction_coefficient", "spin",
+                "creepage")), str(exc)
+            continue
+        mu_n = args[3] * args[8]
+        assert np.isfinite(sol.tx) and np.isfinite(sol.ty) and np.isfinite(sol.spin_moment)
+        assert math.hypot(sol.tx, sol.ty) <= mu_n * (1 + 1e-12)
