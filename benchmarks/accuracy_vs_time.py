@@ -395,7 +395,8 @@ def family_3d(quick, workdir):
     from railcontact import creep_force_3d
     from railcontact.creep3d import METHODS
     from railcontact.reference.rolling3d import solve_rolling_3d
-    from railcontact.tables import CreepTable, ExactCreepTable, tables_directory
+    from railcontact.exact_table import ExactCreepTable
+    from railcontact.tables import CreepTable, tables_directory
 
     cases = _contact_cases(quick)
     arr = {k: np.array([c[k] for c in cases]) for k in ("xi", "eta", "phi", "n", "a", "b", "e",
@@ -500,17 +501,6 @@ def family_3d(quick, workdir):
     else:
         fam.notes.append("exact-theory table (tables/creep_exact.nc) not shipped in this "
                          "checkout; `python -m tablegen build --only creep_exact` adds it")
-    if not quick:
-        try:
-            from tablegen.build import build_table
-            t0 = time.perf_counter()
-            out = Path(workdir) / "tab_exact_coarse"
-            build_table("creep_exact", "coarse", output_dir=out, scheduler="synchronous",
-                        progress=False, workdir=Path(workdir) / "w_exact")
-            fam.extra["exact_coarse_build_s"] = time.perf_counter() - t0
-            exact_tables.append(("coarse, built in this run", out / "creep_exact.nc"))
-        except Exception as exc:
-            fam.notes.append(f"exact-theory table build (coarse) failed: {exc!r}")
     for label, path in exact_tables:
         try:
             tab = ExactCreepTable.from_file(path)
@@ -527,9 +517,7 @@ def family_3d(quick, workdir):
             t1 = per_call(lambda: tab.creep_force_3d(*args1))
             tb = per_call(lambda: tab.creep_force_3d(*sub)) / int(ok.sum())
             shape = "x".join(str(len(a["nodes"])) for a in tab.table.axes)
-            note = "40x20 solver at the nodes"
-            if "exact_coarse_build_s" in fam.extra and label.startswith("coarse"):
-                note += f"; build {fam.extra['exact_coarse_build_s']:.0f} s"
+            note = "solver 40x20 -> 80x20 extrapolated at the nodes; every a/b, nu, sign"
             add("table: exact theory (C2 spline)", f"{label} ({shape})", tx, ty, t1, tb, note)
         except Exception as exc:
             fam.notes.append(f"exact-theory table ({label}): {exc!r}")

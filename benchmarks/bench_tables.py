@@ -18,11 +18,10 @@ import timeit
 import warnings
 
 import numpy as np
-from scipy.interpolate import NdBSpline, RegularGridInterpolator
 
 from railcontact import creep_force_3d
-from railcontact.tables import (CreepTable, ExactCreepTable, Table, default_table_path,
-                                tables_directory)
+from railcontact.exact_table import ExactCreepTable
+from railcontact.tables import CreepTable, Table, tables_directory
 
 
 def per_call(fn, number):
@@ -45,29 +44,7 @@ def lookups():
           f"-> table is {t_dir / t_ms:.0f}x faster")
     have_exact = (tables_directory() / "creep_exact.nc").exists()
     if have_exact:
-        ex = ExactCreepTable.from_file()
-        sp = ex.table.spline
-        p = np.array([0.1, 0.7, 0.4, 0.3])
-        t_raw4 = per_call(lambda: sp.evaluate_point(p), 20000)
-        print(f"exact (4-D, 4 variables) raw spline point  : {t_raw4 * 1e6:7.2f} us")
-        t_ex = per_call(lambda: ex.creep_force_3d(*args), 2000)
-        print(f"ExactCreepTable.creep_force_3d (checked)   : {t_ex * 1e6:7.2f} us")
-        knots = tuple(a["knots"] for a in ex.table.axes)
-        coef = ex.table.spline._coef[0].reshape(tuple(sp._shape))
-        nd = NdBSpline(knots, coef, 3)
-        t_nd = per_call(lambda: nd(p), 2000)
-        print(f"scipy NdBSpline point (1 variable)         : {t_nd * 1e6:7.2f} us")
-        grid = tuple(a["nodes"] for a in ex.table.axes)
-        rgi = RegularGridInterpolator(grid, ex.table.values["force_ratio_parallel"],
-                                      method="cubic")
-        t_rgi = per_call(lambda: rgi(p), 200)
-        print(f"scipy RegularGridInterpolator cubic point  : {t_rgi * 1e6:7.2f} us")
-        from railcontact.reference.rolling3d import solve_rolling_3d
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            t_sol = per_call(lambda: solve_rolling_3d(*args, mx=40, my=20), 3)
-        print(f"solve_rolling_3d 40x20 (direct exact)      : {t_sol * 1e6:7.0f} us "
-              f"-> table is {t_sol / t_ex:.0f}x faster")
+        exact_lookups(args)
 
     print("\n== batch of 1e5 points ==")
     rng = np.random.default_rng(0)
@@ -85,27 +62,6 @@ def lookups():
     t_dirb = per_call(lambda: creep_force_3d(**case), 1)
     print(f"creep_force_3d direct batch                : {t_dirb / n * 1e9:7.1f} ns/point "
           f"(ratio direct/table {t_dirb / t_tab:.2f})")
-    if have_exact:
-        pts = np.column_stack([rng.uniform(lo, hi, n) for lo, hi in
-                               zip(sp._lower, sp._upper)])
-        t4 = per_call(lambda: sp.evaluate(pts, check=False), 1)
-        print(f"exact raw spline batch (4-D, 4 variables)  : {t4 / n * 1e9:7.1f} ns/point")
-        t2 = per_call(lambda: ex._force_spline.evaluate(pts, check=False), 1)
-        print(f"exact raw spline batch (2 force variables) : {t2 / n * 1e9:7.1f} ns/point")
-        srt = pts[np.lexsort(pts.T[::-1])]
-        t4s = per_call(lambda: sp.evaluate(srt, check=False), 1)
-        print(f"  same, points sorted (coherent access)    : {t4s / n * 1e9:7.1f} ns/point")
-        t_nd = per_call(lambda: nd(pts), 1)
-        print(f"scipy NdBSpline batch (1 variable)         : {t_nd / n * 1e9:7.1f} ns/point")
-        small = {k: (v[:20000] if np.ndim(v) else v) for k, v in case.items()}
-        for key, lim in (("creepage_longitudinal", 1e-3), ("creepage_lateral", 1e-3),
-                         ("spin", 0.3)):
-            small[key] = rng.uniform(-lim, lim, 20000)   # inside the exact table's range
-        small["normal_load"] = rng.uniform(6e4, 1e5, 20000)
-        t_exb = per_call(lambda: ex.creep_force_3d(**small), 1)
-        print(f"ExactCreepTable.creep_force_3d batch       : {t_exb / 20000 * 1e9:7.1f} "
-              "ns/point")
-
     print("\n== sizes on disk ==")
     for path in sorted(tables_directory().glob("*.nc")):
         tab = Table.from_file(path)
@@ -114,9 +70,78 @@ def lookups():
               f"{len(tab.variables)} variables")
 
 
+def exact_lookups(args):
+    """The exact table: the public scalar call, the FMU step (forces, moment, stick area and
+    Jacobian in one evaluation), batches, against the bare compiled spline kernel on
+    precomputed coordinates (the limit: no input checks, no physics)."""
+    from numba import njit
+
+    from railcontact.exact_table import _spline_point, exact_table_coordinates
+    from railcontact.kalker import kalker_coefficients
+
+    ex = ExactCreepTable.from_file()
+    print(f"\n== exact table {ex.path.name}: grid "
+          + "x".join(str(len(a["nodes"])) for a in ex.table.axes) + " ==")
+    xi, eta, phi, n_load, a0, b0, e_mod, nu, mu = args
+    c = kalker_coefficients(a0 / b0, nu)
+    w_sat = np.pi * (1 + nu) * mu * 1.5 * n_load / (a0 * b0 * e_mod)
+    coords = [float(v) for v in exact_table_coordinates(xi, eta, phi, a0, b0, nu, w_sat,
+                                                        (c.c11, c.c22, c.c23))]
+    slab = ex._slab_for(coords[0], coords[1])
+    out, work = np.empty((4, 4)), np.empty(336)
+    _spline_point(ex._coef, slab, True, ex._knots, ex._kstart, *coords, out, work)
+    bare = _spline_point.overloads[_spline_point.signatures[0]].entry_point
+    t_bare = per_call(lambda: bare(ex._coef, slab, True, ex._knots, ex._kstart, *coords, out,
+                                   work), 20000)
+    print(f"bare compiled spline point (limit)         : {t_bare * 1e6:7.2f} us "
+          "(4 variables + 3 partials, contact's slab)")
+    t_step = per_call(lambda: ex.step(*args), 20000)
+    print(f"ExactCreepTable.step (FMU: all + Jacobian)  : {t_step * 1e6:7.2f} us")
+    t_ex = per_call(lambda: ex.creep_force_3d(*args), 20000)
+    print(f"ExactCreepTable.creep_force_3d (scalar)    : {t_ex * 1e6:7.2f} us")
+    t_api = per_call(lambda: creep_force_3d(*args, method="exact_table"), 20000)
+    print(f"creep_force_3d(method='exact_table')       : {t_api * 1e6:7.2f} us "
+          f"({t_api / t_bare:.1f}x the bare kernel)")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t_sol = per_call(lambda: creep_force_3d(*args, method="exact", extrapolate=True), 3)
+    print(f"creep_force_3d(method='exact', extrapolate) : {t_sol * 1e6:7.0f} us "
+          f"-> the table is {t_sol / t_api:.0f}x faster")
+
+    @njit(cache=False)
+    def bare_batch(coef, slab, knots, kstart, pts, res):
+        out = np.empty((4, 4))
+        work = np.empty(336)
+        for i in range(pts.shape[0]):
+            _spline_point(coef, slab, True, knots, kstart, pts[i, 0], pts[i, 1], pts[i, 2],
+                          pts[i, 3], pts[i, 4], out, work)
+            for v in range(4):
+                res[i, v] = out[0, v]
+
+    rng = np.random.default_rng(0)
+    n = 100_000
+    xs, ys = rng.uniform(-3e-3, 3e-3, (2, n))
+    ps = rng.uniform(-1.0, 1.0, n)
+    cs = exact_table_coordinates(xs, ys, ps, a0, b0, nu, w_sat, (c.c11, c.c22, c.c23))
+    pts = np.ascontiguousarray(np.column_stack(np.broadcast_arrays(*cs)))
+    res = np.empty((n, 4))
+    t_bb = per_call(lambda: bare_batch(ex._coef, slab, ex._knots, ex._kstart, pts, res), 1)
+    print(f"bare compiled spline batch (limit)         : {t_bb / n * 1e9:7.1f} ns/point")
+    t_b = per_call(lambda: ex.creep_force_3d(xs, ys, ps, n_load, a0, b0, e_mod, nu, mu), 1)
+    print(f"creep_force_3d batch, one contact          : {t_b / n * 1e9:7.1f} ns/point "
+          f"({t_b / t_bb:.1f}x the bare kernel)")
+    t_bj = per_call(lambda: ex.creep_solution_3d(xs, ys, ps, n_load, a0, b0, e_mod, nu, mu), 1)
+    print(f"creep_solution_3d batch + Jacobian         : {t_bj / n * 1e9:7.1f} ns/point")
+    a0s = rng.uniform(3e-3, 8e-3, n)
+    nus = rng.uniform(0.0, 0.5, n)
+    t_bv = per_call(lambda: ex.creep_force_3d(xs, ys, ps, n_load, a0s, b0, e_mod, nus, mu), 1)
+    print(f"creep_force_3d batch, every point its own  : {t_bv / n * 1e9:7.1f} ns/point "
+          "contact (5-D evaluation)")
+
+
 def builds(full):
     from tablegen.build import build_table
-    from tablegen.spec import REGISTRY
+    from tablegen.registry import REGISTRY
     from tablegen import specs  # noqa: F401
 
     print("\n== builds ==")

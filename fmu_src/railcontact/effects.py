@@ -453,14 +453,18 @@ class Creep3D(_Effect):
                     c.b0, self._e, self._nu, c.friction_coefficient)
             if self._exact:
                 # one evaluation: forces, moment, stick area, normalised creepage, Jacobian
-                c.Fx, c.Fy, c.Mz, stick, z, jac = self._table.step(*args)
+                values = self._table.step_values(*args)
+                if values is None:        # the reader's array path (beyond its grid etc.)
+                    *values, jac = self._table.step(*args)
+                    values += jac.ravel().tolist()
+                c.Fx, c.Fy, c.Mz, stick, z = values[:5]
                 zc = z if z < 1.0 else 1.0
                 c.stick_area_fraction = stick
                 c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
                 c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
                 c.creep_within_validity = True
-                for name, value in zip(JACOBIAN_FIELDS, jac.flat):
-                    setattr(c, name, float(value))
+                (c.dFx_dxi_x, c.dFx_dxi_y, c.dFx_dphi, c.dFy_dxi_x, c.dFy_dxi_y, c.dFy_dphi,
+                 c.dMz_dxi_x, c.dMz_dxi_y, c.dMz_dphi) = values[5:]
                 self._aux_args = None
                 return
             out = self._force(*args)

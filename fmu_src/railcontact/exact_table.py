@@ -388,9 +388,6 @@ def _kalker_pair(a0_over_b0, poisson_ratio):
     return float(c.c11), float(c.c22), float(c.c23)
 
 
-_SCALAR = (float, int, np.floating, np.integer)
-
-
 class ExactCreepTable:
     """Kalker's exact theory from the table ``creep_exact``: forces, spin moment, stick area
     and their Jacobian, at the speed of a lookup.
@@ -433,6 +430,8 @@ class ExactCreepTable:
         self.tau_max = float(table.axes[4]["nodes"][-1])
         self._res = np.zeros(14)
         self._work = np.empty(336)
+        self._contact_key = None
+        self._contact = None
         self._point = _creep_point    # the compiled kernel (see _fast_kernel)
 
     @classmethod
@@ -472,32 +471,65 @@ class ExactCreepTable:
         unit creepage and per 1/m] together. Inputs are checked as in
         :meth:`creep_solution_3d` (same errors); beyond the table the solver answers.
         """
-        args = (xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
-                friction_coefficient)
-        if not self._plain(args):
-            return self._step_array(args, jacobian)
-        n_load, mu = float(normal_load), float(friction_coefficient)
-        a0, b0, nu = float(a0), float(b0), float(poisson_ratio)
-        if n_load == 0.0 or mu == 0.0 or a0 == 0.0 or b0 == 0.0:
-            return 0.0, 0.0, 0.0, 1.0, 0.0, (np.zeros((3, 3)) if jacobian else None)
+        values = self.step_values(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                   poisson_ratio, friction_coefficient, jacobian)
+        if values is None:      # not plain floats, no contact, or beyond the table
+            return self._step_array((xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                     poisson_ratio, friction_coefficient), jacobian)
+        return (values[0], values[1], values[2], values[3], values[4],
+                np.array(values[5:]).reshape(3, 3) if jacobian else None)
+
+    def step_values(self, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                     poisson_ratio, friction_coefficient, jacobian=True, _inf=math.inf):
+        """:meth:`step`'s fast path, flat: the list ``[tx, ty, mz, stick_area_fraction,
+        normalised_creepage, d(tx, ty, mz)/d(xi_x, xi_y, phi) row by row (9 entries)]``
+        (units as :meth:`step`; the Jacobian entries are stale unless ``jacobian``), or None
+        where :meth:`step` takes its array path instead (inputs not finite numbers in range,
+        no contact, a0/b0 beyond the table, overflow, |tau| beyond the table). The FMU's creep
+        effect calls this once per step."""
+        try:    # NaN, inf, out-of-range and non-numbers all fail (or raise) here
+            plain = (-_inf < xi_x < _inf and -_inf < xi_y < _inf and -_inf < phi < _inf
+                     and 0.0 < normal_load < _inf and 0.0 < a0 < _inf and 0.0 < b0 < _inf
+                     and 0.0 < youngs_modulus < _inf and 0.0 <= poisson_ratio <= 0.5
+                     and 0.0 < friction_coefficient < _inf)
+        except (TypeError, ValueError):
+            return None
+        if not plain:
+            return None
         g = a0 / b0
-        c11, c22, c23 = _kalker_pair(g, nu)
-        w_sat = math.pi * (1.0 + nu) * friction_coefficient * 1.5 * n_load / (
-            a0 * b0 * youngs_modulus)
-        log_g = math.log(g)
-        if self._log_g[0] <= log_g <= self._log_g[1] and w_sat > 0.0:
-            slab = self._slab if (log_g, nu) == self._slab_key else self._slab_for(log_g, nu)
-            r = self._res
-            if self._point(self._coef, slab, True, self._knots, self._kstart, self.tau_max,
-                           float(xi_x), float(xi_y), float(phi), mu * n_load, a0, b0, w_sat,
-                           c11, c22, c23, log_g, nu, jacobian, r, self._work):
-                if self._point is _creep_point:   # compiled now: skip numba's dispatch
-                    self._point = _creep_point.overloads[_creep_point.signatures[0]].entry_point
-                tx, ty, mz, stick = r[0], r[1], r[2], r[3]
-                if math.isfinite(tx) and math.isfinite(ty) and math.isfinite(mz):
-                    return (float(tx), float(ty), float(mz), float(stick), float(r[4]),
-                            r[5:].reshape(3, 3).copy() if jacobian else None)
-        return self._step_array(args, jacobian)      # beyond the table: the solver
+        key = (g, poisson_ratio)
+        if key != self._contact_key:
+            log_g = math.log(g) if g > 0.0 else -_inf
+            inside = self._log_g[0] <= log_g <= self._log_g[1]
+            self._contact = ((_kalker_pair(float(g), float(poisson_ratio)) if inside
+                              else (0.0, 0.0, 0.0)), log_g, inside,
+                             self._slab_for(log_g, float(poisson_ratio)) if inside else None)
+            self._contact_key = key
+        (c11, c22, c23), log_g, inside, slab = self._contact
+        if not inside:
+            return None
+        w_sat = 4.71238898038469 * (1.0 + poisson_ratio) * friction_coefficient \
+            * normal_load / (a0 * b0 * youngs_modulus)          # 1.5 pi (1 + nu) mu N/(a b E)
+        if not 0.0 < w_sat < _inf:
+            return None
+        r = self._res
+        try:
+            done = self._point(self._coef, slab, True, self._knots, self._kstart,
+                               self.tau_max, float(xi_x), float(xi_y), float(phi),
+                               float(friction_coefficient * normal_load), float(a0), float(b0),
+                               float(w_sat), c11, c22, c23, log_g, float(poisson_ratio),
+                               jacobian, r, self._work)
+        except TypeError:       # e.g. a one-element array: the array path
+            return None
+        if self._point is _creep_point:   # compiled now: skip numba's dispatch from here on
+            self._point = _creep_point.overloads[_creep_point.signatures[0]].entry_point
+        if not done:
+            return None
+        values = r.tolist()
+        if not (-_inf < values[0] < _inf and -_inf < values[1] < _inf
+                and -_inf < values[2] < _inf):
+            return None         # overflow (e.g. the moment): the array path's message
+        return values
 
     def _step_array(self, args, jacobian):
         res, jac, _ = self._evaluate(args, jacobian)
@@ -506,18 +538,6 @@ class ExactCreepTable:
                              f"{res.shape[:-1]} (use creep_solution_3d)")
         return (float(res[0]), float(res[1]), float(res[2]), float(res[3]), float(res[4]),
                 jac if jacobian else None)
-
-    @staticmethod
-    def _plain(args):
-        """All plain finite floats in the moderate range the float arithmetic handles."""
-        for v in args:
-            if not isinstance(v, _SCALAR) or isinstance(v, bool) or not math.isfinite(v):
-                return False
-            if v != 0.0 and not 1e-50 <= abs(v) <= 1e50:
-                return False
-        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = args
-        return (n_load >= 0.0 and a0 >= 0.0 and b0 >= 0.0 and e_mod > 0.0
-                and 0.0 <= nu <= 0.5 and mu >= 0.0)
 
     # -- vectorised path ----------------------------------------------------------------------
     def _evaluate(self, args, jacobian):
@@ -583,12 +603,14 @@ class ExactCreepTable:
                        youngs_modulus, poisson_ratio, friction_coefficient):
         """Creep force on the wheel, ``CreepForce3D(tx, ty)`` [N]; inputs as
         :func:`railcontact.creep_force_3d`."""
-        args = (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
-                youngs_modulus, poisson_ratio, friction_coefficient)
-        if self._plain(args):
-            tx, ty = self.step(*args, jacobian=False)[:2]
-            return CreepForce3D(tx, ty)
-        res = self._evaluate(args, False)[0]
+        values = self.step_values(creepage_longitudinal, creepage_lateral, spin, normal_load,
+                                   a0, b0, youngs_modulus, poisson_ratio, friction_coefficient,
+                                   False)
+        if values is not None:
+            return CreepForce3D(values[0], values[1])
+        res = self._evaluate((creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                              b0, youngs_modulus, poisson_ratio, friction_coefficient),
+                             False)[0]
         return CreepForce3D(res[..., 0][()], res[..., 1][()])
 
     def creep_solution_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
