@@ -150,6 +150,7 @@ def _stage(stage, digest):
 
 _ISOLATION_CHECK = r"""
 import sys, importlib, importlib.abc
+from pathlib import Path
 class Block(importlib.abc.MetaPathFinder):
     def find_spec(self, name, path=None, target=None):
         if name == "railcontact" or name.startswith("railcontact."):
@@ -158,6 +159,20 @@ sys.meta_path.insert(0, Block())
 sys.path.insert(0, sys.argv[1])
 module = importlib.import_module(sys.argv[2])
 slave = module.WheelRailContact(instance_name="check", resources=sys.argv[1])
+# every bundled scene (and the parameters' default one) initialised and stepped once in
+# contact: the data files and lazily imported modules come from the bundle too
+for scene in [""] + sorted(p.stem for p in (Path(sys.argv[1]) / "scenes").glob("*.toml")):
+    slave = module.WheelRailContact(instance_name="check", resources=sys.argv[1])
+    slave.scene_file = scene
+    slave.enter_initialization_mode()
+    slave.exit_initialization_mode()
+    setters = {v.name: v.setter for v in slave.vars.values() if v.setter is not None}
+    for name, value in (("normal_force", 8e4), ("creepage_longitudinal", 1e-3),
+                        ("creepage_lateral", 1e-4), ("spin", 0.05), ("rolling_speed", 30.0),
+                        ("rail_position", 0.01)):
+        setters[name](value)
+    slave.do_step(0.0, 1e-3)
+    slave.do_step(1e-3, 1e-3)
 assert not any(m == "railcontact" or m.startswith("railcontact.") for m in sys.modules)
 """
 

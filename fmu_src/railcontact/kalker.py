@@ -89,7 +89,8 @@ def kalker_table():
     c : ndarray, shape (3, 3, 19)
         ``c[k, j, i]`` = coefficient k (C11, C22, C23) at nu[j], g[i]. [-]
     """
-    text = resources.files("railcontact").joinpath("data/kalker_coefficients.csv").read_text()
+    # (this package by its own name: inside the FMU that is the bundled copy's)
+    text = resources.files(__package__).joinpath("data/kalker_coefficients.csv").read_text()
     rows = [line.split(",") for line in text.splitlines()
             if line and not line.startswith("#") and not line.startswith("a0_over_b0")]
     # erratum: Nielsen (1998) Appendix B rows a0/b0 = 0.1 and 0.2 are garbled by the OCR
