@@ -618,8 +618,9 @@ def test_series_error_estimate_bounds_the_wear_coefficient_truncation(ka, r):
         assert actual >= 1e-3 * estimate or actual < 1e-11, degree
 
 
-# Fused FMU step (the creep-only table scene in one frame, for speed): a refactoring guard, not a physics check -- the physics of
-# both paths is checked against direct railcontact calls in tests/test_fmu.py.
+# Fused FMU step (the creep-only table scene in one frame, for speed): a refactoring guard,
+# not a physics check -- the physics of both paths is checked against direct railcontact calls
+# in tests/test_fmu.py.
 import random  # noqa: E402
 
 from railcontact.effects import ContactPoint, build_pipeline, checked_steps  # noqa: E402

@@ -697,6 +697,26 @@ def test_fmu_registers_its_interpreter_guard_release_with_the_exit_handlers(fmu_
                                              (address, "instantiated")]
 
 
+def test_data_file_read_after_the_first_extraction_is_gone(fmu_path):
+    """Kalker's coefficient file is read on first use, which may come in a later instance of
+    the same FMU in the same process, after fmpy deleted the extraction the package was first
+    imported from: it is read from the package's current directory (the slave points the
+    bundled package's __path__ at each new extraction), and from the bundled copy, not from the
+    host's railcontact."""
+    import build_fmu
+
+    package = build_fmu.bundle_names(build_fmu.fmu_digest(fmu_path))[1]
+    simulate(fmu_path, CORRUGATION_SCENE)              # imports the bundle; extraction deleted
+    kalker = sys.modules[f"{package}.kalker"]
+    for cached in (kalker.kalker_table, kalker._spline, kalker._coefficients_cached):
+        cached.cache_clear()
+    scene, result, _ = simulate(fmu_path, MAIN_SCENE)  # first read of the file: now
+    reference = reference_result(scene)
+    np.testing.assert_allclose(result["Fx"], reference["Fx"], rtol=1e-12,
+                               atol=1e-12 * np.abs(reference["Fx"]).max())
+    assert kalker.kalker_table.cache_info().currsize == 1
+
+
 def test_interpreter_guard_release_leaves_unknown_layouts_alone(tmp_path):
     # no binaries directory, or a library that is not loaded: nothing registered, no error,
     # and nothing loaded (RTLD_NOLOAD)

@@ -730,9 +730,10 @@ class Corrugation(_Effect):
     (closed forms). It replaces ``contact_half_width`` (a), sets ``patch_shift`` (Delta) and the
     longitudinal force ``Fx = -sign(xi) |T| contact_width`` (T opposes the creepage). With the
     wear effect on it also gives the wear per passage at the material point under the contact
-    (linearised, Eq. (4.94): :func:`railcontact.wear.corrugated_wear_depth`). ``corrugation_amplitude`` is |Z| of the first listed harmonic.
-    Condition (4.2) (no loss of contact) is checked at build time for the initial surface.
-    The surface harmonics are internal state (the wear effect may evolve them).
+    (linearised, Eq. (4.94): :func:`railcontact.wear.corrugated_wear_depth`).
+    ``corrugation_amplitude`` is |Z| of the first listed harmonic. Condition (4.2) (no loss of
+    contact) is checked at build time for the initial surface. The surface harmonics are
+    internal state (the wear effect may evolve them).
 
     Accuracy: the contact itself (both methods) is computed from closed forms (the Chebyshev
     series of the contact distributions summed through Bessel functions, Newton to 1e-13): no
