@@ -5,7 +5,7 @@ r"""What accuracy costs in time: every way railcontact computes the same quantit
     python benchmarks/accuracy_vs_time.py --quick    # < 1 min, a few points per family (CI)
     python benchmarks/accuracy_vs_time.py --out DIR  # write DIR/accuracy_vs_time.md, DIR/figures/
 
-Writes ``docs/accuracy_vs_time.md`` (Markdown tables, the answers to issue 7's questions) and
+Writes ``docs/accuracy_vs_time.md`` (Markdown tables: how accurate is each model for its time) and
 ``docs/figures/accuracy_vs_time.png`` (log-log error against time per evaluation, one Pareto
 frontier per model family, the peers' published figures as reference marks). Nothing is
 asserted: the script measures and reports.
@@ -910,7 +910,7 @@ def _fmt_t(s):
 
 
 def peer_marks(contact_errors):
-    """CONTACT's figures of the issue, with errors from CONTACT's own grid convergence."""
+    """CONTACT's published figures, with errors from CONTACT's own grid convergence."""
     e30 = contact_errors.get((30, 30), math.nan)
     marks = []
     for key, (t_lo, t_hi, mx) in PEERS.items():
@@ -1044,7 +1044,7 @@ def _find(fam, method_start, knob_start=""):
 
 
 def answers(fams, series, amp, contact_errors):
-    """The four questions of issue 7, answered with this run's numbers."""
+    """The four accuracy-for-time questions, answered with this run's numbers."""
     f = {fam.name: fam for fam in fams}
     f3, f2 = f.get("3-D creep forces"), f.get("2-D Hertz/Carter")
     fc, ff = f.get("2-D corrugated rail"), f.get("FMU (per step)")

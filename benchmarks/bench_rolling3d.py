@@ -7,7 +7,7 @@ normal problem: caches cleared) and with it cached for the contact, and the max 
 of (Fx, Fy) in % of mu N over the 21 cases of tests/data/contact_hertz3d_grid_convergence.csv
 against the converged exact theory, estimated by one Richardson step from CONTACT's 120x60 and
 240x60 rows (the error is first order in the rolling-direction element size; the solver
-reproduces CONTACT to 1e-7 of mu N on the same grid). CONTACT's points from the issue are
+reproduces CONTACT to 1e-7 of mu N on the same grid). CONTACT's published points are
 printed beside (note: those are one case, a/b = 0.5, against CONTACT's finest grid, not over
 these 21 cases against the continuum).
 
@@ -61,7 +61,7 @@ def _args(row):
                 poisson_ratio=nu, friction_coefficient=float(row["mu"]))
 
 
-# CONTACT's points (issue text): error against its finest grid on the tractcurv case (a/b = 0.5)
+# CONTACT's published points: error against its finest grid on the tractcurv case (a/b = 0.5)
 # in % of mu N, and its time per case on one core at that grid [ms]
 CONTACT_FRONTIER = [("11x11", 1.6, 2.6), ("25x25", 9.7, 1.0), ("35x35", 38.0, 0.36),
                     ("48x44", 111.0, 0.18)]
@@ -147,7 +147,7 @@ def frontier(tolerance=1e-6, settings=SETTINGS, cold=True):
         n = len(cases)
         print(f"{label:<16} {cpu / n * 1e3:8.1f} {cpu_warm / n * 1e3:8.1f} {errs.max():9.3f} "
               f"{np.sqrt(np.mean(errs ** 2)):9.3f} {sweeps / n:7.1f}")
-    print("CONTACT (issue; tractcurv a/b = 0.5 against its finest grid, its own timing):")
+    print("CONTACT (published; tractcurv a/b = 0.5 against its finest grid, its own timing):")
     for grid, ms, err in CONTACT_FRONTIER:
         print(f"{grid:<16} {ms:8.1f} {'':>8} {err:9.3f}")
 

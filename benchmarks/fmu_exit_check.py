@@ -1,5 +1,5 @@
 #!/usr/bin/env python
-r"""Does a process that ran the FMU exit cleanly? Abort counts and valgrind (issue 14).
+r"""Does a process that ran the FMU exit cleanly? Abort counts and valgrind.
 
     python benchmarks/fmu_exit_check.py [--runs 60] [--loads 1] [--c-host] [--fmu PATH]
     python benchmarks/fmu_exit_check.py --valgrind [--loads 2] [--c-host]
@@ -25,7 +25,7 @@ other invalid reads/writes/frees except the dynamic loader's own (``strncmp``/``
 invalid access.
 
 Without the FMU's workaround the aborts in fmpy are rare and depend on the heap's state (3 of
-120 processes with 20 loads each, 0 of 60 with one; issue 14 saw 1 in about 60), so a clean
+120 processes with 20 loads each, 0 of 60 with one; 1 in about 60 was seen once), so a clean
 ``--runs`` count is weak evidence; the valgrind count is deterministic. The C host died in 14
 of 40 processes.
 """

@@ -4,8 +4,9 @@ Thin by design: it registers the variables, reads the scene (TOML file or text, 
 parameters), builds the effects the scene switches on (:mod:`railcontact.effects`) in
 ``exit_initialization_mode`` and calls them in ``do_step``. All physics is in ``railcontact``.
 
-Build with ``python build_fmu.py`` (it bundles a uniquely named copy of ``railcontact``, the
-tables and the scenes, and rewrites ``_PACKAGE`` below to the bundled name).
+Build with ``python build_fmu.py`` (:mod:`railcontact.fmu_build`: it bundles a uniquely named
+copy of ``railcontact``, the tables and the scenes, and points the ``railcontact`` imports
+below, like those inside the package, at the bundled name).
 
 Semantics of a step: the outputs at the end of ``doStep(t, h)`` are the contact solution for
 the inputs set before the step (sample and hold); the outputs after initialisation are the
@@ -20,7 +21,6 @@ debug_logging=True)``). No NaN is ever returned.
 """
 
 import ctypes
-import importlib
 import json
 import math
 import os
@@ -32,11 +32,11 @@ from pythonfmu import Boolean, DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2
 from pythonfmu import Integer, Real, String
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
 
-_PACKAGE = "railcontact"  # build_fmu.py rewrites this line to the bundled copy's unique name
+# (railcontact.fmu_build rewrites these two imports to the bundled copy's unique name)
+import railcontact as _rc
+from railcontact import effects as _effects, scene as _scene
 
-_rc = importlib.import_module(_PACKAGE)
-_scene = importlib.import_module(_PACKAGE + ".scene")
-_effects = importlib.import_module(_PACKAGE + ".effects")
+_PACKAGE = _rc.__name__   # "railcontact", or the bundled copy's name inside the FMU
 
 #: Outputs: name -> (unit, description, ContactPoint field).
 OUTPUTS = {
@@ -387,7 +387,7 @@ class WheelRailContact(Fmi2Slave):
             self.do_step = fused
         self._contact.friction_coefficient = scene.friction_coefficient
         self._built_from = values
-        self.log(f"scene {scene.name!r}: effects on: {', '.join(self._pipeline.effects)}",
+        self.log(f"scene {scene.name!r}: effects on: {self._pipeline.summary()}",
                  Fmi2Status.ok)
 
     def _warn_once(self, key, message):

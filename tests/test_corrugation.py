@@ -263,19 +263,15 @@ def test_near_limit_4_2_against_halfspace_solver():
     assert res.half_width > 1.3 * A0                   # far from Hertz: flattened gap
 
 
-def test_wear_depth_physical_units():
-    """corrugated_contact(..., wear_coefficient=K): W(X) = W0 + Re[(K mu^2 N/a0) w (Z_A+iZ_B)
-    e^{-ikX}] with W0 (4.96); checked by its mean and first harmonic over one wave length."""
-    from railcontact import wear
-    ratio, r, kw = 0.12, 0.4, 1e-10
-    lam, k, za, zb = _surface(ratio, 0.01)
-    xi = MU * A0 * (1 - r) / R
-    x = np.arange(64) * lam / 64
-    res = cg.corrugated_contact(x, N, R, E, NU, MU, xi, [za], [zb], [lam], wear_coefficient=kw)
-    assert np.mean(res.wear_depth) == pytest.approx(
-        wear.mean_wear(kw, MU, N, R, A0, r), rel=1e-12)
-    c = _first_harmonic(res.wear_depth, k, x, za, zb) / (kw * MU ** 2 * N / A0)
-    assert abs(c - wear.wear_coefficients(ratio, r)) < 1e-9
+def test_wear_is_not_computed_by_the_contact_module():
+    """The contact on a corrugated rail does not depend on the wear models (the wear module
+    depends on it): the former keywords wear_coefficient / wear_model are a TypeError naming
+    their replacement, railcontact.wear.corrugated_wear_depth (tests/test_wear.py)."""
+    lam, k, za, zb = _surface(0.12, 0.01)
+    for kw in ({"wear_coefficient": 1e-10}, {"wear_model": "material_point"}):
+        with pytest.raises(TypeError, match=r"railcontact\.wear\.corrugated_wear_depth"):
+            cg.corrugated_contact(0.0, N, R, E, NU, MU, 1e-4, [za], [zb], [lam], **kw)
+    assert "wear_depth" not in cg.CorrugatedContact._fields
 
 
 @pytest.mark.parametrize("ratio, degree", [(0.1, 12), (0.3, 20), (0.6, 30)])
@@ -365,59 +361,31 @@ def _scalar_contact_cases():
 
 
 def test_scalar_corrugated_contact_equals_array_function():
-    """_corrugated_contact_scalar against corrugated_contact (both methods, no wear and every
-    wear model). Bounds: "linear" and the wear depth 8 eps (the same closed forms, operations
-    in the same order up to the sums over harmonics; relative to the size of the terms summed);
-    "exact": a, Delta, a* within 1e-13 (a0 + R sum k |Z|) -- the Newton step tolerance of both
-    paths (the same iterations from the same start; libm's sin/cos and the order of the sums
-    over harmonics round differently, so the iterates may differ by ulps and stop one step
-    apart) -- and |T| within 1e-13 mu N. Measured: 0.81 eps ("exact"), 0.99 eps ("linear"),
-    1.3 eps (wear depth) of those scales."""
-    from railcontact.wear import WEAR_MODELS
-
+    """_corrugated_contact_scalar against corrugated_contact (both methods). Bounds: "linear"
+    8 eps (the same closed forms, operations in the same order up to the sums over harmonics;
+    relative to the size of the terms summed); "exact": a, Delta, a* within 1e-13 (a0 + R sum
+    k |Z|) -- the Newton step tolerance of both paths (the same iterations from the same start;
+    libm's sin/cos and the order of the sums over harmonics round differently, so the iterates
+    may differ by ulps and stop one step apart) -- and |T| within 1e-13 mu N. Measured: 0.81
+    eps ("exact"), 0.99 eps ("linear") of those scales. (The wear depth's pair:
+    tests/test_wear.py.)"""
     eps = float(np.finfo(float).eps)
-    worst = {"exact": 0.0, "linear": 0.0, "wear": 0.0}
-    count = 0
+    worst = {"exact": 0.0, "linear": 0.0}
     for args in _scalar_contact_cases():
         x, n_load, radius, e_mod, nu, mu, xi, za, zb, lam = args
         k = 2 * np.pi / np.asarray(lam)
         a0 = float(np.sqrt(8 * (1 - nu ** 2) * radius * n_load / (np.pi * e_mod)))
         length = a0 + radius * float(np.sum(k * np.hypot(za, zb)))
         for method in ("exact", "linear"):
-            for model in (None,) + WEAR_MODELS:
-                if model is not None and (count % 3):       # every model, on a third of cases
-                    count += 1
-                    continue
-                count += 1
-                kw = {} if model is None else {"wear_coefficient": 1e-9, "wear_model": model}
-                ref = cg.corrugated_contact(*args, method=method, **kw)
-                got = cg._corrugated_contact_scalar(*args, method, kw.get("wear_coefficient"),
-                                                    kw.get("wear_model", "material_point"))
-                assert all(isinstance(v, float) for v in got[:4])
-                tol = 1e-13 if method == "exact" else 8 * eps
-                for i, scale in ((0, length), (1, length), (2, length), (3, mu * n_load)):
-                    err = abs(got[i] - float(ref[[0, 1, 2, 3][i]])) / scale
-                    worst[method] = max(worst[method], err / eps)
-                    assert err <= tol, (method, i, args, err)
-                if model is None:
-                    assert got[4] is None and ref.wear_depth is None
-                    continue
-                w_scale = 1e-9 * mu * mu * n_load / a0 * (
-                    a0 ** 2 / radius + float(np.sum(np.abs(np.asarray(
-                        cg_wear_coefficients(a0 / np.asarray(lam), max(a0 - abs(xi) * radius
-                                                                       / mu, 0.0) / a0, model)))
-                        * np.hypot(za, zb))))
-                err = abs(got[4] - float(ref.wear_depth)) / w_scale
-                worst["wear"] = max(worst["wear"], err / eps)
-                # the wear depth does not use the Newton root (linearised closed form at the
-                # material point): 8 eps of the size of the terms summed
-                assert err <= 8 * eps, (model, args, err)
+            ref = cg.corrugated_contact(*args, method=method)
+            got = cg._corrugated_contact_scalar(*args, method)
+            assert len(got) == 4 and all(isinstance(v, float) for v in got)
+            tol = 1e-13 if method == "exact" else 8 * eps
+            for i, scale in ((0, length), (1, length), (2, length), (3, mu * n_load)):
+                err = abs(got[i] - float(ref[i])) / scale
+                worst[method] = max(worst[method], err / eps)
+                assert err <= tol, (method, i, args, err)
     print("worst, in eps of the scales:", worst)
-
-
-def cg_wear_coefficients(ratio, r, model):
-    from railcontact.wear import wear_coefficients
-    return wear_coefficients(ratio, r, model)
 
 
 def test_scalar_corrugated_contact_hard_cases_match_array_function():
@@ -494,7 +462,7 @@ def test_smallest_accepted_load_is_the_zero_load_limit(method):
     assert 0.0 <= float(res.stick_half_width) < 0.05 * a0
     assert float(res.tangential_force) == pytest.approx(MU * n_min, rel=1e-6)
     assert float(res.patch_shift) == pytest.approx(float(ref.patch_shift), rel=1e-9)
-    a, d, ast, t, _ = cg._corrugated_contact_scalar(*args, method=method)
+    a, d, ast, t = cg._corrugated_contact_scalar(*args, method=method)
     assert (a, d, ast, t) == pytest.approx((float(res.half_width), float(res.patch_shift),
                                             float(res.stick_half_width),
                                             float(res.tangential_force)), rel=1e-12)

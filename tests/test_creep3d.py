@@ -36,7 +36,7 @@ def _contact_curve():
 
 # ------------------------------------------------------------------ CONTACT
 def test_modified_strip_against_contact_tractcurv():
-    """Issue requirement: within 0.5 % of mu N at every one of the 30 CONTACT points.
+    """Requirement: within 0.5 % of mu N at every one of the 30 CONTACT points.
 
     Measured (this code): max |error| = 0.350 % of mu N at cksi = 0.0008 (SHE: 3.84 % at 0.002,
     strip: 4.21 % at 0.0012). Part of the remaining error is CONTACT's 48x44 grid: its initial

@@ -207,17 +207,16 @@ def test_slave_creep_scene_calls_creep_once_per_step(counted):
 
 
 def test_unavailable_model_is_a_scene_error(monkeypatch):
-    real_import = importlib.import_module
+    """A model module missing from the build (simulated: ``railcontact.wear`` unimportable)
+    makes the effect that imports it unavailable, named, at build time."""
+    import sys
 
-    def fake(name, *args):
-        if name.endswith(".creep3d"):
-            raise ImportError("No module named creep3d")
-        return real_import(name, *args)
+    import railcontact
 
-    monkeypatch.setattr(effects.importlib, "import_module", fake)
-    with pytest.raises(EffectUnavailable, match="effect creep .analytic. not available in this "
-                                                "build"):
-        build_pipeline(parse_scene(""))
+    monkeypatch.delattr(railcontact, "wear", raising=False)
+    monkeypatch.setitem(sys.modules, "railcontact.wear", None)
+    with pytest.raises(EffectUnavailable, match="effect wear not available in this build"):
+        build_pipeline(parse_scene(LINE + "[effects.wear]\nwear_coefficient = 1e-9\n"))
 
 
 def test_slave_bad_parameter_logs_error_naming_it():
@@ -476,7 +475,7 @@ def test_exact_table_large_creepage_and_spin_stay_in_the_exact_theory():
 
 
 # --------------------------------------------------------------------------------------------
-# accuracy outputs (issue 7, "accuracy as a user setting")
+# accuracy outputs (accuracy as a user setting: error estimates the FMU reports)
 # --------------------------------------------------------------------------------------------
 def _file_max_error(name, variable):
     """The netCDF attribute <variable>:max_abs_error of tables/<name>.nc, read with netCDF4."""
@@ -611,8 +610,9 @@ def test_series_error_estimate_bounds_the_wear_coefficient_truncation(ka, r):
         assert actual >= 1e-3 * estimate or actual < 1e-11, degree
 
 
-# Fused FMU step (issue 6 speed): a refactoring guard, not a physics check -- the physics of
-# both paths is checked against direct railcontact calls in tests/test_fmu.py.
+# Fused FMU step (the creep-only table scene in one frame, for speed): a refactoring guard,
+# not a physics check -- the physics of both paths is checked against direct railcontact calls
+# in tests/test_fmu.py.
 import random  # noqa: E402
 
 from railcontact.effects import ContactPoint, build_pipeline, checked_steps  # noqa: E402
@@ -657,7 +657,7 @@ def test_fused_table_step_equals_effect_steps(toml):
 
 
 # --------------------------------------------------------------------------------------------
-# table sources of corrugation, wear and velocity-dependent friction (issue 6)
+# table sources of corrugation, wear and velocity-dependent friction
 # --------------------------------------------------------------------------------------------
 # The reference is the theory the table holds, evaluated directly: the linearised corrugated
 # contact (railcontact.corrugation.corrugated_contact(method="linear")), the wear coefficients
@@ -670,7 +670,7 @@ from railcontact.evolution import wear_number  # noqa: E402
 from railcontact.friction import (normalised_inputs,  # noqa: E402
                                   solve_velocity_friction_normalised)
 from railcontact.tables import Table, default_table_path  # noqa: E402
-from railcontact.wear import wear_coefficients  # noqa: E402
+from railcontact.wear import corrugated_wear_depth, wear_coefficients  # noqa: E402
 
 _RESPONSE = Table.from_file(default_table_path("corrugation_response")).accuracy()
 _FRICTION = Table.from_file(default_table_path("velocity_friction")).accuracy()
@@ -719,8 +719,9 @@ def test_corrugation_table_matches_linear_theory():
             xi = rng.uniform(-1.2, 1.2) * mu * a0 / big_r
             x = rng.uniform(-1.0, 1.0)
             c = _line_contact(pipe, n=n, xi=xi, x=x)
-            ref = corrugated_contact(x, n / width, big_r, E, NU, mu, xi, za, zb, lam,
-                                     method="linear", wear_coefficient=k_wear)
+            args = (x, n / width, big_r, E, NU, mu, xi, za, zb, lam)
+            ref = corrugated_contact(*args, method="linear")
+            ref_wear = float(corrugated_wear_depth(*args, k_wear))
             s = np.abs(k * big_r * amp).sum()
             tol = {"a": 2 * s * e_a + 1e-15, "d": 2 * s * e_d + 1e-15,
                    "t": 2 * mu / comp * amp.sum() * e_t * width + 1e-9,
@@ -728,12 +729,12 @@ def test_corrugation_table_matches_linear_theory():
             got = {"a": c.contact_half_width - float(ref.half_width),
                    "d": c.patch_shift - float(ref.patch_shift),
                    "t": c.Fx + np.sign(xi) * float(ref.tangential_force) * width,
-                   "w": c.wear_depth_per_passage - float(ref.wear_depth)}
+                   "w": c.wear_depth_per_passage - ref_wear}
             for key in got:
                 assert abs(got[key]) <= tol[key], (case, key, got[key], tol[key])
                 worst = max(worst, abs(got[key]) / tol[key] * 2)
             sizes.append((abs(float(ref.half_width) - a0) / tol["a"],
-                          abs(float(ref.wear_depth) - float(mean_wear(
+                          abs(ref_wear - float(mean_wear(
                               k_wear, mu, n / width, big_r, a0,
                               max(1 - abs(xi) * big_r / (mu * a0), 0)))) / tol["w"]))
     assert worst <= 2.0
@@ -756,11 +757,12 @@ def test_corrugation_table_out_of_grid_uses_closed_forms_and_warns_once():
                           warn=lambda key, msg: warnings.append((key, msg)))
     for x in (0.0, 0.013, 0.31):
         c = _line_contact(pipe, n=n, xi=1e-3, x=x)
-        ref = corrugated_contact(x, n / width, big_r, E, NU, 0.3, 1e-3, za, zb, lam,
-                                 method="linear", wear_coefficient=1e-9)
+        args = (x, n / width, big_r, E, NU, 0.3, 1e-3, za, zb, lam)
+        ref = corrugated_contact(*args, method="linear")
+        ref_wear = float(corrugated_wear_depth(*args, 1e-9))
         tol_a = 2 * k[1] * big_r * abs(complex(za[1], zb[1])) * _err("half_width_real")
         assert c.contact_half_width == pytest.approx(float(ref.half_width), abs=tol_a)
-        assert c.wear_depth_per_passage == pytest.approx(float(ref.wear_depth), rel=1e-3)
+        assert c.wear_depth_per_passage == pytest.approx(ref_wear, rel=1e-3)
         assert all(math.isfinite(v) for v in c.as_dict().values())
     assert {key for key, _ in warnings} == {"corrugation-table-range"}
     assert "a0/L = 0.005" in warnings[0][1] and "[0.01, 1]" in warnings[0][1]
@@ -991,7 +993,8 @@ def test_nonsteady_with_steady_inputs_equals_the_scene_without_it(name):
     for xi, eta, phi in ((0.0, 0.0, 0.0), (6e-4, 0.0, 0.0), (-2e-3, 1e-3, 0.3), (0.02, 0, 0)):
         plain = build_pipeline(parse_scene(_STEADY_SCENES[name]))
         relaxed = build_pipeline(parse_scene(_STEADY_SCENES[name] + NS))
-        assert list(relaxed.effects)[:3] == ["normal", "nonsteady", "creep"]
+        force = "velocity_friction" if name.startswith("velocity") else "creep"
+        assert list(relaxed.effects)[:3] == ["normal", "nonsteady", force]
         c1, c2 = (_contact(normal_force=NL, creepage_longitudinal=xi, creepage_lateral=eta,
                            spin=phi, friction_coefficient=MU, rolling_speed=12.0,
                            step_size=1e-3) for _ in range(2))
@@ -1331,9 +1334,10 @@ def test_slave_state_carries_the_relaxed_creepage():
 @pytest.mark.parametrize("wear_model", ["material_point", "patch_coordinate", "nielsen1998",
                                         "time_domain_carter", None])
 def test_corrugation_wear_scalar_paths_give_the_public_functions_results(method, wear_model):
-    """Corrugation.step (corrugation._corrugated_contact_scalar), Corrugation.auxiliary
-    (_series_truncation_error_scalar) and Wear.auxiliary (wear._wear_coefficients_scalar)
-    against corrugated_contact, series_truncation_error and wear_number x wear_coefficients,
+    """Corrugation.step (corrugation._corrugated_contact_scalar and
+    wear._corrugated_wear_depth_scalar), Corrugation.auxiliary (_series_truncation_error_scalar)
+    and Wear.auxiliary (wear._wear_coefficients_scalar) against corrugated_contact,
+    corrugated_wear_depth, series_truncation_error and wear_number x wear_coefficients,
     over seeded loads, creepages (0, partial slip, full sliding, both signs), positions and
     N = 0. Bounds: a, Delta within 1e-13 (a0 + R sum k |Z|) (the Newton tolerance; "linear":
     the same closed forms), Fx within 1e-13 mu N, the wear depth and growth rate 8 eps of
@@ -1361,9 +1365,8 @@ def test_corrugation_wear_scalar_paths_give_the_public_functions_results(method,
             assert c.patch_shift == 0.0 and c.Fx == 0.0 and c.wear_depth_per_passage == 0.0
             continue
         n_line = n / 0.02
-        kw = {} if wear_model is None else {"wear_coefficient": 1e-9, "wear_model": wear_model}
-        ref = corrugated_contact(x, n_line, 0.46, E, NU, 0.3, xi, za, zb, lam, method=method,
-                                 **kw)
+        args = (x, n_line, 0.46, E, NU, 0.3, xi, za, zb, lam)
+        ref = corrugated_contact(*args, method=method)
         k = 2 * np.pi / np.asarray(lam)
         length = c.a0 + 0.46 * float(np.sum(k * np.hypot(za, zb)))
         assert abs(c.contact_half_width - float(ref.half_width)) <= 1e-13 * length
@@ -1372,8 +1375,8 @@ def test_corrugation_wear_scalar_paths_give_the_public_functions_results(method,
         assert abs(c.Fx - want_fx) <= 1e-13 * 0.3 * n
         if wear_model is None:
             continue
-        assert abs(c.wear_depth_per_passage - float(ref.wear_depth)) <= (
-            8 * eps * abs(float(ref.wear_depth)) + 1e-30)
+        ref_wear = float(corrugated_wear_depth(*args, 1e-9, wear_model))
+        assert abs(c.wear_depth_per_passage - ref_wear) <= 8 * eps * abs(ref_wear) + 1e-30
         r = min(max(c.r_a0, 0.0), 1.0)
         w = complex(wear_number(1e-9, 0.3, n_line, c.a0)
                     * wear_coefficients(c.a0 / lam[0], r, wear_model))
@@ -1398,7 +1401,8 @@ ROUGH = LINE + "[effects.roughness]\nwavelengths = [0.1, 0.05]\n"
 def test_zero_roughness_equals_the_carter_scene(n, xi):
     carter = build_pipeline(parse_scene(LINE))
     rough = build_pipeline(parse_scene(ROUGH + "amplitudes_cos = [0, 0]\n"))
-    assert list(rough.effects) == ["normal", "creep", "roughness"]
+    assert list(rough.effects) == ["normal", "roughness"]       # Carter's force not computed
+    assert rough.replaced == {"creep": "roughness"}
     for x in (0.0, 0.0137):
         a, b = _line_contact(carter, n=n, xi=xi, x=x), _line_contact(rough, n=n, xi=xi, x=x)
         assert b.Fx == pytest.approx(a.Fx, rel=1e-12, abs=1e-12 * 0.3 * n)
@@ -1457,7 +1461,7 @@ def test_scene_without_roughness_never_builds_it(counted_roughness):
     for k in range(5):
         _line_contact(pipe, n=1e5, x=0.01 * k)
     assert counted_roughness == {"rough_rail_contact": 5}
-    assert pipe.calls() == {"normal": 5, "creep": 5, "roughness": 5}
+    assert pipe.calls() == {"normal": 5, "roughness": 5}
 
 
 def test_roughness_build_errors():
@@ -1660,3 +1664,103 @@ def test_slave_exact_table_spin_moment_beyond_float_range_is_an_error():
                                          r"it\); got mu = 0.3, N = 1e\+300"):
         slave.do_step(0.0, 1e-3)
     assert slave.log_queue[-1].status == 3
+
+
+# --------------------------------------------------------------------------------------------
+# one ordered effect registry (railcontact.scene.EFFECTS) for scene validation and pipeline
+# --------------------------------------------------------------------------------------------
+from railcontact import scene as scene_module  # noqa: E402
+
+_ALL_ON = {   # a scene per compatible group, every effect of the group on
+    "3-D": "[effects.creep]\nmethod = 'modified_strip'\n" + NS,
+    "friction": LINE + NS + "[effects.velocity_friction]\nlaw = 'step'\n"
+                            "kinetic_friction_coefficient = 0.2\n",
+    "rough": ROUGH + "amplitudes_cos = [1e-5, 0]\n",
+    "corrugation": CORR + "[effects.wear]\nwear_coefficient = 1e-9\n",
+}
+
+
+def test_scene_and_pipeline_read_one_registry():
+    """The pipeline module's registry is the scene module's object, and both the scene's
+    effects and the pipeline's steps come out in its order (normal contact first)."""
+    assert effects.EFFECTS is scene_module.EFFECTS
+    order = list(scene_module.EFFECTS)
+    assert order == ["nonsteady", "creep", "velocity_friction", "roughness", "corrugation",
+                     "wear"]
+    for text in _ALL_ON.values():
+        scene = parse_scene(text)
+        assert list(scene.effects) == [n for n in order if n in scene.effects]
+        pipe = build_pipeline(scene)
+        built = list(pipe.effects)
+        assert built[0] == "normal"
+        assert built[1:] == [n for n in order if n in scene.effects and n not in pipe.replaced]
+        # the steps are the effects' own, in that order, then the non-steady finish step
+        steps = [e.step for e in pipe.effects.values()]
+        if "nonsteady" in pipe.effects:
+            steps.append(pipe.effects["nonsteady"].finish)
+        assert list(pipe.steps) == steps
+
+
+def test_registry_is_what_scene_validation_allows():
+    """An unknown effect or option key is refused with the registry's names and keys."""
+    with pytest.raises(SceneError, match="effects: unknown key 'magic'"):
+        parse_scene("[effects.magic]\n")
+    with pytest.raises(SceneError, match="effects.wear: unknown key 'degree'.*wear_model"):
+        parse_scene(LINE + "[effects.wear]\ndegree = 3\n")
+    for name, spec in scene_module.EFFECTS.items():
+        assert spec.name == name and "enabled" in spec.keys and "source" in spec.keys
+        assert all(r in scene_module.EFFECTS for r in spec.replaces)
+
+
+@pytest.fixture
+def counted_creep2d(monkeypatch):
+    counts = {"Creep2D.step": 0}
+    original = effects.Creep2D.step
+
+    def counter(self, c):
+        counts["Creep2D.step"] += 1
+        return original(self, c)
+    monkeypatch.setattr(effects.Creep2D, "step", counter)
+    return counts
+
+
+@pytest.mark.parametrize("replacing", ["velocity_friction", "roughness"])
+def test_replaced_creep_is_not_computed(counted_creep2d, replacing):
+    """With velocity friction or roughness on, Carter's force would be overwritten: the pipeline
+    does not build the creep effect (no Creep2D step runs), and the outputs it would have set
+    (Fy, creep_within_validity, the no-contact answer) equal those of the Carter scene."""
+    text = (LINE + "[effects.velocity_friction]\nlaw = 'step'\nkinetic_friction_coefficient = "
+            "0.2\n" if replacing == "velocity_friction" else _ALL_ON["rough"])
+    pipe = build_pipeline(parse_scene(text))
+    assert "creep" not in pipe.effects and pipe.replaced == {"creep": replacing}
+    assert pipe.summary() == ", ".join(n for n in pipe.effects if n != replacing) + (
+        f", {replacing} (in place of creep)")
+    carter = build_pipeline(parse_scene(LINE))
+    counted_creep2d["Creep2D.step"] = 0
+    for n, xi, eta, mu in ((1e5, 2e-3, 0.0, 0.3), (1e5, -1e-3, 1e-3, 0.3), (0.0, 2e-3, 0.0, 0.3),
+                           (0.0, 0.0, 0.0, 0.3), (1e5, 0.0, 0.0, 0.0), (1e5, 1e-3, 0.0, 0.0)):
+        c = _contact(normal_force=n, creepage_longitudinal=xi, creepage_lateral=eta,
+                     friction_coefficient=mu, rolling_speed=10.0, step_size=1e-3)
+        pipe.step(c)
+        # (the roughness effect's own Ch. 6 solution gives the stick ratio with mu = 0)
+        if n == 0.0 or (mu == 0.0 and replacing == "velocity_friction"):
+            ref = _contact(normal_force=n, creepage_longitudinal=xi, creepage_lateral=eta,
+                           friction_coefficient=mu)
+            carter.step(ref)
+            counted_creep2d["Creep2D.step"] -= 1           # (the reference's own call)
+            for name in ("Fx", "r_a0", "stick_area_fraction", "stick_width_ratio"):
+                assert getattr(c, name) == getattr(ref, name), (name, n, xi, mu)
+        assert c.Fy == 0.0
+        assert c.creep_within_validity is (eta == 0.0)
+        if n > 0.0 and mu > 0.0 and xi != 0.0:
+            assert c.Fx != 0.0 and math.copysign(1.0, c.Fx) == -math.copysign(1.0, xi)
+    assert counted_creep2d == {"Creep2D.step": 0}
+    assert pipe.calls()[replacing] == 6
+
+
+def test_corrugation_keeps_creep():
+    """Corrugation replaces Fx but reads nothing of Carter's it would overwrite wholesale: the
+    creep effect stays (its stick ratio feeds the wear effect)."""
+    pipe = build_pipeline(parse_scene(_ALL_ON["corrugation"]))
+    assert list(pipe.effects) == ["normal", "creep", "corrugation", "wear"]
+    assert pipe.replaced == {}

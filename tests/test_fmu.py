@@ -34,7 +34,7 @@ from railcontact.friction import (normalised_inputs,  # noqa: E402
                                   step_law_creep_force_normalised)
 from railcontact.hertz import hertz_2d, hertz_3d  # noqa: E402
 from railcontact.nonsteady import relaxation_length, relaxation_step  # noqa: E402
-from railcontact.wear import mean_wear, wear_coefficients  # noqa: E402
+from railcontact.wear import corrugated_wear_depth, mean_wear, wear_coefficients  # noqa: E402
 from railcontact import roughness as rough_mod  # noqa: E402
 from railcontact.scene import INPUTS, load_scene  # noqa: E402
 from railcontact.exact_table import ExactCreepTable  # noqa: E402
@@ -125,13 +125,12 @@ def reference_line(scene, held):
         if wear and not corr:
             depth = float(mean_wear(wear["wear_coefficient"], mu, n_line, radius, a0, r))
         if corr:
-            kw = ({"wear_coefficient": wear["wear_coefficient"],
-                   "wear_model": wear["wear_model"]} if wear else {})
-            res = corrugated_contact(x, n_line, radius, e_mod, nu, mu, xi, za, zb,
-                                     corr["wavelengths"], method=corr["method"], **kw)
+            args = (x, n_line, radius, e_mod, nu, mu, xi, za, zb, corr["wavelengths"])
+            res = corrugated_contact(*args, method=corr["method"])
             a, shift = float(res.half_width), float(res.patch_shift)
             fx = -np.sign(xi) * float(res.tangential_force) * width
-            depth = float(res.wear_depth) if wear else 0.0
+            depth = (float(corrugated_wear_depth(*args, wear["wear_coefficient"],
+                                                 wear["wear_model"])) if wear else 0.0)
             amp = float(np.hypot(za[0], zb[0]))
         if wear and corr:
             number = float(wear_number(wear["wear_coefficient"], mu, n_line, a0))
@@ -630,7 +629,8 @@ def test_state_save_restore_is_bit_identical(fmu_path, tmp_path, scene_path):
         third = run(k1, end)
         fmu.freeFMUState(state2)
         saved = json.loads(bytes(blob).decode())["effects"]
-        assert saved["creep"]["calls"] == k1 + 1
+        force = next(n for n in ("creep", "velocity_friction", "roughness") if n in saved)
+        assert saved[force]["calls"] == k1 + 1
         if "wear" in saved:   # the surface evolved between t1 and t2: state is not trivial
             assert saved["wear"]["passages"] < _passages(fmu, vr)
     finally:
@@ -698,6 +698,26 @@ def test_fmu_registers_its_interpreter_guard_release_with_the_exit_handlers(fmu_
     module = sys.modules[build_fmu.bundle_names(build_fmu.fmu_digest(fmu_path))[0]]
     assert sorted(module._EXIT_RELEASES) == [(address, "initialised"),
                                              (address, "instantiated")]
+
+
+def test_data_file_read_after_the_first_extraction_is_gone(fmu_path):
+    """Kalker's coefficient file is read on first use, which may come in a later instance of
+    the same FMU in the same process, after fmpy deleted the extraction the package was first
+    imported from: it is read from the package's current directory (the slave points the
+    bundled package's __path__ at each new extraction), and from the bundled copy, not from the
+    host's railcontact."""
+    import build_fmu
+
+    package = build_fmu.bundle_names(build_fmu.fmu_digest(fmu_path))[1]
+    simulate(fmu_path, CORRUGATION_SCENE)              # imports the bundle; extraction deleted
+    kalker = sys.modules[f"{package}.kalker"]
+    for cached in (kalker.kalker_table, kalker._spline, kalker._coefficients_cached):
+        cached.cache_clear()
+    scene, result, _ = simulate(fmu_path, MAIN_SCENE)  # first read of the file: now
+    reference = reference_result(scene)
+    np.testing.assert_allclose(result["Fx"], reference["Fx"], rtol=1e-12,
+                               atol=1e-12 * np.abs(reference["Fx"]).max())
+    assert kalker.kalker_table.cache_info().currsize == 1
 
 
 def test_interpreter_guard_release_leaves_unknown_layouts_alone(tmp_path):
@@ -992,7 +1012,7 @@ def test_bundled_roughness_scene_finds_its_profile_inside_the_fmu(fmu_path):
     scene, from_source, _ = simulate(fmu_path, ROUGHNESS_SCENE)
     _, bundled, messages = simulate(fmu_path, ROUGHNESS_SCENE,
                                     start_values={"scene_file": "roughness"})
-    assert any("scene 'roughness': effects on: normal, creep, roughness" in m
+    assert any("scene 'roughness': effects on: normal, roughness (in place of creep)" in m
                for _, m in messages)
     for name in LINE_OUTPUTS:
         assert np.array_equal(bundled[name], from_source[name]), name

@@ -34,3 +34,102 @@ def test_help_gives_a_map_naming_every_public_name():
     doc = rc.__doc__
     missing = [n for n in rc.__all__ if not re.search(rf"\b{n}\b", doc)]
     assert not missing, missing
+
+
+def _package_import_graph(package_dir):
+    """Module -> the package's modules it imports (any ``import`` / ``from ... import``
+    statement, at module level or inside a function), read with :mod:`ast`."""
+    import ast
+    from pathlib import Path
+
+    root = Path(package_dir)
+    modules = {}
+    for path in root.rglob("*.py"):
+        parts = list(path.relative_to(root.parent).with_suffix("").parts)
+        is_package = parts[-1] == "__init__"
+        if is_package:
+            parts = parts[:-1]
+        modules[".".join(parts)] = (path, is_package)
+    graph = {}
+    for name, (path, is_package) in modules.items():
+        here = name.split(".") if is_package else name.split(".")[:-1]
+        targets = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                targets.update(alias.name for alias in node.names)
+            elif isinstance(node, ast.ImportFrom):
+                base = here[:len(here) - node.level + 1] if node.level else []
+                stem = ".".join(base + ([node.module] if node.module else []))
+                for alias in node.names:   # a submodule, else a name of module ``stem``
+                    sub = f"{stem}.{alias.name}"
+                    targets.add(sub if sub in modules else stem)
+        graph[name] = {t for t in targets if t in modules and t != name}
+    return graph
+
+
+def _cycles(graph):
+    """The import cycles of ``graph`` (each as a list of modules), by depth-first search."""
+    found, state = [], {}
+
+    def visit(node, stack):
+        state[node] = "open"
+        stack.append(node)
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == "open":
+                found.append(stack[stack.index(nxt):] + [nxt])
+            elif nxt not in state:
+                visit(nxt, stack)
+        stack.pop()
+        state[node] = "done"
+
+    for node in sorted(graph):
+        if node not in state:
+            visit(node, [])
+    return found
+
+
+def test_import_graph_of_the_package_has_no_cycles():
+    """No module of railcontact imports, directly or through others, a module that imports it
+    (statements anywhere in the file, lazy ones inside functions included; a package's import of
+    its own submodules through ``railcontact.__getattr__`` is not a statement and not counted).
+    The graph is read with ast, so it is what a reader or a structure tool sees."""
+    from pathlib import Path
+
+    graph = _package_import_graph(Path(rc.__file__).parent)
+    assert "railcontact.wear" in graph and "railcontact.effects" in graph
+    assert "railcontact.corrugation" in graph["railcontact.wear"]      # wear -> contact
+    assert "railcontact.wear" not in graph["railcontact.corrugation"]  # ... not back
+    assert _cycles(graph) == []
+    import tablegen                                     # the table builder beside it, too
+    assert _cycles(_package_import_graph(Path(tablegen.__file__).parent)) == []
+
+
+def test_cycle_finder_finds_a_cycle():
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
+    assert _cycles(graph) == [["a", "b", "c", "a"]]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_slave_and_runner_reach_the_package_by_plain_imports():
+    """The FMU slave imports the package with import statements (the build points them at the
+    bundled copy), the effects import their models the same way, and the runner imports the
+    FMU builder from the package: no module loaded by a string name or a file path, so a reader
+    and a structure tool can follow the FMU into the physics."""
+    import ast
+    from pathlib import Path
+
+    import build_fmu
+    from railcontact import fmu_build, run
+
+    slave = Path(rc.__file__).parents[1] / "WheelRailContact.py"
+    imported = set()
+    for node in ast.walk(ast.parse(slave.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.module == "railcontact":
+            imported.update(f"railcontact.{a.name}" for a in node.names)
+    assert {"railcontact.effects", "railcontact.scene"} <= imported
+    for path in (slave, Path(rc.__file__).parent / "effects.py",
+                 Path(rc.__file__).parent / "run.py"):
+        text = path.read_text(encoding="utf-8")
+        assert "import_module" not in text and "spec_from_file_location" not in text, path
+    assert run.fmu_build is fmu_build and build_fmu.build is fmu_build.build
+    assert fmu_build.SLAVE == slave.resolve()

@@ -96,7 +96,7 @@ def test_c2_second_differences_bounded_across_knots():
 
 
 def test_double_knot_removes_overshoot_at_saturation():
-    """The issue's 1-D saturation model: a single knot rings past the limit, a double knot
+    """A 1-D saturation model: a single knot rings past the limit, a double knot
     does not (beyond rounding)."""
     from railcontact.creep3d import strip_force_function
 

@@ -322,3 +322,74 @@ def test_scalar_wear_coefficients_equal_array_function():
                 worst = max(worst, err)
                 assert err <= 8 * eps, (model, m, r, err)
     print("worst relative difference:", worst)
+
+
+# --------------------------------------------------------------------------------------------
+# corrugated_wear_depth: the wear per passage on a corrugated rail, (4.94)-(4.96)
+# --------------------------------------------------------------------------------------------
+_E, _NU, _R, _MU = 2.1e11, 0.28, 0.5, 0.3
+_A0 = 0.006
+_N = _A0 ** 2 * np.pi * _E / (8 * (1 - _NU ** 2) * _R)      # load per length giving a0 = _A0
+
+
+def test_corrugated_wear_depth_physical_units():
+    """W(X) = W0 + Re[(K mu^2 N/a0) w (Z_A+iZ_B) e^{-ikX}] with W0 (4.96); checked by its mean
+    (mean_wear) and its first harmonic over one wave length (wear_coefficients)."""
+    ratio, r, kw = 0.12, 0.4, 1e-10
+    lam = _A0 / ratio
+    k = 2 * np.pi / lam
+    amp = 0.01 * _A0 / (k * _R)
+    za, zb = amp * np.cos(0.4), amp * np.sin(0.4)
+    xi = _MU * _A0 * (1 - r) / _R
+    x = np.arange(64) * lam / 64
+    depth = wear.corrugated_wear_depth(x, _N, _R, _E, _NU, _MU, xi, [za], [zb], [lam], kw)
+    assert depth.shape == x.shape
+    assert np.mean(depth) == pytest.approx(wear.mean_wear(kw, _MU, _N, _R, _A0, r), rel=1e-12)
+    c = 2 * np.mean(depth * np.exp(1j * k * x)) / (za + 1j * zb) / (kw * _MU ** 2 * _N / _A0)
+    assert abs(c - wear.wear_coefficients(ratio, r)) < 1e-9
+    # a smooth rail (zero amplitude): Carter's mean wear everywhere
+    flat = wear.corrugated_wear_depth(x, _N, _R, _E, _NU, _MU, xi, [0.0], [0.0], [lam], kw)
+    assert np.allclose(flat, wear.mean_wear(kw, _MU, _N, _R, _A0, r), rtol=1e-12, atol=0)
+
+
+def test_corrugated_wear_depth_bad_input_names_it():
+    args = [0.0, _N, _R, _E, _NU, _MU, 1e-4, [1e-7], [0.0], [0.05]]
+    with pytest.raises(ValueError, match=r"wear_coefficient must be in \[0, inf\) \[m\^2/N\]"):
+        wear.corrugated_wear_depth(*args, -1.0)
+    with pytest.raises(ValueError, match="wear_model must be one of"):
+        wear.corrugated_wear_depth(*args, 1e-9, "archard")
+    with pytest.raises(ValueError, match="friction_coefficient"):
+        wear.corrugated_wear_depth(*args[:5], 0.0, *args[6:], 1e-9)
+    with pytest.raises(ValueError, match="curvature_amplitude"):
+        wear.corrugated_wear_depth(*args[:7], [1.0], [0.0], [0.05], 1e-9)
+
+
+def test_scalar_corrugated_wear_depth_equals_array_function():
+    """wear._corrugated_wear_depth_scalar (the FMU's per-step call) against
+    corrugated_wear_depth, every wear model, seeded surfaces (M = 1, 3, 10 harmonics, k a0 in
+    [0.01, 3], sum k^2 R |Z| up to 0.95) and creepages from zero to full sliding: 8 eps of the
+    size of the terms summed (the same closed forms; the wear coefficients' scalar path agrees
+    to a few ulp, tests above)."""
+    eps = float(np.finfo(float).eps)
+    rng = np.random.default_rng(2024)
+    mu, radius = 0.3, 0.46
+    for m in (1, 3, 10):
+        for frac in (0.0, 1e-9, 1e-5, 0.4, 1 - 1e-6, 3.0):
+            n_load = float(10 ** rng.uniform(5.0, 7.0))
+            a0 = float(np.sqrt(8 * (1 - _NU ** 2) * radius * n_load / (np.pi * _E)))
+            lam = 2 * np.pi * a0 / 10 ** rng.uniform(-2.0, np.log10(3.0), m)
+            k = 2 * np.pi / lam
+            amp = 0.95 * rng.dirichlet(np.ones(m)) / (k * k * radius)
+            phase = rng.uniform(0, 2 * np.pi, m)
+            za, zb = list(amp * np.cos(phase)), list(amp * np.sin(phase))
+            xi = float(rng.choice([-1.0, 1.0])) * frac * mu * a0 / radius
+            x = float(rng.uniform(0.0, 2 * lam.max()))
+            r = max(a0 - abs(xi) * radius / mu, 0.0) / a0
+            for model in wear.WEAR_MODELS:
+                args = (x, n_load, radius, _E, _NU, mu, xi, za, zb, list(lam), 1e-9, model)
+                ref = float(wear.corrugated_wear_depth(*args))
+                got = wear._corrugated_wear_depth_scalar(*args)
+                assert isinstance(got, float)
+                scale = 1e-9 * mu * mu * n_load / a0 * (a0 ** 2 / radius + float(np.sum(
+                    np.abs(wear.wear_coefficients(a0 / lam, r, model)) * np.hypot(za, zb))))
+                assert abs(got - ref) <= 8 * eps * scale, (model, m, frac, got, ref)

@@ -31,6 +31,7 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
                   used by tests and the accuracy report, never by the FMU
     scene, effects, run   the FMU's scenes, its effect pipeline, and
                   ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
+    fmu_build     builds WheelRailContact.fmu from a checkout (``python build_fmu.py``)
 Submodules other than polynomial, roughness, friction and nonsteady are imported on first
 attribute access (``railcontact.wear``) or with ``import railcontact.wear``.
 
@@ -75,7 +76,7 @@ __version__ = "0.1.0"
 #: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
 #: pays for at load time).
 _LAZY_SUBMODULES = ("corrugation", "wear", "evolution", "filters", "kalker", "tables",
-                    "reference", "scene", "effects", "run")
+                    "reference", "scene", "effects", "run", "fmu_build")
 
 __all__ = [
     # chapter 2: Hertz, Carter, Kalker, 3-D creep
@@ -89,7 +90,7 @@ __all__ = [
     "strip_force_function", "ExactCreepSolution3D", "RollingConvergenceError",
     # submodules
     "polynomial", "corrugation", "wear", "evolution", "filters", "friction", "roughness",
-    "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run",
+    "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run", "fmu_build",
 ]
 
 

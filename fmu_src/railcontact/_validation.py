@@ -11,9 +11,12 @@ NaN and inf are always rejected.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["check_range", "check_choice", "check_contact_inputs", "check_creep_inputs"]
+__all__ = ["check_range", "check_choice", "check_contact_inputs", "check_creep_inputs",
+           "check_corrugated_contact_inputs", "load_underflows", "check_load_not_underflowing"]
 
 
 def _fmt(value) -> str:
@@ -104,3 +107,51 @@ def check_creep_inputs(creepage_longitudinal, creepage_lateral, spin, normal_loa
             check_range("spin", spin, "1/m"),
             *check_contact_inputs(normal_load, a0, b0, youngs_modulus, poisson_ratio,
                                   friction_coefficient))
+
+
+def check_corrugated_contact_inputs(normal_load, radius, youngs_modulus, poisson_ratio,
+                                    friction_coefficient, creepage, amplitudes_cos,
+                                    amplitudes_sin, wavelengths):
+    """Range-checked physical inputs of one line contact on a corrugated rail (Nielsen Ch. 4:
+    :func:`railcontact.corrugation.corrugated_contact`, :func:`~railcontact.corrugation.
+    contact_distributions`, :func:`railcontact.wear.corrugated_wear_depth`): N, R, E, mu > 0,
+    nu in [0, 0.5), finite creepage, harmonics 1-D of equal length with wavelengths > 0.
+    Returns ``N, R, E, nu, mu`` (floats), ``|creepage|`` and the three harmonic arrays."""
+    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
+    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
+                              lower_closed=False))
+    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
+    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
+                           lower_closed=False))
+    xi = abs(float(check_range("creepage", creepage, "-")))
+    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
+    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
+    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
+                                    lower_closed=False))
+    if not (za.shape == zb.shape == lam.shape) or za.ndim != 1:
+        raise ValueError("amplitudes_cos, amplitudes_sin, wavelengths must be 1-D of equal "
+                         f"length [m]; got shapes {za.shape}, {zb.shape}, {lam.shape}")
+    return n_load, big_r, e_mod, nu, mu, xi, za, zb, lam
+
+
+_TINY = 2.2250738585072014e-308   # smallest normal double
+
+
+def load_underflows(n_load, e_mod, nu):
+    """True if the normalised load ``8 (1 - nu^2) N / (pi E)`` of a line contact is below the
+    smallest normal double (or not a number): the condition :func:`check_load_not_underflowing`
+    rejects and the FMU's line-contact effects treat as no contact."""
+    return not 8.0 * (1.0 - nu * nu) * n_load / (math.pi * e_mod) >= _TINY
+
+
+def check_load_not_underflowing(n_load, e_mod, nu):
+    """Reject a load whose normalised value ``8 (1 - nu^2) N / (pi E)`` (the text after
+    Nielsen (6.10); ``a0^2 / R``) is below the smallest normal double: ``a0`` and ``a0*/a0``
+    would underflow or lose their precision (at 5e-324 N/m ``a0 = 0`` and ``a0*/a0`` divides
+    by zero). The same limit as :func:`railcontact.roughness.rough_rail_contact`; the FMU's
+    effects treat such a load as no contact."""
+    if load_underflows(n_load, e_mod, nu):
+        raise ValueError("normal_load must be > 0 with a normalised load 8 (1 - nu^2) N / (pi E) "
+                         "of at least 2.2e-308 m (below it is subnormal or zero: a0 loses its "
+                         f"precision or underflows; no contact) [N/m]; got {n_load:g}")

@@ -64,7 +64,8 @@ from collections import namedtuple
 import numpy as np
 from scipy.special import j0, j1, jv
 
-from ._validation import check_range
+from ._validation import (check_corrugated_contact_inputs, check_load_not_underflowing,
+                          check_range, load_underflows)
 
 __all__ = [
     "normal_response", "stick_zone_response", "tangential_force_response",
@@ -620,8 +621,7 @@ def _tangential_force_exact(x, a, d, delta, mu, comp, big_r, k, za, zb):
 
 
 CorrugatedContact = namedtuple("CorrugatedContact", [
-    "half_width", "patch_shift", "stick_half_width", "tangential_force", "normal_load",
-    "wear_depth"])
+    "half_width", "patch_shift", "stick_half_width", "tangential_force", "normal_load"])
 CorrugatedContact.__doc__ = """Result of :func:`corrugated_contact`.
 
 half_width : ndarray
@@ -634,64 +634,22 @@ tangential_force : ndarray
     |T|: magnitude of the tangential force per unit length (opposes the creepage). [N/m]
 normal_load : ndarray
     Normal load per unit length (constant here). [N/m]
-wear_depth : ndarray or None
-    Wear depth per passage at the *material point* X (same array as the rail position) from the
-    linearised model ``wear_model`` (:func:`railcontact.wear.wear_coefficients`), or None when
-    no ``wear_coefficient`` was given. [m]
+
+The wear per passage on the corrugated rail is :func:`railcontact.wear.corrugated_wear_depth`
+(same arguments plus the wear coefficient): wear depends on the contact, not the other way
+round.
 """
 
 
-def _checked_contact_inputs(normal_load, radius, youngs_modulus, poisson_ratio,
-                            friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
-                            wavelengths):
-    """Range-checked physical inputs of one contact on a corrugated rail (shared by
-    :func:`corrugated_contact` and :func:`contact_distributions`); |creepage| is returned."""
-    n_load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
-    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
-    e_mod = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None,
-                              lower_closed=False))
-    nu = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5, upper_closed=False))
-    mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None,
-                           lower_closed=False))
-    xi = abs(float(check_range("creepage", creepage, "-")))
-    za = np.atleast_1d(check_range("amplitudes_cos", amplitudes_cos, "m"))
-    zb = np.atleast_1d(check_range("amplitudes_sin", amplitudes_sin, "m"))
-    lam = np.atleast_1d(check_range("wavelengths", wavelengths, "m", 0.0, None,
-                                    lower_closed=False))
-    if not (za.shape == zb.shape == lam.shape) or za.ndim != 1:
-        raise ValueError("amplitudes_cos, amplitudes_sin, wavelengths must be 1-D of equal "
-                         f"length [m]; got shapes {za.shape}, {zb.shape}, {lam.shape}")
-    return n_load, big_r, e_mod, nu, mu, xi, za, zb, lam
-
-
-
 _TINY = 2.2250738585072014e-308   # smallest normal double
-
-
-def _load_underflows(n_load, e_mod, nu):
-    """True if the normalised load ``8 (1 - nu^2) N / (pi E)`` is below the smallest normal
-    double (or not a number): the condition :func:`_check_load_not_underflowing` rejects and
-    the FMU's corrugation effect treats as no contact."""
-    return not 8.0 * (1.0 - nu * nu) * n_load / (math.pi * e_mod) >= _TINY
-
-
-def _check_load_not_underflowing(n_load, e_mod, nu):
-    """Reject a load whose normalised value ``8 (1 - nu^2) N / (pi E)`` (the text after
-    Nielsen (6.10); ``a0^2 / R``) is below the smallest normal double: ``a0`` and ``a0*/a0``
-    would underflow or lose their precision (at 5e-324 N/m ``a0 = 0`` and ``a0*/a0`` divides
-    by zero). The same limit as :func:`railcontact.roughness.rough_rail_contact`; the FMU's
-    effects treat such a load as no contact."""
-    if _load_underflows(n_load, e_mod, nu):
-        raise ValueError("normal_load must be > 0 with a normalised load 8 (1 - nu^2) N / (pi E) "
-                         "of at least 2.2e-308 m (below it is subnormal or zero: a0 loses its "
-                         f"precision or underflows; no contact) [N/m]; got {n_load:g}")
+_load_underflows = load_underflows       # (the FMU's corrugation effect reads this name)
 
 
 def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
                        friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
                        wavelengths, *, method="exact", wear_coefficient=None,
-                       wear_model="material_point"):
-    r"""One contact on a corrugated rail at given axis positions, physical units (Ch. 4.2-4.3).
+                       wear_model=None):
+    r"""One contact on a corrugated rail at given axis positions, physical units (Ch. 4.2).
 
     Parameters
     ----------
@@ -717,11 +675,10 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     method : {"exact", "linear"}
         "exact": the nonlinear equations (4.31), (4.33), (4.57), (4.67) solved by Newton;
         "linear": the closed forms (4.36)-(4.37), (4.59)-(4.62), (4.68)-(4.71).
-    wear_coefficient : float, optional
-        Wear coefficient K of (4.74), >= 0. [m^2/N] If given, ``wear_depth`` is the linearised
-        wear per passage W(X) of (4.94) at the material points ``rail_position``.
-    wear_model : str
-        See :func:`railcontact.wear.wear_coefficients` (default "material_point").
+    wear_coefficient, wear_model
+        No longer taken here: the wear per passage is
+        :func:`railcontact.wear.corrugated_wear_depth` (the same arguments, then
+        ``wear_coefficient`` and ``wear_model``). Passing either raises a TypeError saying so.
 
     Returns
     -------
@@ -731,10 +688,19 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     ------
     ValueError
         Bad input, or condition (4.2) violated (multiple contact / impact: out of scope).
+    TypeError
+        ``wear_coefficient`` or ``wear_model`` given (see above).
     """
     from .hertz import hertz_2d
 
-    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = _checked_contact_inputs(
+    if wear_coefficient is not None or wear_model is not None:
+        raise TypeError("corrugated_contact no longer computes wear (the contact module does not "
+                        "depend on the wear models): call railcontact.wear.corrugated_wear_depth"
+                        "(rail_position, normal_load, radius, youngs_modulus, poisson_ratio, "
+                        "friction_coefficient, creepage, amplitudes_cos, amplitudes_sin, "
+                        "wavelengths, wear_coefficient, wear_model) for the wear per passage "
+                        "W(X) of Eq. (4.94)")
+    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = check_corrugated_contact_inputs(
         normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage,
         amplitudes_cos, amplitudes_sin, wavelengths)
     if method not in ("exact", "linear"):
@@ -742,7 +708,7 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     x = check_range("rail_position", rail_position, "m")
     k = _TWO_PI / lam
     check_no_contact_loss(k * k * big_r * np.hypot(za, zb))
-    _check_load_not_underflowing(n_load, e_mod, nu)
+    check_load_not_underflowing(n_load, e_mod, nu)
     a0 = float(hertz_2d(n_load, big_r, e_mod, nu).a0)
     comp = 4.0 * (1.0 - nu * nu) / (np.pi * e_mod)
     a0s = max(a0 - xi * big_r / mu, 0.0)
@@ -765,19 +731,9 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
         one_minus_r = min(xi * big_r / (mu * a0), 1.0)          # 1 - r without cancellation
         t = (mu * n_load * one_minus_r * (2.0 - one_minus_r)
              + np.sum(np.real(mu / comp * ct * zc), -1))
-    wear = None
-    if wear_coefficient is not None:
-        from .wear import wear_coefficients
-        kw = float(check_range("wear_coefficient", wear_coefficient, "m^2/N", 0.0, None))
-        r = a0s / a0
-        w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-        cw = wear_coefficients(a0 / lam, r, wear_model=wear_model)
-        zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])
-        wear = w0 + np.sum(np.real(kw * mu * mu * n_load / a0 * cw * zc), -1)
     shape = np.shape(x)
     return CorrugatedContact(np.reshape(a, shape), np.reshape(d, shape), np.reshape(ast, shape),
-                             np.reshape(t, shape), np.full(shape, n_load),
-                             None if wear is None else np.reshape(wear, shape))
+                             np.reshape(t, shape), np.full(shape, n_load))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -841,7 +797,7 @@ def contact_distributions(x, rail_position, normal_load, radius, youngs_modulus,
     -------
     ContactDistributions
     """
-    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = _checked_contact_inputs(
+    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = check_corrugated_contact_inputs(
         normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage,
         amplitudes_cos, amplitudes_sin, wavelengths)
     xs_in = check_range("x", x, "m")
@@ -903,21 +859,19 @@ def contact_distributions(x, rail_position, normal_load, radius, youngs_modulus,
 # differences. They differ from the array path by rounding only (libm's sin/cos against
 # numpy's, the order of the sums over harmonics), so the iterates agree to a few ulp and the
 # converged roots to the solver tolerance 1e-13 (tests/test_corrugation.py asserts it on seeded
-# inputs over amplitudes, harmonics, k a0, r_a0, creepage, both methods and the wear models).
+# inputs over amplitudes, harmonics, k a0, r_a0, creepage and both methods).
 # Every branch that is not the plain Newton solution -- condition (4.2) violated, Newton not
 # converged within max_iter or not finite (the bracketed fallback), a root failing the
 # single-patch check -- is handed to corrugated_contact itself, which raises or solves it.
 # It ASSUMES, and does not check: normal_load > 0, radius > 0, youngs_modulus > 0,
 # 0 <= poisson_ratio < 0.5, friction_coefficient > 0, every other input finite,
 # amplitudes_cos, amplitudes_sin, wavelengths sequences of equal length >= 1 with wavelengths
-# > 0, method "exact" or "linear", wear_coefficient None or >= 0, wear_model one of
-# railcontact.wear.WEAR_MODELS (the scene and the FMU slave check all of these first).
+# > 0, method "exact" or "linear" (the scene and the FMU slave check all of these first).
 def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulus,
                                poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
-                               amplitudes_sin, wavelengths, method="exact", wear_coefficient=None,
-                               wear_model="material_point"):
+                               amplitudes_sin, wavelengths, method="exact"):
     """:func:`corrugated_contact` at one rail position for plain floats (inputs assumed in
-    range, see above): ``(a, Delta, a*, |T|, wear_depth or None)``. [m, m, m, N/m, m]"""
+    range, see above): ``(a, Delta, a*, |T|)``. [m, m, m, N/m]"""
     x, n_load, big_r, nu, mu = rail_position, normal_load, radius, poisson_ratio, \
         friction_coefficient
     xi = abs(creepage)
@@ -927,7 +881,7 @@ def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulu
             and 8.0 * (1.0 - nu * nu) * n_load / (math.pi * youngs_modulus) >= _TINY):
         return _public_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
                                friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
-                               wavelengths, method, wear_coefficient, wear_model)
+                               wavelengths, method)
     a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * youngs_modulus))
     comp = 4.0 * (1.0 - nu * nu) / (math.pi * youngs_modulus)
     a0s = max(a0 - xi * big_r / mu, 0.0)
@@ -936,8 +890,7 @@ def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulu
         if solved is None:                    # bracketed fallback or no single-patch solution
             return _public_contact(rail_position, normal_load, radius, youngs_modulus,
                                    poisson_ratio, friction_coefficient, creepage,
-                                   amplitudes_cos, amplitudes_sin, wavelengths, method,
-                                   wear_coefficient, wear_model)
+                                   amplitudes_cos, amplitudes_sin, wavelengths, method)
         a, d = solved
         offset = _stick_offset_scalar(x, a, d, xi / mu, big_r, harm)
         ast = a - offset
@@ -961,17 +914,7 @@ def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulu
             d += (kr * (-1j * jb0) * zc).real
             ast += (kr * cs * zc).real
             t += (scale_t * ct * zc).real
-    wear = None
-    if wear_coefficient is not None:
-        from .wear import _wear_coefficients_scalar
-        kw = wear_coefficient
-        r = a0s / a0
-        wear = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-        cw = _wear_coefficients_scalar([a0 / lam for lam in wavelengths], r, wear_model)
-        scale = kw * mu * mu * n_load / a0
-        for (k, za, zb), c in zip(harm, cw):
-            wear += (scale * c * (complex(za, zb) * cmath.exp(-1j * k * x))).real
-    return a, d, ast, t, wear
+    return a, d, ast, t
 
 
 def _series_truncation_error_scalar(ka, degree):
@@ -987,12 +930,10 @@ def _series_truncation_error_scalar(ka, degree):
 
 def _public_contact(*args):
     """corrugated_contact (the array path) for the scalar path's arguments, as floats."""
-    *args, method, wear_coefficient, wear_model = args
-    res = corrugated_contact(*args, method=method, wear_coefficient=wear_coefficient,
-                             wear_model=wear_model)
+    *args, method = args
+    res = corrugated_contact(*args, method=method)
     return (float(res.half_width), float(res.patch_shift), float(res.stick_half_width),
-            float(res.tangential_force),
-            None if res.wear_depth is None else float(res.wear_depth))
+            float(res.tangential_force))
 
 
 def _solve_normal_scalar(x, nc, big_r, harm, tol=1e-13, max_iter=60, _sin=math.sin,

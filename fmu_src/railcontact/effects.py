@@ -10,12 +10,16 @@ switched-off effect costs nothing.
 
 Each effect takes its physics from :mod:`railcontact` (the analytic solvers) or from the shipped
 tables (:mod:`railcontact.tables`); nothing here re-implements a model. An effect whose model
-is not part of this build raises a :class:`~railcontact.scene.SceneError` at build time
-("effect X not available in this build"), never a placeholder result.
+or table is not part of this build raises a :class:`~railcontact.scene.SceneError` at build
+time ("effect X not available in this build"), never a placeholder result. Each effect
+imports its model's module when it is built, so a scene loads only the models it uses.
 
-Order of evaluation in a step (:data:`railcontact.scene.EFFECTS`): the friction coefficient
-(velocity-dependent friction), the normal contact (Hertz, always), the creep forces, then the
-effects that act on them.
+Order of evaluation in a step: the normal contact (Hertz, always), then the effects the scene
+switches on in the order of the registry :data:`railcontact.scene.EFFECTS`, which scene
+validation reads too: non-steady correction, creep forces, velocity-dependent friction,
+roughness, corrugation, wear (then the non-steady correction's ``finish`` step). An effect that
+*replaces* another (registry field ``replaces``) is evaluated in its place: with velocity
+friction or roughness on, Carter's force is not computed (:attr:`Pipeline.replaced`).
 
 The non-steady correction (:class:`NonSteady`) runs just before the creep effects: it replaces
 the creepage fields of the :class:`ContactPoint` by its relaxed creepages, so every creep-force
@@ -31,19 +35,15 @@ from __future__ import annotations
 
 import cmath
 import functools
-import importlib
 import math
 import operator
 
-from .scene import SceneError
+from .scene import EFFECTS, POLACH_KEYS, SceneError
 
 __all__ = ["ContactPoint", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
            "Corrugation", "Wear", "NonSteady", "Roughness",
            "Pipeline", "build_pipeline", "EffectUnavailable", "NOT_ESTIMATED",
            "table_error_estimate", "wear_series_degree", "checked_steps"]
-
-_PACKAGE = __name__.rpartition(".")[0]     # "railcontact", or the FMU's bundled copy's name
-
 
 class EffectUnavailable(SceneError):
     """The scene asks for an effect whose model is not part of this build."""
@@ -100,20 +100,13 @@ def table_error_estimate(table):
     return float(math.hypot(*errors))
 
 
-def _import(module, effect):
-    try:
-        return importlib.import_module(f"{_PACKAGE}.{module}")
-    except ImportError as exc:
-        raise EffectUnavailable(f"effect {effect} not available in this build (module "
-                                f"railcontact.{module} is missing: {exc})") from None
-
-
 def _load_table(name, tables_dir, effect):
     """The shipped table ``<name>.nc`` (:class:`railcontact.tables.Table`) for ``effect``:
     from ``tables_dir`` (the FMU's resources) if given, else
     :func:`railcontact.tables.default_table_path`; a missing or unreadable file is
     :class:`EffectUnavailable`."""
-    tables = _import("tables", f"{effect} (table)")
+    from . import tables
+
     try:
         path = tables.default_table_path(name, directory=tables_dir)
         return tables.Table.from_file(path, expected_name=name)
@@ -157,8 +150,10 @@ class _ResponseTable:
             (float(a["nodes"][0]), float(a["nodes"][-1])) for a in self.table.axes]
         self._eval = self.table.spline.evaluate_point
         self._warn = warn if warn is not None else (lambda key, msg: None)
-        self._corrugation = _import("corrugation", effect)
-        self._wear = _import("wear", effect)
+        from . import corrugation, wear
+
+        self._corrugation = corrugation
+        self._wear = wear
         acc = self.table.accuracy()
         #: Recorded max error of each variable read (name -> float), from the file.
         self.max_abs_error = {v: acc[v]["max_abs_error"] for v in _RESPONSE_VARIABLES}
@@ -270,14 +265,16 @@ class NormalContact(_Effect):
         geo = scene.geometry
         self._line = geo["kind"] == "line"
         if self._line:
-            hertz = _import("hertz", "normal contact (Hertz 2-D)")
+            from . import hertz
+
             a1, p1 = hertz.hertz_2d(1.0, geo["radius"], scene.youngs_modulus,
                                     scene.poisson_ratio)
             self._a1, self._p1 = float(a1), float(p1)
             self._width = geo["contact_width"]
             self._fixed = False
         elif geo["kind"] == "curvatures":
-            hertz = _import("hertz", "normal contact (Hertz)")
+            from . import hertz
+
             a1, b1, p1 = hertz.hertz_3d(1.0, geo["curvature_longitudinal"],
                                         geo["curvature_lateral"], scene.youngs_modulus,
                                         scene.poisson_ratio)
@@ -370,7 +367,8 @@ class Creep3D(_Effect):
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
         self._warn = warn if warn is not None else (lambda key, msg: None)
         self._aux_args = None
-        creep3d = _import("creep3d", f"creep ({self.source})")
+        from . import creep3d
+
         self._solve = creep3d.creep_solution_3d
         self._spin_coefficient = creep3d.spin_coefficient
         # scalar paths (plain floats, no numpy per call): the inputs are range-checked by the
@@ -382,14 +380,15 @@ class Creep3D(_Effect):
         self._table = None
         self._exact = self.method == "exact"
         self._comparison = self.method in creep3d.COMPARISON_METHODS
-        polach_keys = _import("scene", "creep").POLACH_KEYS
+        polach_keys = POLACH_KEYS
         self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
                         in polach_keys.items()}
         #: Output ``creep_table_error_estimate``: :func:`table_error_estimate` of the table in
         #: use (read once here), :data:`NOT_ESTIMATED` for the analytic source.
         self.table_error_estimate = NOT_ESTIMATED
         if self.source == "table":
-            tables = _import("tables", "creep (table)")
+            from . import tables
+
             if self.method not in ("modified_strip", "exact"):
                 raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
                                  f"with source = 'table' (the shipped creep tables); got "
@@ -522,7 +521,8 @@ class Creep2D(_Effect):
 
     def __init__(self, scene, **_):
         super().__init__()
-        carter = _import("carter", "creep (Carter 2-D)")
+        from . import carter
+
         if scene.effects["creep"]["source"] != "analytic":
             raise EffectUnavailable("effect creep (table) not available in this build for "
                                     "method 'carter' (no Carter table is shipped; the closed "
@@ -596,8 +596,10 @@ class VelocityFriction(_Effect):
 
     def __init__(self, scene, tables_dir=None, warn=None, **_):
         super().__init__()
-        self._friction = _import("friction", "velocity_friction")
-        self._carter = _import("carter", "velocity_friction")
+        from . import carter, friction
+
+        self._friction = friction
+        self._carter = carter
         # plain-float paths of normalised_inputs, step_law_creep_force_normalised and
         # carter_stick_ratio (the same operations; inputs range-checked by the scene and the
         # slave, as they assume)
@@ -669,12 +671,20 @@ class VelocityFriction(_Effect):
         return vals.item(self._i_force), stick
 
     def step(self, c):
+        # (in place of Creep2D, which the pipeline does not build: its outputs are set here)
         self.calls += 1
         mu0 = c.friction_coefficient
         c.friction_iteration_residual = NOT_ESTIMATED
         c.friction_table_error_estimate = self.table_error_estimate
+        c.Fy = 0.0
+        c.creep_within_validity = c.creepage_lateral == 0.0 and c.spin == 0.0
         if c.normal_force <= 0.0 or mu0 <= 0.0:
-            return                       # Creep2D already gave the no-force answer
+            # no contact, or no friction: no force; full stick without contact or creepage,
+            # else full slip (Carter's answer, Creep2D)
+            c.Fx = 0.0
+            stick = 1.0 if c.normal_force <= 0.0 or c.creepage_longitudinal == 0.0 else 0.0
+            c.r_a0 = c.stick_area_fraction = c.stick_width_ratio = stick
+            return
         n_line = c.normal_force / self._width
         chi, _, force_scale, m, kap = self._normalised(
             c.creepage_longitudinal, n_line, self._radius, self._e, self._nu, mu0,
@@ -720,9 +730,10 @@ class Corrugation(_Effect):
     (closed forms). It replaces ``contact_half_width`` (a), sets ``patch_shift`` (Delta) and the
     longitudinal force ``Fx = -sign(xi) |T| contact_width`` (T opposes the creepage). With the
     wear effect on it also gives the wear per passage at the material point under the contact
-    (linearised, Eq. (4.94)). ``corrugation_amplitude`` is |Z| of the first listed harmonic.
-    Condition (4.2) (no loss of contact) is checked at build time for the initial surface.
-    The surface harmonics are internal state (the wear effect may evolve them).
+    (linearised, Eq. (4.94): :func:`railcontact.wear.corrugated_wear_depth`).
+    ``corrugation_amplitude`` is |Z| of the first listed harmonic. Condition (4.2) (no loss of
+    contact) is checked at build time for the initial surface. The surface harmonics are
+    internal state (the wear effect may evolve them).
 
     Accuracy: the contact itself (both methods) is computed from closed forms (the Chebyshev
     series of the contact distributions summed through Bessel functions, Newton to 1e-13): no
@@ -756,7 +767,8 @@ class Corrugation(_Effect):
 
     def __init__(self, scene, wear=None, tables_dir=None, warn=None, **_):
         super().__init__()
-        module = _import("corrugation", "corrugation")
+        from . import corrugation as module
+
         opts = scene.effects["corrugation"]
         self.source = opts["source"]
         geo = scene.geometry
@@ -774,6 +786,12 @@ class Corrugation(_Effect):
         self._radius, self._width = geo["radius"], geo["contact_width"]
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
         self._wear = wear
+        if wear is not None:
+            from .wear import _corrugated_wear_depth_scalar
+
+            # wear per passage at the material point under the contact (wear.corrugated_wear_depth
+            # on floats; the wear module depends on the contact module, not the other way round)
+            self._wear_depth_scalar = _corrugated_wear_depth_scalar
         self._series = wear is not None and wear.wear_model in ("material_point",
                                                                  "patch_coordinate")
         self._table = None
@@ -803,7 +821,9 @@ class Corrugation(_Effect):
         self._table = _ResponseTable(tables_dir, "corrugation", warn)
         self._comp = 4.0 * (1.0 - self._nu ** 2) / (math.pi * self._e)
         self._k = [2.0 * math.pi / lam for lam in self.wavelengths]
-        self._check_no_contact_loss = _import("corrugation", "corrugation").check_no_contact_loss
+        from .corrugation import check_no_contact_loss
+
+        self._check_no_contact_loss = check_no_contact_loss
         # no series is summed at run time unless the wear effect's own coefficients are
         # analytic (growth rate, evolution)
         self._series = self._series and wear.source == "analytic"
@@ -863,18 +883,17 @@ class Corrugation(_Effect):
             self._step_table(c)
             return
         wear = self._wear
-        a, d, _, t, depth = self._solve_scalar(
-            c.rail_position, c.normal_force / self._width, self._radius, self._e, self._nu,
-            c.friction_coefficient, c.creepage_longitudinal, self.amplitudes_cos,
-            self.amplitudes_sin, self.wavelengths, self.method,
-            None if wear is None else wear.wear_coefficient,
-            "material_point" if wear is None else wear.wear_model)
+        args = (c.rail_position, c.normal_force / self._width, self._radius, self._e, self._nu,
+                c.friction_coefficient, c.creepage_longitudinal, self.amplitudes_cos,
+                self.amplitudes_sin, self.wavelengths)
+        a, d, _, t = self._solve_scalar(*args, self.method)
         c.contact_half_width = a
         c.patch_shift = d
         xi = c.creepage_longitudinal
         c.Fx = -math.copysign(t, xi) * self._width if xi else 0.0
-        if depth is not None:
-            c.wear_depth_per_passage = depth
+        if wear is not None:
+            c.wear_depth_per_passage = self._wear_depth_scalar(*args, wear.wear_coefficient,
+                                                               wear.wear_model)
 
     def auxiliary(self, c):
         """``corrugation_series_error_estimate`` of the last step (on demand)."""
@@ -921,8 +940,10 @@ class Wear(_Effect):
 
     def __init__(self, scene, tables_dir=None, warn=None, **_):
         super().__init__()
-        self._wear = _import("wear", "wear")
-        self._evolution = _import("evolution", "wear (surface evolution)")
+        from . import evolution, wear
+
+        self._wear = wear
+        self._evolution = evolution
         # plain-float paths of mean_wear and wear_number (the same operations; inputs
         # range-checked by the scene and the slave, r_a0 clipped to [0, 1], as they assume)
         self._mean_wear = self._wear._mean_wear_scalar
@@ -1064,7 +1085,8 @@ class NonSteady(_Effect):
         if opts["source"] != "analytic":       # (scene_from_dict rejects it already)
             raise EffectUnavailable("effect nonsteady (table) not available in this build (the "
                                     "relaxation length is a closed form)")
-        module = _import("nonsteady", "nonsteady")
+        from . import nonsteady as module
+
         self.model = opts["model"]
         self.pseudo_width_ratio = opts["pseudo_width_ratio"]
         self._sigma = module.relaxation_length_function(scene.poisson_ratio,
@@ -1076,7 +1098,8 @@ class NonSteady(_Effect):
         if self._line:
             self._inv_radius = 1.0 / scene.geometry["radius"]
         else:
-            creep3d = _import("creep3d", "nonsteady (3-D)")
+            from . import creep3d
+
             self._coefficients = creep3d._coefficients
             self._method = "strip" if method == "strip" else "modified_strip"
             self._nu = scene.poisson_ratio
@@ -1207,7 +1230,8 @@ class Roughness(_Effect):
             raise EffectUnavailable("effect roughness (table) not available in this build (no "
                                     "roughness table is shipped; the Ch. 6 asperity solution "
                                     "is closed-form or a 1-D root per step)")
-        module = _import("roughness", "roughness")
+        from . import roughness as module
+
         if opts.get("profile_file"):
             key = "effects.roughness.profile_file"
             try:
@@ -1241,7 +1265,10 @@ class Roughness(_Effect):
         self._nt_per_newton = float(module.normalised_load(1.0, self._e, self._nu)) / self._width
 
     def step(self, c):
+        # (in place of Creep2D, which the pipeline does not build: its outputs are set here)
         self.calls += 1
+        c.Fy = 0.0
+        c.creep_within_validity = c.creepage_lateral == 0.0 and c.spin == 0.0
         if not c.normal_force * self._nt_per_newton >= 2.2250738585072014e-308:
             (c.patch_shift, c.gap_curvature, c.gap_skewness,
              c.gap_flatness) = self._local_gap(self.surface, c.rail_position, self._radius,
@@ -1267,12 +1294,17 @@ class Pipeline:
     Attributes
     ----------
     effects : dict
-        Name -> effect object, only those built.
+        Name -> effect object, only those built, in evaluation order.
+    replaced : dict
+        Name of an effect the scene switched on that is not computed -> the effect that supplies
+        its results in its place (registry field ``replaces`` of :data:`railcontact.scene.
+        EFFECTS`).
     """
 
-    def __init__(self, scene, effects):
+    def __init__(self, scene, effects, replaced=None):
         self.scene = scene
         self.effects = effects
+        self.replaced = dict(replaced or {})
         # effects with a ``finish`` step (NonSteady: put the inputs back) end the step
         self._steps = (tuple(e.step for e in effects.values())
                        + tuple(e.finish for e in effects.values() if hasattr(e, "finish")))
@@ -1314,6 +1346,14 @@ class Pipeline:
                                    on_error)
         return functools.partial(step, contact)
 
+    def summary(self):
+        """The effects in evaluation order, each with those it replaces: ``"normal, creep"``,
+        ``"normal, roughness (in place of creep)"``."""
+        def named(name):
+            instead = [r for r, by in self.replaced.items() if by == name]
+            return f"{name} (in place of {', '.join(instead)})" if instead else name
+        return ", ".join(named(name) for name in self.effects)
+
     def calls(self):
         """Effect name -> number of evaluations so far."""
         return {name: e.calls for name, e in self.effects.items()}
@@ -1332,8 +1372,8 @@ class Pipeline:
 # the FMU's per-step call: input pre-check + effects, one Python frame where possible
 # --------------------------------------------------------------------------------------------
 # An FMU step is a few microseconds of Python, so the interpreter overhead (frames, attribute
-# look-ups, float() calls) is a large part of it (issue 6, "Speed": the creep-only table scene
-# at <= 2x a trivial PythonFMU slave's doStep, measured by benchmarks/bench_fmu.py). The
+# look-ups, float() calls) is a large part of it (the target: the creep-only table scene at
+# <= 2x a trivial PythonFMU slave's doStep, measured by benchmarks/bench_fmu.py). The
 # functions below return closures with everything constant bound at build time.
 
 
@@ -1401,7 +1441,8 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
     slope0, half_curv0, z_max = table._slope0, 0.5 * table._curv0, table._z_max
     breaks, coefs = table._pp_breaks, table._pp_coefs
     guard = 1.0 - 2.0**-51
-    creep3d = _import("creep3d", "creep (table)")
+    from . import creep3d
+
     lo, hi = creep3d.MODERATE_MIN, creep3d.MODERATE_MAX
     e_ok = lo <= e_mod <= hi
     memo = {}
@@ -1509,7 +1550,12 @@ def _table_kalker():
 
 
 def build_pipeline(scene, tables_dir=None, warn=None):
-    """Build the effects ``scene`` switches on (and only those).
+    """Build the effects ``scene`` switches on (and only those), in the registry's order.
+
+    The normal contact comes first, then the effects of :data:`railcontact.scene.EFFECTS` that
+    the scene switches on, in that order; an effect that another one replaces (registry field
+    ``replaces``: creep under velocity friction or roughness) is not built, the replacing
+    effect supplies all of its outputs (:attr:`Pipeline.replaced`).
 
     Parameters
     ----------
@@ -1526,45 +1572,50 @@ def build_pipeline(scene, tables_dir=None, warn=None):
     SceneError
         If an effect is not available in this build or its options are invalid.
     """
-    from pathlib import Path
-
-    effects = {"normal": NormalContact(scene, warn=warn)}
     for name in scene.effects:
-        if name not in ("creep", "corrugation", "wear", "velocity_friction", "nonsteady",
-                        "roughness"):
+        if name not in EFFECTS:
             raise EffectUnavailable(f"effect {name} not available in this build")
-    if "creep" in scene.effects:
-        if scene.effects["creep"]["method"] == "carter":
-            effects["creep"] = Creep2D(scene)
-        else:
-            table_path = None
-            if scene.effects["creep"]["source"] == "table" and tables_dir is not None:
-                table_path = Path(tables_dir) / f"{scene.effects['creep']['table']}.nc"
-            effects["creep"] = Creep3D(scene, table_path=table_path, warn=warn)
-    if "velocity_friction" in scene.effects:
-        effects["velocity_friction"] = VelocityFriction(scene, tables_dir=tables_dir, warn=warn)
-    wear = (Wear(scene, tables_dir=tables_dir, warn=warn) if "wear" in scene.effects
-            else None)
-    if "corrugation" in scene.effects:
-        effects["corrugation"] = Corrugation(scene, wear=wear, tables_dir=tables_dir,
-                                             warn=warn)
-        if wear is not None:
-            wear.corrugation = effects["corrugation"]
+    replaced = {victim: name for name in EFFECTS if name in scene.effects
+                for victim in EFFECTS[name].replaces if victim in scene.effects}
+    effects = {"normal": NormalContact(scene, warn=warn)}
+    wear = None
+    for name in EFFECTS:
+        if name not in scene.effects or name in replaced:
+            continue
+        try:
+            if name == "corrugation" and "wear" in scene.effects:
+                # the wear effect first: the corrugated contact sums its coefficients
+                wear = Wear(scene, tables_dir=tables_dir, warn=warn)
+            effect = (wear if name == "wear" and wear is not None
+                      else _build_effect(name, scene, tables_dir, warn, wear))
+        except ImportError as exc:          # a model module missing from this build
+            raise EffectUnavailable(f"effect {name} not available in this build ({exc})"
+                                    ) from None
+        effects[name] = effect
     if wear is not None:
-        effects["wear"] = wear
-    if "nonsteady" in scene.effects:
-        effects = _insert_before(effects, "creep", "nonsteady", NonSteady(scene))
-    if "roughness" in scene.effects:     # after creep: replaces Carter's force
-        effects["roughness"] = Roughness(scene)
-    return Pipeline(scene, effects)
+        wear.corrugation = effects["corrugation"]
+    return Pipeline(scene, effects, replaced)
 
 
-def _insert_before(effects, before, name, effect):
-    """``effects`` with ``name: effect`` inserted just before the key ``before`` (or last)."""
-    out = {}
-    for key, value in effects.items():
-        if key == before:
-            out[name] = effect
-        out[key] = value
-    out.setdefault(name, effect)
-    return out
+def _build_effect(name, scene, tables_dir, warn, wear):
+    """The effect object ``name`` of the registry for ``scene``."""
+    if name == "nonsteady":
+        return NonSteady(scene)
+    if name == "creep":
+        if scene.effects["creep"]["method"] == "carter":
+            return Creep2D(scene)
+        table_path = None
+        if scene.effects["creep"]["source"] == "table" and tables_dir is not None:
+            from pathlib import Path
+
+            table_path = Path(tables_dir) / f"{scene.effects['creep']['table']}.nc"
+        return Creep3D(scene, table_path=table_path, warn=warn)
+    if name == "velocity_friction":
+        return VelocityFriction(scene, tables_dir=tables_dir, warn=warn)
+    if name == "roughness":
+        return Roughness(scene)
+    if name == "corrugation":
+        return Corrugation(scene, wear=wear, tables_dir=tables_dir, warn=warn)
+    if name == "wear":
+        return Wear(scene, tables_dir=tables_dir, warn=warn)
+    raise EffectUnavailable(f"effect {name} not available in this build")

@@ -54,11 +54,11 @@ from __future__ import annotations
 
 from collections import namedtuple
 from functools import lru_cache
-from importlib import resources
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from ._files import package_directory
 from ._validation import check_range
 
 __all__ = ["KalkerCoefficients", "kalker_coefficients", "kalker_table",
@@ -89,7 +89,9 @@ def kalker_table():
     c : ndarray, shape (3, 3, 19)
         ``c[k, j, i]`` = coefficient k (C11, C22, C23) at nu[j], g[i]. [-]
     """
-    text = resources.files("railcontact").joinpath("data/kalker_coefficients.csv").read_text()
+    # (this package's directory now: inside the FMU the bundled copy's current extraction)
+    path = package_directory() / "data" / "kalker_coefficients.csv"
+    text = path.read_text(encoding="utf-8")
     rows = [line.split(",") for line in text.splitlines()
             if line and not line.startswith("#") and not line.startswith("a0_over_b0")]
     # erratum: Nielsen (1998) Appendix B rows a0/b0 = 0.1 and 0.2 are garbled by the OCR

@@ -8,7 +8,8 @@ The command
 
 1. reads and validates the scene (:func:`railcontact.scene.load_scene`);
 2. locates ``WheelRailContact.fmu`` (``--fmu``, else the one at the top of the source checkout)
-   and builds it with ``build_fmu.py`` if it is missing or older than the sources;
+   and builds it with :func:`railcontact.fmu_build.build` (what ``build_fmu.py`` runs) if it is
+   missing or older than the sources;
 3. simulates it with :func:`fmpy.simulate_fmu`, feeding the input signals the scene defines,
    with the scene passed as the FMU parameter ``scene_file``;
 4. writes ``<out>/<scene name>.csv`` (time, inputs, outputs) and ``<out>/<scene name>.png``.
@@ -20,31 +21,18 @@ the key (exit status 2), a failed simulation with exit status 1.
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import sys
 from pathlib import Path
 
 import numpy as np
 
+from . import fmu_build
 from .scene import INPUTS, SceneError, load_scene
 
 __all__ = ["locate_fmu", "simulate_scene", "write_results", "output_units", "plot_layout",
            "plot_results", "VALIDITY_NOTE", "main"]
 
-_SOURCE_ROOT = Path(__file__).resolve().parents[2]   # the checkout (editable install)
 _STATUS = {0: "ok", 1: "warning", 2: "discard", 3: "error", 4: "fatal", 5: "pending"}
-
-
-def _build_module():
-    path = _SOURCE_ROOT / "build_fmu.py"
-    if not path.is_file():
-        raise FileNotFoundError(
-            f"cannot build the FMU: {path} not found (railcontact.run builds the FMU from a "
-            "source checkout; pass --fmu PATH to use a prebuilt WheelRailContact.fmu)")
-    spec = importlib.util.spec_from_file_location("_railcontact_build_fmu", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def locate_fmu(path=None, rebuild=False, verbose=True):
@@ -62,12 +50,12 @@ def locate_fmu(path=None, rebuild=False, verbose=True):
         if not path.is_file():
             raise FileNotFoundError(f"fmu: {str(path)!r} does not exist")
         return path
-    builder = _build_module()
-    target = _SOURCE_ROOT / f"{builder.MODEL_NAME}.fmu"
-    if rebuild or not target.is_file() or builder.fmu_digest(target) != builder.source_hash():
+    target = fmu_build.ROOT / f"{fmu_build.MODEL_NAME}.fmu"
+    if (rebuild or not target.is_file()
+            or fmu_build.fmu_digest(target) != fmu_build.source_hash()):
         if verbose:
             print(f"building {target.name} (sources changed or FMU missing) ...", flush=True)
-        builder.build(_SOURCE_ROOT)
+        fmu_build.build(fmu_build.ROOT)
     return target
 
 

@@ -187,6 +187,8 @@ import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import MappingProxyType
+from typing import NamedTuple
 
 import numpy as np
 
@@ -194,7 +196,7 @@ from ._validation import check_range
 
 __all__ = [
     "SceneError", "Scene", "load_scene", "parse_scene", "scene_from_dict", "EFFECTS",
-    "CREEP_METHODS", "SOURCES", "INPUTS", "INPUT_DEFAULTS", "NoContactWarning",
+    "EffectSpec",    "CREEP_METHODS", "SOURCES", "INPUTS", "INPUT_DEFAULTS", "NoContactWarning",
     "FMU_PARAMETERS", "ParameterSpec", "scene_to_parameters", "parameters_to_scene_dict",
     "DEFAULT_SCENE",
 ]
@@ -208,8 +210,6 @@ class SceneError(ValueError):
     """A scene (TOML text or FMU parameters) is invalid; the message names the key."""
 
 
-#: Effects a scene can switch on, in the order the FMU evaluates them.
-EFFECTS = ("velocity_friction", "nonsteady", "creep", "roughness", "corrugation", "wear")
 #: Creep theories: the 3-D ones of :func:`railcontact.creep3d.creep_force_3d` (elliptic
 #: contact), Kalker's exact theory (``"exact"``, from the shipped table ``creep_exact`` of
 #: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory
@@ -276,17 +276,55 @@ _SECTION_KEYS = {
     "friction": {"friction_coefficient"},
     "simulation": {"start_time", "stop_time", "step_size"},
 }
-_EFFECT_KEYS = {
-    "creep": {"enabled", "method", "source", "spin", "table", *POLACH_KEYS},
-    "corrugation": {"enabled", "source", "method", "wavelengths", "amplitudes_cos",
-                    "amplitudes_sin", "surface_file"},
-    "wear": {"enabled", "source", "wear_coefficient", "wear_model", "evolve", "section_length"},
-    "velocity_friction": {"enabled", "source", "law", "kinetic_friction_coefficient", "kappa",
-                          "series_degree", "tolerance"},
-    "roughness": {"enabled", "source", "wavelengths", "amplitudes_cos", "amplitudes_sin",
-                  "profile_file", "profile_extension"},
-    "nonsteady": {"enabled", "source", "pseudo_width_ratio", "model"},
-}
+
+
+class EffectSpec(NamedTuple):
+    """One effect a scene can switch on: an entry of :data:`EFFECTS`."""
+
+    #: Name: the scene section ``[effects.<name>]`` and the key of the FMU's effect object.
+    name: str
+    #: Keys allowed in ``[effects.<name>]``.
+    keys: frozenset
+    #: Effects whose results this one supplies in their place when both are on: the pipeline
+    #: does not compute those (:func:`railcontact.effects.build_pipeline`).
+    replaces: tuple
+    #: What the effect does to the contact point, in one line.
+    summary: str
+
+
+#: The effects a scene can switch on, in the order the FMU evaluates them (name ->
+#: :class:`EffectSpec`): the one registry that scene validation (allowed sections and keys;
+#: :attr:`Scene.effects` is in this order) and the FMU's pipeline
+#: (:func:`railcontact.effects.build_pipeline`) both read. The normal contact (Hertz) is always
+#: on and comes before all of them; the non-steady correction also has a last step that puts
+#: the input creepages back. An effect that ``replaces`` another is evaluated in its place: with
+#: velocity friction or roughness on, Carter's force (``creep``) is not computed at all.
+EFFECTS = MappingProxyType({spec.name: spec for spec in (
+    EffectSpec("nonsteady", frozenset({"enabled", "source", "pseudo_width_ratio", "model"}), (),
+               "relaxed creepages in place of the input creepages for every later effect "
+               "(Ch. 7); the inputs are put back after the last effect"),
+    EffectSpec("creep", frozenset({"enabled", "method", "source", "spin", "table",
+                                   *POLACH_KEYS}), (),
+               "creep forces and stick measures (3-D theories; Carter on a line contact)"),
+    EffectSpec("velocity_friction", frozenset({"enabled", "source", "law",
+                                               "kinetic_friction_coefficient", "kappa",
+                                               "series_degree", "tolerance"}), ("creep",),
+               "slip-velocity dependent friction (Ch. 5): force and stick ratio in place of "
+               "Carter's"),
+    EffectSpec("roughness", frozenset({"enabled", "source", "wavelengths", "amplitudes_cos",
+                                       "amplitudes_sin", "profile_file",
+                                       "profile_extension"}), ("creep",),
+               "rough rail (Ch. 6): contact half-width, patch shift, force and stick ratio in "
+               "place of Carter's"),
+    EffectSpec("corrugation", frozenset({"enabled", "source", "method", "wavelengths",
+                                         "amplitudes_cos", "amplitudes_sin",
+                                         "surface_file"}), (),
+               "corrugated rail (Ch. 4.2): contact half-width, patch shift and Fx of the "
+               "corrugated contact (creep's stick measures, which wear reads, stay)"),
+    EffectSpec("wear", frozenset({"enabled", "source", "wear_coefficient", "wear_model",
+                                  "evolve", "section_length"}), (),
+               "wear per passage (Ch. 4.3) and, optionally, the surface evolution (Ch. 4.4)"),
+)})
 #: Displacement models of the non-steady correction
 #: (:func:`railcontact.nonsteady.relaxation_length`).
 NONSTEADY_MODELS = ("carter", "johnson")
@@ -602,9 +640,9 @@ def scene_from_dict(data, base_dir=None):
         if section in data:
             _check_keys(section, data[section], keys)
     effects_in = data.get("effects", {})
-    _check_keys("effects", effects_in, set(_EFFECT_KEYS))
+    _check_keys("effects", effects_in, set(EFFECTS))
     for name, opts in effects_in.items():
-        _check_keys(f"effects.{name}", opts, _EFFECT_KEYS[name])
+        _check_keys(f"effects.{name}", opts, EFFECTS[name].keys)
     merged = _merge(DEFAULT_SCENE, data)
 
     meta = merged["scene"]
@@ -645,7 +683,10 @@ def scene_from_dict(data, base_dir=None):
                  "-", 0.0, None)
 
     effects = {}
-    for name, opts in merged["effects"].items():
+    for name in EFFECTS:                      # (the registry's order: Scene.effects keeps it)
+        if name not in merged["effects"]:
+            continue
+        opts = merged["effects"][name]
         enabled = _boolean(f"effects.{name}.enabled", opts.get("enabled", True))
         if not enabled:
             continue

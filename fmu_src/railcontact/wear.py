@@ -59,17 +59,21 @@ References
 
 from __future__ import annotations
 
+import cmath
 import math
 from collections import namedtuple
 
 import numpy as np
 from scipy.special import itj0y0, j0, j1, jv
 
-from ._validation import check_choice, check_range
-from .corrugation import (_TWO_PI, normal_response, solve_normal_exact, solve_stick_zone_exact,
-                          stick_zone_response, tangential_force_response)
+from ._validation import (check_choice, check_corrugated_contact_inputs,
+                          check_load_not_underflowing, check_range)
+from .corrugation import (_TWO_PI, check_no_contact_loss, normal_response, solve_normal_exact,
+                          solve_stick_zone_exact, stick_zone_response, tangential_force_response)
+from .hertz import hertz_2d
 
 __all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
+           "corrugated_wear_depth",
            "linear_response", "LinearResponse",
            "wear_first_harmonic_reference", "wear_first_harmonic_transient",
            "passage_time_response", "wear_first_harmonic_exact", "wear_shape_function"]
@@ -355,7 +359,6 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
     eps = float(check_range("relative_amplitude", relative_amplitude, "-", 0.0, None,
                             lower_closed=False))
     k = _TWO_PI * ratio
-    from .corrugation import check_no_contact_loss
     check_no_contact_loss(eps * k)
     npos = int(n_positions)
     lam = 1.0 / ratio
@@ -635,6 +638,62 @@ def linear_response(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MOD
     return LinearResponse(cd, ca, cs, ct, tau, taus, w, w1, w2, 1.0 - 2.0 * w1)
 
 
+def corrugated_wear_depth(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
+                          friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
+                          wavelengths, wear_coefficient, wear_model=DEFAULT_WEAR_MODEL):
+    r"""Wear per passage at rail points of a corrugated rail, linearised (Eqs. (4.94)-(4.96)).
+
+    ``W(X) = W0 + sum_m Re[(K mu^2 N / a0) w_m (Z_A,m + i Z_B,m) e^{-i k_m X}]`` with
+    ``W0 = K mu^2 N a0/R (1 - r)^2 (1 + r)`` (4.96, :func:`mean_wear`), ``w_m`` =
+    :func:`wear_coefficients` at ``(a0/L_m, r_a0)`` and ``r_a0 = max(a0 - |xi| R/mu, 0)/a0``
+    (Carter's stick ratio of the smooth contact, about which the wear is linearised), at the
+    *material points* X (the wear one passage leaves at that rail point). The contact on the
+    corrugated rail itself is :func:`railcontact.corrugation.corrugated_contact`, which takes the
+    same first ten arguments.
+
+    Parameters
+    ----------
+    rail_position : array_like
+        Rail point(s) X. [m]
+    normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage
+        As in :func:`railcontact.corrugation.corrugated_contact`: N per unit length > 0 [N/m],
+        R > 0 [m], E > 0 [Pa], nu in [0, 0.5) [-], mu > 0 [-], longitudinal creepage [-].
+    amplitudes_cos, amplitudes_sin, wavelengths : array_like, shape (M,)
+        Surface harmonics Z_A,m, Z_B,m of (4.1) [m] and their wavelengths L_m > 0 [m];
+        condition (4.2) must hold.
+    wear_coefficient : float
+        K of (4.74), >= 0. [m^2/N]
+    wear_model : str
+        One of :data:`WEAR_MODELS` (default "material_point").
+
+    Returns
+    -------
+    ndarray
+        W(X), shape of ``rail_position``. [m]
+
+    Raises
+    ------
+    ValueError
+        Bad input (naming it), or condition (4.2) violated.
+    """
+    n_load, big_r, e_mod, nu, mu, xi, za, zb, lam = check_corrugated_contact_inputs(
+        normal_load, radius, youngs_modulus, poisson_ratio, friction_coefficient, creepage,
+        amplitudes_cos, amplitudes_sin, wavelengths)
+    kw = float(check_range("wear_coefficient", wear_coefficient, "m^2/N", 0.0, None))
+    check_choice("wear_model", wear_model, WEAR_MODELS)
+    x = check_range("rail_position", rail_position, "m")
+    k = _TWO_PI / lam
+    check_no_contact_loss(k * k * big_r * np.hypot(za, zb))
+    check_load_not_underflowing(n_load, e_mod, nu)
+    a0 = float(hertz_2d(n_load, big_r, e_mod, nu).a0)
+    r = max(a0 - xi * big_r / mu, 0.0) / a0
+    w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
+    cw = wear_coefficients(a0 / lam, r, wear_model=wear_model)
+    zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])
+    wear = w0 + np.sum(np.real(kw * mu * mu * n_load / a0 * cw * zc), -1)
+    return np.reshape(wear, np.shape(x))
+
+
 # ---------------------------------------------------------------------------------------------
 # Scalar path (plain Python floats): the FMU's per-step call
 # ---------------------------------------------------------------------------------------------
@@ -771,3 +830,24 @@ def _wear_coefficients_scalar(a0_over_wavelength, stick_ratio, wear_model=DEFAUL
     if wear_model == "material_point":
         integral = integral + beta * beta * j0(beta) * integral0
     return (2.0 * np.conj(integral)).tolist()
+
+
+def _corrugated_wear_depth_scalar(rail_position, normal_load, radius, youngs_modulus,
+                                  poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
+                                  amplitudes_sin, wavelengths, wear_coefficient,
+                                  wear_model=DEFAULT_WEAR_MODEL):
+    """:func:`corrugated_wear_depth` at one rail position for plain floats and lists (inputs
+    assumed in range as for :func:`_wear_coefficients_scalar`, with N, mu > 0 and condition
+    (4.2) holding; the FMU's corrugation effect checks them): the same operations on floats,
+    with the coefficients of :func:`_wear_coefficients_scalar`. [m]"""
+    x, n_load, big_r, nu, mu = (rail_position, normal_load, radius, poisson_ratio,
+                                friction_coefficient)
+    a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * youngs_modulus))
+    r = max(a0 - abs(creepage) * big_r / mu, 0.0) / a0
+    kw = wear_coefficient
+    wear = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
+    cw = _wear_coefficients_scalar([a0 / lam for lam in wavelengths], r, wear_model)
+    scale = kw * mu * mu * n_load / a0
+    for za, zb, lam, c in zip(amplitudes_cos, amplitudes_sin, wavelengths, cw):
+        wear += (scale * c * (complex(za, zb) * cmath.exp(-1j * (_TWO_PI / lam) * x))).real
+    return wear
