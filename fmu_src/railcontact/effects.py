@@ -394,7 +394,7 @@ class Creep3D(_Effect):
                                  f"with source = 'table' (the shipped creep tables); got "
                                  f"{self.method!r}")
             if self._exact:
-                reader = _import("exact_table", "creep (table)").ExactCreepTable
+                from .exact_table import ExactCreepTable as reader
             else:
                 reader = tables.CreepTable
             try:
