@@ -199,7 +199,9 @@ def test_slave_calls_only_switched_on_effects(counted):
 
 
 def test_slave_creep_scene_calls_creep_once_per_step(counted):
-    slave = _run_slave(_slave(), 25)
+    slave = _slave()
+    slave.creep_method = "modified_strip"     # the analytic scalar path is counted
+    slave = _run_slave(slave, 25)
     assert slave._pipeline.calls() == {"normal": 26, "creep": 26}
     # Hertz once at build (N^(1/3) scaling afterwards), creep once per step + once at init
     assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "_creep_solution_scalar": 26}
@@ -486,7 +488,8 @@ def _file_max_error(name, variable):
 
 
 def test_table_error_estimate_is_the_file_attribute():
-    pipe = build_pipeline(parse_scene("[effects.creep]\nsource = 'table'\n"))
+    pipe = build_pipeline(parse_scene(
+        "[effects.creep]\nmethod = 'modified_strip'\nsource = 'table'\n"))
     c = _contact(normal_force=7e4, creepage_longitudinal=1e-3, friction_coefficient=0.3)
     pipe.step(c)
     expected = _file_max_error("creep_modified_strip", "force_ratio")
@@ -504,7 +507,8 @@ def test_exact_table_error_estimate_is_the_file_attributes():
     assert c.creep_table_error_estimate == pytest.approx(expected, rel=1e-15)
 
 
-@pytest.mark.parametrize("text", ["", "[effects.creep]\nmethod = 'she'\n",
+@pytest.mark.parametrize("text", ["[effects.creep]\nmethod = 'modified_strip'\n",
+                                  "[effects.creep]\nmethod = 'she'\n",
                                   "[effects.creep]\nenabled = false\n", LINE])
 def test_analytic_creep_error_is_not_estimated(text):
     pipe = build_pipeline(parse_scene(text))
@@ -620,10 +624,10 @@ from railcontact.scene import parse_scene  # noqa: E402
 
 
 @pytest.mark.parametrize("toml", [
-    "[effects.creep]\nsource = 'table'\n",
-    "[effects.creep]\nsource = 'table'\nspin = false\n",
+    "[effects.creep]\nmethod = 'modified_strip'\nsource = 'table'\n",
+    "[effects.creep]\nmethod = 'modified_strip'\nsource = 'table'\nspin = false\n",
     "[geometry]\nkind = 'semi_axes'\nsemi_axis_longitudinal = 6e-3\nsemi_axis_lateral = 4e-3\n"
-    "[effects.creep]\nsource = 'table'\n"])
+    "[effects.creep]\nmethod = 'modified_strip'\nsource = 'table'\n"])
 def test_fused_table_step_equals_effect_steps(toml):
     """The fused normal + table-creep step (Pipeline.checked_step) is bit-identical to the two
     effects' own steps, counters and lazy outputs included; bad inputs change nothing."""

@@ -30,9 +30,10 @@ def test_bundled_scenes_load(path):
 def test_defaults_fill_missing_sections():
     scene = parse_scene("")
     assert scene.youngs_modulus == DEFAULT_SCENE["material"]["youngs_modulus"]
-    assert scene.effects == {"creep": {"enabled": True, "method": "modified_strip",
-                                       "source": "analytic", "spin": True,
-                                       "table": "creep_modified_strip"}}
+    # the default creep method: Kalker's exact theory from its table
+    assert scene.effects == {"creep": {"enabled": True, "method": "exact",
+                                       "source": "table", "spin": True,
+                                       "table": "creep_exact"}}
     assert scene.geometry["kind"] == "curvatures"
     assert scene.inputs == {}
 
@@ -58,7 +59,8 @@ def test_effect_switched_off_is_absent():
     ("[effects.creep]\nsource = 'lookup'\n", "effects.creep.source must be one of"),
     ("[effects.creep]\nspin = 1\n", "effects.creep.spin must be true or false"),
     ("[effects.magic]\n", "effects: unknown key 'magic'"),
-    ("[effects.creep]\nmethod = 'exact'\n", "effects.creep.source must be 'table' with method"),
+    ("[effects.creep]\nmethod = 'exact'\nsource = 'analytic'\n",
+     "effects.creep.source must be 'table' with method"),
     ("[effects.creep]\nenabled = false\n[effects.corrugation]\nwavelengths = [0.05]\n"
      "[geometry]\nkind = 'line'\n", "effects.creep.enabled must be true"),
     ("[effects.wear]\nwear_coefficient = 1e-9\n", "effects.wear needs geometry.kind = 'line'"),
@@ -421,7 +423,8 @@ def test_missing_table_is_a_scene_error_at_load():
                                          r"found in \[.*\]; build it with"):
         parse_scene("[effects.creep]\nsource = 'table'\ntable = 'no_such_table'\n")
     # the analytic source does not read the table: no check
-    assert parse_scene("[effects.creep]\ntable = 'no_such_table'\n").effects["creep"]
+    assert parse_scene("[effects.creep]\nmethod = 'modified_strip'\ntable = 'no_such_table'\n"
+                       ).effects["creep"]
 
 
 def test_input_signals_without_normal_force_warn():

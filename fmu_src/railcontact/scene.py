@@ -261,7 +261,7 @@ DEFAULT_SCENE = {
                  "curvature_lateral": 3.3, "semi_axis_longitudinal": 6e-3,
                  "semi_axis_lateral": 5e-3, "radius": 0.3, "contact_width": 0.02},
     "friction": {"friction_coefficient": 0.3},
-    "effects": {"creep": {"enabled": True, "method": "modified_strip", "source": "analytic",
+    "effects": {"creep": {"enabled": True, "method": "exact", "source": "table",
                           "spin": True, "table": "creep_modified_strip"}},
     "simulation": {"start_time": 0.0, "stop_time": 1.0, "step_size": 1e-3},
     "inputs": {},
@@ -692,8 +692,12 @@ def scene_from_dict(data, base_dir=None):
             continue
         opts = dict(opts)
         opts["enabled"] = True
-        opts["source"] = _choice(f"effects.{name}.source", opts.get("source", "analytic"),
-                                 SOURCES)
+        # the exact theory comes from its table; every other method's default source is
+        # the closed form (a scene that names only a method gets that method's usual source)
+        source = opts.get("source", "analytic")
+        if name == "creep" and "source" not in data.get("effects", {}).get("creep", {}):
+            source = "table" if opts.get("method") == "exact" else "analytic"
+        opts["source"] = _choice(f"effects.{name}.source", source, SOURCES)
         if name == "creep":
             opts["method"] = _choice("effects.creep.method", opts.get("method"),
                                      CREEP_METHODS)
@@ -1185,14 +1189,24 @@ def parameters_to_scene_dict(values, base=None, only_changed=True):
         it (a parameter left at its start value does not touch the scene).
     """
     out = copy.deepcopy(DEFAULT_SCENE if base is None else base)
+    if base is None:
+        # creep_source and creep_table at their start values mean "the method's own"
+        # (the exact theory from creep_exact, the closed form otherwise): not set here
+        for key in ("source", "table"):
+            out["effects"]["creep"].pop(key, None)
     for spec in FMU_PARAMETERS:
         if spec.name not in values:
             continue
         value = values[spec.name]
-        if base is not None and only_changed and value == _default(spec):
+        if (base is not None or spec.name in _METHOD_DEFAULTED) and only_changed \
+                and value == _default(spec):
             continue
         _set_path(out, spec.path, value)
     return out
+
+
+#: FMU parameters whose start value defers to the creep method's own default.
+_METHOD_DEFAULTED = ("creep_source", "creep_table")
 
 
 def scene_to_parameters(scene_dict=None):
