@@ -27,8 +27,9 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
     nonsteady     ch. 7: non-steady 2-D rolling, relaxation
     kalker        Kalker's coefficient table and asymptotes
     tables        the C2 lookup tables (Table, CreepTable, ExactCreepTable, default_table_path)
-    reference     independent discretised half-space solvers (halfspace2d, rolling3d);
-                  used by tests and the accuracy report, never by the FMU
+    reference     independent discretised half-space solvers (halfspace2d, rolling3d) and the
+                  brute-force wear checks (wear_direct); used by tests and the accuracy
+                  report, never by the FMU
     scene, effects, run   the FMU's scenes, its effect pipeline, and
                   ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
     fmu_build     builds WheelRailContact.fmu from a checkout (``python build_fmu.py``)
