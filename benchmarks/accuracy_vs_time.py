@@ -556,6 +556,7 @@ def family_3d(quick, workdir):
 # =============================================================================================
 def family_wear(quick):
     from railcontact import wear
+    from railcontact.reference import wear_direct
 
     ratio, r = 0.1, 0.5
     fam = Family("Corrugation & wear", f"wear coefficient w (first harmonic), a0/L = {ratio}, "
@@ -592,7 +593,7 @@ def family_wear(quick):
                             abs(w["material_point"] - w_ref) / scale, t1))
     for ne in ([50] if quick else [50, 100, 200, 400, 800]):
         t0 = time.perf_counter()
-        w = wear.wear_first_harmonic_reference(ratio, r, 0.01, n_elements=ne)
+        w = wear_direct.wear_first_harmonic_reference(ratio, r, 0.01, n_elements=ne)
         t1 = time.perf_counter() - t0
         fam.rows.append(Row(fam.name, "direct wear integral, half-space solver (4.74)",
                             f"{ne} elements x 16 positions",

@@ -26,6 +26,7 @@ from railcontact import corrugation as cg  # noqa: E402
 from railcontact import evolution as ev  # noqa: E402
 from railcontact import filters as fl  # noqa: E402
 from railcontact import wear  # noqa: E402
+from railcontact.reference.wear_direct import wear_first_harmonic_reference  # noqa: E402
 
 RATIOS = np.linspace(1e-3, 0.5, 400)
 STICK = (0.1, 0.3, 0.5, 0.7, 0.9)
@@ -241,8 +242,8 @@ def fig_wear_models(out, reference=False):
                 ls=":", label="(4.92) with consistent kinematics")
         if reference:
             pts = np.array([2.5, 4.0, 6.0, 10.0, 16.0])
-            ref = [wear.wear_first_harmonic_reference(1 / p, r, 0.05, n_positions=16,
-                                                      n_elements=300) for p in pts]
+            ref = [wear_first_harmonic_reference(1 / p, r, 0.05, n_positions=16,
+                                                 n_elements=300) for p in pts]
             ax.plot(pts, [q["material_point"].real for q in ref], "o", color="C0",
                     label="half-space solver, (4.74) at material points")
             ax.plot(pts, [q["patch_coordinate"].real for q in ref], "s", mfc="none",

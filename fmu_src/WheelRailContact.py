@@ -34,7 +34,7 @@ from pythonfmu.enums import Fmi2Initial, Fmi2Status
 
 # (railcontact.fmu_build rewrites these two imports to the bundled copy's unique name)
 import railcontact as _rc
-from railcontact import effects as _effects, scene as _scene
+from railcontact import effects as _effects, fmu_parameters as _parameters, scene as _scene
 
 _PACKAGE = _rc.__name__   # "railcontact", or the bundled copy's name inside the FMU
 
@@ -268,8 +268,8 @@ class WheelRailContact(Fmi2Slave):
             self.register_variable(String(name, causality=Fmi2Causality.parameter,
                                           variability=Fmi2Variability.fixed,
                                           description=desc))
-        defaults = _scene.scene_to_parameters()
-        for spec in _scene.FMU_PARAMETERS:
+        defaults = _parameters.scene_to_parameters()
+        for spec in _parameters.FMU_PARAMETERS:
             setattr(self, spec.name, defaults[spec.name])
             cls = {"real": Real, "integer": Integer, "string": String,
                    "boolean": Boolean}[spec.kind]
@@ -335,7 +335,7 @@ class WheelRailContact(Fmi2Slave):
     # ---------------------------------------------------------------------------------------
     def _parameter_values(self):
         values = {name: getattr(self, name) for name, _ in _SCENE_PARAMETERS}
-        for spec in _scene.FMU_PARAMETERS:
+        for spec in _parameters.FMU_PARAMETERS:
             values[spec.name] = getattr(self, spec.name)
         return values
 
@@ -363,7 +363,7 @@ class WheelRailContact(Fmi2Slave):
                 base = _scene.tomllib.loads(values["scene_toml"])
             except _scene.tomllib.TOMLDecodeError as exc:
                 raise _scene.SceneError(f"scene_toml: not valid TOML: {exc}") from None
-        data = _scene.parameters_to_scene_dict(values, base=base)
+        data = _parameters.parameters_to_scene_dict(values, base=base)
         try:
             return _scene.scene_from_dict(data, base_dir=base_dir)
         except _scene.SceneError as exc:
@@ -617,7 +617,7 @@ except NameError:
 
 def _name_parameter(message):
     """Prefix a scene error with the FMU parameter that sets the offending key, if any."""
-    for spec in _scene.FMU_PARAMETERS:
+    for spec in _parameters.FMU_PARAMETERS:
         if message.startswith(".".join(spec.path) + " "):
             return f"parameter {spec.name} ({message})"
     return message

@@ -6,9 +6,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from railcontact.scene import (DEFAULT_SCENE, FMU_PARAMETERS, INPUTS, SceneError, load_scene,
-                               parameters_to_scene_dict, parse_scene, scene_from_dict,
-                               scene_to_parameters)
+from railcontact.fmu_parameters import (FMU_PARAMETERS, parameters_to_scene_dict,
+                                        scene_to_parameters)
+from railcontact.scene import (DEFAULT_SCENE, INPUTS, SceneError, load_scene, parse_scene,
+                               scene_from_dict)
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))

@@ -27,10 +27,12 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
     nonsteady     ch. 7: non-steady 2-D rolling, relaxation
     kalker        Kalker's coefficient table and asymptotes
     tables        the C2 lookup tables (Table, CreepTable, ExactCreepTable, default_table_path)
-    reference     independent discretised half-space solvers (halfspace2d, rolling3d);
-                  used by tests and the accuracy report, never by the FMU
+    reference     independent discretised half-space solvers (halfspace2d, rolling3d) and the
+                  brute-force wear checks (wear_direct); used by tests and the accuracy
+                  report, never by the FMU
     scene, effects, run   the FMU's scenes, its effect pipeline, and
                   ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
+    fmu_parameters   the FMU's parameters and the scene keys they set
     fmu_build     builds WheelRailContact.fmu from a checkout (``python build_fmu.py``)
 Submodules other than polynomial, roughness, friction and nonsteady are imported on first
 attribute access (``railcontact.wear``) or with ``import railcontact.wear``.
@@ -76,7 +78,8 @@ __version__ = "0.1.0"
 #: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
 #: pays for at load time).
 _LAZY_SUBMODULES = ("corrugation", "wear", "evolution", "filters", "kalker", "tables",
-                    "reference", "scene", "effects", "run", "fmu_build")
+                    "reference", "scene", "effects", "run", "fmu_parameters",
+                    "fmu_build")
 
 __all__ = [
     # chapter 2: Hertz, Carter, Kalker, 3-D creep
@@ -90,7 +93,8 @@ __all__ = [
     "strip_force_function", "ExactCreepSolution3D", "RollingConvergenceError",
     # submodules
     "polynomial", "corrugation", "wear", "evolution", "filters", "friction", "roughness",
-    "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run", "fmu_build",
+    "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run", "fmu_parameters",
+    "fmu_build",
 ]
 
 
