@@ -396,7 +396,8 @@ def family_3d(quick, workdir):
     from railcontact.creep3d import METHODS
     from railcontact.reference.rolling3d import solve_rolling_3d
     from railcontact.exact_table import ExactCreepTable
-    from railcontact.tables import CreepTable, tables_directory
+    from railcontact.strip_table import CreepTable
+    from railcontact.tables import tables_directory
 
     cases = _contact_cases(quick)
     arr = {k: np.array([c[k] for c in cases]) for k in ("xi", "eta", "phi", "n", "a", "b", "e",

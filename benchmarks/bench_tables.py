@@ -21,7 +21,8 @@ import numpy as np
 
 from railcontact import creep_force_3d
 from railcontact.exact_table import ExactCreepTable
-from railcontact.tables import CreepTable, Table, tables_directory
+from railcontact.strip_table import CreepTable
+from railcontact.tables import Table, tables_directory
 
 
 def per_call(fn, number):

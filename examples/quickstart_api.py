@@ -2,7 +2,8 @@
 import numpy as np
 
 import railcontact as rc
-from railcontact.tables import CreepTable, default_table_path
+from railcontact.strip_table import CreepTable
+from railcontact.tables import default_table_path
 
 # Hertz contact of a wheel on a rail: 100 kN, curvatures A', B' [1/m] -> semi-axes [m], p0 [Pa]
 a0, b0, p0 = rc.hertz_3d(normal_load=100e3, curvature_longitudinal=1.087, curvature_lateral=1.667,

@@ -33,7 +33,9 @@ needs_table = pytest.mark.skipif(not _table_ok(), reason="tables/creep_exact.nc 
 
 @pytest.fixture(scope="module")
 def table():
-    return ExactCreepTable.from_file(TABLE)
+    from railcontact.creep3d import load_exact_table
+
+    return load_exact_table(TABLE)          # with the solver beyond the table's axes
 
 
 CONTACT = dict(normal_load=1e5, a0=6e-3, b0=4e-3, youngs_modulus=210e9, poisson_ratio=0.28,
@@ -287,13 +289,19 @@ def test_jacobian_against_finite_differences_of_the_solver(table):
 
 @needs_table
 def test_beyond_the_spin_axis_the_solver_answers(table):
-    """|tau| > 20: the documented fallback, the solver at the table's setting."""
+    """|tau| > 20: the documented fallback, the solver at the table's setting; without a
+    solver attached, a ValueError naming the spin and the table's range."""
     from railcontact import creep_solution_3d
 
     args = _args(1e-4, 0.0, 40.0)
     got = table.creep_solution_3d(*args, sensitivities=False)
     want = creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True)
     assert got.tx == want.tx and got.ty == want.ty and got.spin_moment == want.spin_moment
+    bare = ExactCreepTable.from_file(TABLE)
+    with pytest.raises(ValueError, match=r"spin must give a spin coordinate \|tau\| <= 20"):
+        bare.creep_force_3d(*args)
+    with pytest.raises(ValueError, match=r"a0/b0 must be in \[0.1, 10\]"):
+        bare.creep_force_3d(*_args(1e-4, 0.0, 0.0, a0=2e-2, b0=1e-3))
 
 
 @needs_table

@@ -38,7 +38,8 @@ from railcontact.wear import corrugated_wear_depth, mean_wear, wear_coefficients
 from railcontact import roughness as rough_mod  # noqa: E402
 from railcontact.scene import INPUTS, load_scene  # noqa: E402
 from railcontact.exact_table import ExactCreepTable  # noqa: E402
-from railcontact.tables import CreepTable, Table, tables_directory  # noqa: E402
+from railcontact.strip_table import CreepTable  # noqa: E402
+from railcontact.tables import Table, tables_directory  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = sorted(glob.glob(str(ROOT / "examples" / "scenes" / "*.toml")))

@@ -23,7 +23,7 @@ from railcontact import corrugation as cg
 from railcontact import friction as fr
 from railcontact import polynomial as P
 from railcontact.creep3d import saturation_creepage_3d, strip_force_function
-from railcontact.tables import CreepTable
+from railcontact.strip_table import CreepTable
 
 E, NU, R, MU = 210e9, 0.28, 0.5, 0.3
 N_LINE = 1e6                                     # [N/m]

@@ -38,7 +38,7 @@ from railcontact import polynomial as P
 from railcontact.creep3d import METHODS, strip_force_function
 from railcontact.evolution import growth_factor
 from railcontact.filters import filter_solution
-from railcontact.tables import CreepTable
+from railcontact.strip_table import CreepTable
 from railcontact.wear import wear_coefficients
 
 E, NU = 210e9, 0.28

@@ -15,7 +15,8 @@ import pytest
 from scipy.interpolate import NdBSpline
 
 from railcontact import creep_force_3d, creep_solution_3d, kalker_coefficients
-from railcontact.tables import (CreepTable, Table, TableFileError, TensorSpline,
+from railcontact.strip_table import CreepTable
+from railcontact.tables import (Table, TableFileError, TensorSpline,
                                 bspline_knots, default_table_path, fit_tensor_bspline,
                                 tables_directory)
 
@@ -359,7 +360,8 @@ def test_subnormal_friction_coefficient_gives_zero_or_clear_error():
     theory's value), no ZeroDivisionError (found by the FMU speed work; the exact-table
     reader's case is in tests/test_exact_table.py)."""
     from railcontact import creep_force_3d
-    from railcontact.tables import CreepTable, default_table_path
+    from railcontact.strip_table import CreepTable
+    from railcontact.tables import default_table_path
 
     args = (1e-3, 1e-4, 0.1, 1e5, 6e-3, 9e-3, 210e9, 0.28, 5e-324)
     strip = CreepTable.from_file(default_table_path("creep_modified_strip"))

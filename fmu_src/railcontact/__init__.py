@@ -26,7 +26,9 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
     roughness     ch. 6: one asperity, two patches, rough rail
     nonsteady     ch. 7: non-steady 2-D rolling, relaxation
     kalker        Kalker's coefficient table and asymptotes
-    tables        the C2 lookup tables (Table, CreepTable, ExactCreepTable, default_table_path)
+    tables        the C2 spline tables: fitting, evaluation, files (Table, default_table_path)
+    strip_table   the modified strip theory's table (CreepTable)
+    exact_table   Kalker's exact theory's table (ExactCreepTable; creep3d.load_exact_table)
     reference     independent discretised half-space solvers (halfspace2d, rolling3d) and the
                   brute-force wear checks (wear_direct); used by tests and the accuracy
                   report, never by the FMU
@@ -78,6 +80,7 @@ __version__ = "0.1.0"
 #: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
 #: pays for at load time).
 _LAZY_SUBMODULES = ("corrugation", "wear", "evolution", "filters", "kalker", "tables",
+                    "strip_table", "exact_table", "creep_common",
                     "reference", "scene", "effects", "run", "fmu_parameters",
                     "fmu_build")
 

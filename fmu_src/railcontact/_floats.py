@@ -99,3 +99,16 @@ def _finite_or_scaled(plain, scaled, exact_zero):
     if np.all(ok):
         return plain
     return np.where(ok, plain, scaled())
+
+
+#: Magnitudes the plain float arithmetic of the scalar paths handles without overflow or
+#: underflow in its intermediates; other values take the (mantissa, exponent) array paths.
+MODERATE_MIN, MODERATE_MAX = 1e-50, 1e50
+
+
+def _moderate(*values, _lo=MODERATE_MIN, _hi=MODERATE_MAX):
+    """True if every value is 0 or of magnitude in [1e-50, 1e50] (False for NaN, inf)."""
+    for v in values:
+        if v != 0.0 and not _lo <= abs(v) <= _hi:
+            return False
+    return True

@@ -71,17 +71,19 @@ References
 from __future__ import annotations
 
 import math
-from collections import namedtuple
 
 import numpy as np
 
 from ._validation import (check_choice, check_contact_inputs, check_creep_inputs,
                           check_range)
-from ._floats import _NO_EXP, _TINY_SUBNORMAL, _hypot_scaled, _root_ab, _scaled, _value
+from ._floats import (_NO_EXP, _TINY_SUBNORMAL, MODERATE_MAX, MODERATE_MIN,
+                      _moderate, _root_ab, _scaled, _value)
+from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
+                           spin_coefficient)
 from .kalker import A0_OVER_B0_MAX, _coefficients_cached, kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
-           "COMPARISON_METHODS", "creep_force_3d", "creep_solution_3d",
+           "COMPARISON_METHODS", "creep_force_3d", "creep_solution_3d", "load_exact_table",
            "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
            "strip_force_function"]
 
@@ -90,27 +92,6 @@ EXACT_DEFAULT_GRID = (40, 20)  # method="exact": elements (rolling, lateral); se
 # Methods users compare against, each in its own module (railcontact.fastsim, railcontact.polach);
 # creep_force_3d and creep_solution_3d dispatch to them by name.
 COMPARISON_METHODS = ("fastsim", "polach", "fastrip")
-
-CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
-CreepForce3D.__doc__ = "Tangential creep force on the wheel, components tx, ty. [N]"
-
-CreepSolution3D = namedtuple("CreepSolution3D", [
-    "tx", "ty", "stick_area_fraction", "stick_width_ratio", "normalised_creepage",
-    "spin_coefficient", "within_validity"])
-CreepSolution3D.__doc__ = """Full result of :func:`creep_solution_3d`.
-
-tx, ty : force on the wheel [N].
-stick_area_fraction : stick area / (pi a0 b0) [-], strip-theory estimate (see module docstring);
-    1 for "linear" (full stick by assumption); for "she", which has no stick zone, the
-    modified-strip estimate at the same creepages.
-stick_width_ratio : b*/b0 = sqrt(1 - z^2) [-], lateral extent of the stick zone (Eq. (2.84)).
-normalised_creepage : z = |w| / w_sat [-] of the method ("strip" uses its own coefficients; the
-    modified-strip value for the others); 1 = onset of full sliding.
-spin_coefficient : Phi, Eq. (2.98) [-] (inf for pure spin, 0 without spin).
-within_validity : bool, Phi <= 1 (spin pole outside the ellipse) and, for "linear",
-    |T| <= mu N.
-"""
-
 
 def strip_force_function(z):
     r"""Normalised creep-force magnitude of the strip theory, F(z) = |T| / (mu N), Eq. (2.87).
@@ -208,39 +189,6 @@ def _check_coulomb_limit(mu, n_load):
             f"{bad[0].flat[i]:g}, normal_load = {bad[1].flat[i]:g})")
     return mu_n
 
-
-def spin_coefficient(creepage_longitudinal, creepage_lateral, spin, a0, b0):
-    r"""Spin coefficient Phi, Eq. (2.98): ``sqrt(a0^2 + b0^2) |phi| / sqrt(xi_x^2 + xi_y^2)``.
-
-    Parameters
-    ----------
-    creepage_longitudinal, creepage_lateral : array_like
-        Creepages xi_x, xi_y. [-]
-    spin : array_like
-        Spin creepage phi. [1/m]
-    a0, b0 : array_like
-        Semi-axes of the contact ellipse, >= 0. [m]
-
-    Returns
-    -------
-    ndarray
-        Phi >= 0 [-]; 0 when phi = 0 (also with zero creepage), inf for pure spin. The spin pole
-        (-xi_y/phi, xi_x/phi), Eq. (2.97), lies outside the ellipse when Phi <= 1.
-    """
-    xi_x = check_range("creepage_longitudinal", creepage_longitudinal, "-")
-    xi_y = check_range("creepage_lateral", creepage_lateral, "-")
-    phi = check_range("spin", spin, "1/m")
-    a0 = check_range("a0", a0, "m", 0.0, None)
-    b0 = check_range("b0", b0, "m", 0.0, None)
-    # hypot(a0, b0) |phi| / hypot(xi_x, xi_y) in (mantissa, exponent) form: no overflow
-    n_m, n_e = _hypot_scaled(a0, b0)
-    d_m, d_e = _hypot_scaled(xi_x, xi_y)
-    p_m, p_e = np.frexp(np.abs(phi))
-    n_m, d_m, p_m, n_e, d_e, p_e = np.broadcast_arrays(n_m, d_m, p_m, n_e, d_e, p_e)
-    num_m = n_m * p_m
-    den = d_m > 0.0
-    ratio = _value(num_m / np.where(den, d_m, 1.0), n_e + p_e.astype(np.int64) - d_e)
-    return np.where(den, ratio, np.where(num_m > 0.0, np.inf, 0.0))[()]
 
 
 def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
@@ -510,9 +458,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         return CreepForce3D(tx, ty)
     _no_options(method, method_options)
     if method == "exact_table":
-        from .exact_table import default_exact_table  # noqa: PLC0415  (loads the table once)
-
-        return default_exact_table().creep_force_3d(
+        return load_exact_table().creep_force_3d(
             creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
             poisson_ratio, friction_coefficient)
     if method == "exact":
@@ -748,12 +694,10 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
         return base._replace(tx=tx, ty=ty, stick_area_fraction=stick)
     _no_options(method, method_options)
     if method == "exact_table":
-        from .exact_table import default_exact_table  # noqa: PLC0415
-
         if fields:
             raise ValueError("fields needs method='exact' (the table holds no traction "
                              "fields); got method='exact_table'")
-        return default_exact_table().creep_solution_3d(
+        return load_exact_table().creep_solution_3d(
             creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
             poisson_ratio, friction_coefficient, sensitivities=sensitivities)
     if method == "exact":
@@ -801,17 +745,6 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
 #: intermediate products (at most five factors) in the normal float range, where they equal the
 #: array paths' (mantissa, exponent) arithmetic to a few ulp. Outside it they call the array
 #: path (overflow-safe; it also raises the ValueError of an input out of range).
-MODERATE_MIN, MODERATE_MAX = 1e-50, 1e50
-
-
-def _moderate(*values, _lo=MODERATE_MIN, _hi=MODERATE_MAX):
-    """True if every value is 0 or of magnitude in [1e-50, 1e50] (False for NaN, inf)."""
-    for v in values:
-        if v != 0.0 and not _lo <= abs(v) <= _hi:
-            return False
-    return True
-
-
 def _f_over_z_scalar(z, _sqrt=math.sqrt, _acos=math.acos):
     """:func:`_f_over_z` for one float 0 <= z <= 1."""
     q = 1.0 - z * z
@@ -923,36 +856,6 @@ def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, metho
 # --------------------------------------------------------------------------------------------
 # method="exact": Kalker's exact theory, discretised (railcontact.reference.rolling3d)
 # --------------------------------------------------------------------------------------------
-ExactCreepSolution3D = namedtuple("ExactCreepSolution3D", [
-    "tx", "ty", "stick_area_fraction", "stick_width_ratio", "normalised_creepage",
-    "spin_coefficient", "within_validity", "spin_moment", "sensitivity", "fields",
-    "iterations"])
-ExactCreepSolution3D.__doc__ = """Result of :func:`creep_solution_3d` with ``method="exact"``.
-
-The first seven fields are those of :class:`CreepSolution3D`, so code reading them works for
-every method.
-
-tx, ty : force on the wheel [N].
-stick_area_fraction : area of the sticking elements / (pi a0 b0) [-] (of the finer grid with
-    ``extrapolate=True``).
-stick_width_ratio : lateral extent of the stick zone / (2 b0) [-] (rows holding a sticking
-    element times the element width); 0 without stick.
-normalised_creepage : the modified-strip z = |w| / w_sat [-] (see
-    :func:`normalised_creepage_3d`), for comparison with the other methods.
-spin_coefficient : Phi, Eq. (2.98) [-].
-within_validity : bool, always True (the exact theory holds for any spin; the solver raises
-    instead of returning an unconverged answer).
-spin_moment : M_z about the ellipse centre on the wheel, sum (x p_y - y p_x) dA [N m].
-sensitivity : with ``sensitivities=True`` an array of shape ``(..., 3, 3)``:
-    d(tx, ty, M_z)/d(xi_x, xi_y, phi), rows tx [N], ty [N], M_z [N m], columns per unit
-    xi_x [-], xi_y [-], phi [1/m]; else None.
-fields : with ``fields=True`` the solver's :class:`railcontact.reference.rolling3d.Rolling3DResult`
-    (element centres, pressure, tractions px, py [Pa], slip, adhesion masks; an object array
-    for array input); else None.
-iterations : Gauss-Seidel sweeps used (summed over both grids with ``extrapolate``) [-].
-"""
-
-
 def _check_exact_grid(grid):
     try:
         mx, my = (int(v) for v in grid)
@@ -1049,3 +952,42 @@ def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, 
         tx[()], ty[()], stick[()], width[()], np.asarray(z)[()], np.asarray(phi_coef)[()],
         np.ones(tx.shape, dtype=bool)[()], mz[()], sens, res[()] if fields else None,
         iters[()])
+
+
+_EXACT_TABLES = {}
+
+
+def load_exact_table(path=None, directory=None):
+    """The exact-theory table with the solver attached beyond its axes.
+
+    :class:`railcontact.exact_table.ExactCreepTable` of ``creep_exact.nc`` (default: the
+    shipped file, :func:`railcontact.tables.default_table_path`), loaded once per path and
+    process. Beyond its a0/b0 range or spin axis it answers with
+    ``creep_solution_3d(..., method="exact", grid=(40, 20), extrapolate=True)``, the setting
+    the table was built with, so every finite input gets the exact theory.
+
+    Parameters
+    ----------
+    path : str or path-like, optional
+        The table file.
+    directory : str or path-like, optional
+        Directory searched first for ``creep_exact.nc``.
+
+    Returns
+    -------
+    railcontact.exact_table.ExactCreepTable
+    """
+    from .exact_table import ExactCreepTable  # noqa: PLC0415  (numba: only when used)
+
+    key = (None if path is None else str(path), None if directory is None else str(directory))
+    table = _EXACT_TABLES.get(key)
+    if table is None:
+        table = _EXACT_TABLES[key] = ExactCreepTable.from_file(path, directory,
+                                                               solver=_exact_table_solver)
+    return table
+
+
+def _exact_table_solver(*args, sensitivities=False):
+    """The exact solver at the table's setting (the table's answer beyond its axes)."""
+    return creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True,
+                             sensitivities=sensitivities)

@@ -70,7 +70,7 @@ def table_error_estimate(table):
     :meth:`railcontact.tables.Table.accuracy`); the direct computation is the theory the table
     holds, so this is the interpolation error only, not the theory's own error.
 
-    * ``creep_modified_strip`` (:class:`railcontact.tables.CreepTable`): the force is
+    * ``creep_modified_strip`` (:class:`railcontact.strip_table.CreepTable`): the force is
       ``-mu N F(z) w/|w|`` with the direction exact, so the error of the force over mu N is that
       of ``force_ratio``.
     * ``creep_exact`` (:class:`railcontact.exact_table.ExactCreepTable`): the force over mu N has the
@@ -82,7 +82,7 @@ def table_error_estimate(table):
 
     Parameters
     ----------
-    table : railcontact.tables.CreepTable or railcontact.exact_table.ExactCreepTable
+    table : railcontact.strip_table.CreepTable or railcontact.exact_table.ExactCreepTable
         A loaded creep table.
 
     Returns
@@ -330,10 +330,10 @@ class Creep3D(_Effect):
     with the public array paths to 4 eps (tests/test_creep3d.py, tests/test_tables.py).
 
     Table (``method = "modified_strip"`` only, the theory the shipped table holds):
-    :meth:`railcontact.tables.CreepTable.creep_force_3d` gives the forces in the step (its
+    :meth:`railcontact.strip_table.CreepTable.creep_force_3d` gives the forces in the step (its
     scalar fast path, whose input check the slave has already made); the stick measures and the
     validity flag are computed when first read after a step (:meth:`auxiliary`), as
-    :meth:`~railcontact.tables.CreepTable.creep_solution_3d` gives them, on the inputs of that
+    :meth:`~railcontact.strip_table.CreepTable.creep_solution_3d` gives them, on the inputs of that
     step, so an importer that reads only Fx and Fy does not pay for them. Out of the table's grid
     (normalised creepage z beyond its last node) the reader holds F = 1, which is exact (full
     sliding); the FMU logs a warning the first time this is seen (when the stick outputs are
@@ -387,19 +387,17 @@ class Creep3D(_Effect):
         #: use (read once here), :data:`NOT_ESTIMATED` for the analytic source.
         self.table_error_estimate = NOT_ESTIMATED
         if self.source == "table":
-            from . import tables
+            from . import strip_table, tables
 
             if self.method not in ("modified_strip", "exact"):
                 raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
                                  f"with source = 'table' (the shipped creep tables); got "
                                  f"{self.method!r}")
-            if self._exact:
-                from .exact_table import ExactCreepTable as reader
-            else:
-                reader = tables.CreepTable
+            reader = (creep3d.load_exact_table if self._exact
+                      else strip_table.CreepTable.from_file)
             try:
                 path = table_path or tables.default_table_path(opts["table"])
-                self._table = reader.from_file(path)
+                self._table = reader(path)
             except (OSError, ValueError, AttributeError) as exc:
                 raise EffectUnavailable(f"effect creep (table {opts['table']}) not available "
                                         f"in this build: {exc}") from None
@@ -1544,7 +1542,7 @@ def _normal_table_creep(normal, creep, otherwise, on_error):
 
 def _table_kalker():
     """The scalar Kalker lookup the creep table's scalar path uses (cached per (a0/b0, nu))."""
-    from .tables import _kalker_cached  # noqa: PLC0415
+    from .strip_table import _kalker_cached  # noqa: PLC0415
 
     return _kalker_cached
 

@@ -154,7 +154,7 @@ from functools import lru_cache  # noqa: E402
 from numba import njit  # noqa: E402
 
 from . import _numba_cache  # noqa: E402,F401  (the user cache, before any njit is compiled)
-from .creep3d import CreepForce3D, ExactCreepSolution3D  # noqa: E402
+from .creep_common import CreepForce3D, ExactCreepSolution3D, spin_coefficient  # noqa: E402
 
 #: Table name and the axes it must have, in order.
 TABLE_NAME = "creep_exact"
@@ -406,7 +406,7 @@ class ExactCreepTable:
     (across xi_x = 0 and phi = 0 too), C1 only where it clips an overshoot to mu N.
     """
 
-    def __init__(self, table):
+    def __init__(self, table, solver=None):
         names = tuple(a["name"] for a in table.axes)
         if names != AXES or tuple(table.variables) != VARIABLES:
             from .tables import TableFileError  # noqa: PLC0415
@@ -417,6 +417,9 @@ class ExactCreepTable:
                                  "build --only creep_exact`)")
         self.table = table
         self.path = table.path
+        #: Callable answering beyond the table (``solver(xi_x, xi_y, phi, N, a0, b0, E, nu,
+        #: mu, sensitivities=...)`` -> ExactCreepSolution3D), or None: a ValueError there.
+        self.solver = solver
         self._knot_list = [np.ascontiguousarray(a["knots"], dtype=float) for a in table.axes]
         self._knots = np.ascontiguousarray(np.concatenate(self._knot_list))
         self._kstart = np.cumsum([0] + [len(t) for t in self._knot_list[:-1]]).astype(np.int64)
@@ -435,12 +438,17 @@ class ExactCreepTable:
         self._point = _creep_point    # the compiled kernel (see _fast_kernel)
 
     @classmethod
-    def from_file(cls, path=None, directory=None):
-        """Load ``creep_exact.nc`` (default: :func:`railcontact.tables.default_table_path`)."""
+    def from_file(cls, path=None, directory=None, solver=None):
+        """Load ``creep_exact.nc`` (default: :func:`railcontact.tables.default_table_path`).
+
+        ``solver``: what answers beyond the table's a0/b0 and spin axes (see the class
+        docstring); :func:`railcontact.creep3d.load_exact_table` passes the exact solver at
+        the table's own setting.
+        """
         from .tables import Table, default_table_path  # noqa: PLC0415
 
         path = default_table_path(TABLE_NAME, directory) if path is None else path
-        return cls(Table.from_file(path, expected_name=TABLE_NAME))
+        return cls(Table.from_file(path, expected_name=TABLE_NAME), solver)
 
     # -- one contact's (ln g, nu) summed out once -------------------------------------------
     def _slab_for(self, log_g, nu):
@@ -586,18 +594,29 @@ class ExactCreepTable:
             ok[idx[o]] = True
         fallback = contact & ~ok
         if np.any(fallback):    # beyond the table: the solver at the table's own setting
-            from .creep3d import creep_solution_3d  # noqa: PLC0415
-
             f = np.nonzero(fallback)[0]
-            sol = creep_solution_3d(xi_x[f], xi_y[f], phi[f], n_load[f], a0[f], b0[f],
-                                    e_mod[f], nu[f], mu[f], method="exact", grid=(40, 20),
-                                    extrapolate=True, sensitivities=jacobian)
+            if self.solver is None:
+                self._refuse(g[f], phi[f], n_load[f], a0[f], b0[f], e_mod[f], nu[f], mu[f])
+            sol = self.solver(xi_x[f], xi_y[f], phi[f], n_load[f], a0[f], b0[f], e_mod[f],
+                              nu[f], mu[f], sensitivities=jacobian)
             res[f, 0], res[f, 1], res[f, 2] = sol.tx, sol.ty, sol.spin_moment
             res[f, 3] = sol.stick_area_fraction
             res[f, 4] = sol.normalised_creepage
             if jacobian:
                 jac[f] = sol.sensitivity
         return res.reshape(shape + (5,)), jac.reshape(shape + (3, 3)), checked
+
+    def _refuse(self, g, phi, n_load, a0, b0, e_mod, nu, mu):
+        """ValueError for inputs beyond the table when no solver is attached."""
+        lo, hi = self._g_range
+        bad_g = (g < lo) | (g > hi)
+        if np.any(bad_g):
+            raise ValueError(f"a0/b0 must be in [{lo:g}, {hi:g}] [-] (range of the table "
+                             f"{self.path.name}; creep3d.load_exact_table attaches the solver "
+                             f"beyond it); got {g[bad_g][0]:g}")
+        raise ValueError(f"spin must give a spin coordinate |tau| <= {self.tau_max:g} [1/m] "
+                         f"(range of the table {self.path.name}; creep3d.load_exact_table "
+                         f"attaches the solver beyond it); got {phi[0]:g}")
 
     def creep_force_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                        youngs_modulus, poisson_ratio, friction_coefficient):
@@ -619,18 +638,14 @@ class ExactCreepTable:
         """Forces, spin moment, stick area and (``sensitivities``) the Jacobian, as
         :class:`railcontact.creep3d.ExactCreepSolution3D` (``stick_width_ratio``, ``fields``
         and ``iterations`` are not tabulated: None)."""
-        from .creep3d import normalised_creepage_3d, spin_coefficient  # noqa: PLC0415
-
         res, jac, checked = self._evaluate(
             (creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
              poisson_ratio, friction_coefficient), sensitivities)
         xi_x, xi_y, phi, n_load, a0_, b0_, e_mod, nu, mu = checked
         shape = res.shape[:-1]
-        z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0_, b0_, e_mod, nu,
-                                                   mu), shape)
         phi_c = np.broadcast_to(spin_coefficient(xi_x, xi_y, phi, a0_, b0_), shape)
         return ExactCreepSolution3D(
-            res[..., 0][()], res[..., 1][()], res[..., 3][()], None, np.asarray(z)[()],
+            res[..., 0][()], res[..., 1][()], res[..., 3][()], None, res[..., 4][()],
             np.asarray(phi_c)[()], np.ones(shape, dtype=bool)[()], res[..., 2][()],
             jac[()] if sensitivities else None, None, None)
 
@@ -642,14 +657,3 @@ class ExactCreepTable:
         return self._evaluate((creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient),
                               True)[1][()]
-
-
-_DEFAULT = {}
-
-
-def default_exact_table():
-    """The shipped ``creep_exact`` table, loaded once per process."""
-    table = _DEFAULT.get("table")
-    if table is None:
-        table = _DEFAULT["table"] = ExactCreepTable.from_file()
-    return table
