@@ -89,7 +89,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     for k, v in enumerate(spec.variables):
         acc = accuracy[v.name]
         met = acc["max_abs_error"] <= v.error_target
-        data_vars[v.name] = (dims, values[k], {
+        single = getattr(spec, "node_values_float32", False)
+        data_vars[v.name] = (dims, values[k].astype(np.float32) if single else values[k], {
             "units": v.units, "long_name": v.long_name,
             "bspline_coefficients": f"{v.name}_bspline_coefficients",
             "method": spec.method,
@@ -105,7 +106,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 "max and RMS of |spline - direct computation| / error_scale on "
                 f"{int(acc['n_check_points'])} seeded random off-grid points"
                 + ("" if met else "; TARGET NOT MET")),
-            "comment": v.comment})
+            "comment": v.comment,
+            **({"node_value_precision": "float32"} if single else {})})
         data_vars[f"{v.name}_bspline_coefficients"] = (cdims, coefficients[k], {
             "units": v.units,
             "long_name": f"tensor-product cubic B-spline coefficients of {v.name}",

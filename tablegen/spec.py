@@ -125,6 +125,10 @@ class TableSpec:
     build_attributes : callable, optional
         ``build_attributes() -> dict`` of global attributes computed at build time (e.g. the
         hash of the solver's source file).
+    node_values_float32 : bool
+        Store the node values (for viewers; the spline uses the float64 coefficients only) in
+        float32, flagged by the variable attribute ``node_value_precision = "float32"``: halves
+        a large table's file.
     reduce : callable, optional
         ``reduce(axes) -> (points, assemble)`` for tables with symmetries: ``function`` is
         called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
@@ -148,6 +152,7 @@ class TableSpec:
     hidden: bool = False
     build_attributes: Callable | None = None
     reduce: Callable | None = None
+    node_values_float32: bool = False
 
     def available(self):
         """``None`` if buildable, else the reason (a module that does not import)."""

@@ -644,7 +644,7 @@ class Table:
                              knots=np.asarray(knots, float), units=str(a.get("units", "1")),
                              long_name=str(a.get("long_name", name)),
                              double_knots=double_knots, out_of_range=out_of_range))
-        values, coefs, vattrs = {}, [], {}
+        values, coefs, vattrs, tolerance = {}, [], {}, []
         shape = tuple(len(a["nodes"]) for a in axes)
         for name in var_names:
             cname = f"{name}_bspline_coefficients"
@@ -656,7 +656,12 @@ class Table:
             if val.shape != shape or coef.shape != shape:
                 raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
                                      f"expected {shape} (truncated?)")
-            _check_float64(where, name, val)
+            single = str(a.get("node_value_precision", "")) == "float32"
+            if single and val.dtype == np.float32:
+                tolerance.append(1e-6)       # declared float32 node values (viewers only)
+            else:
+                _check_float64(where, name, val)
+                tolerance.append(1e-9)
             _check_float64(where, cname, coef)
             values[name] = np.asarray(val, float)
             coefs.append(np.asarray(coef, float))
@@ -675,7 +680,7 @@ class Table:
         want = np.stack([values[v][idx] for v in var_names], axis=1)
         scale = np.maximum(1.0, np.abs(want).max(axis=0))
         bad = np.abs(got - want).max(axis=0) / scale
-        if np.any(~np.isfinite(bad)) or np.any(bad > 1e-9):
+        if np.any(~np.isfinite(bad)) or np.any(bad > np.array(tolerance)):
             raise TableFileError(f"{where}: the stored spline coefficients do not reproduce "
                                  f"the node values (max relative misfit {bad.max():.3g}); the "
                                  "file is corrupt")
