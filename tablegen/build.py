@@ -66,14 +66,16 @@ def _run(spec, tasks, workdir, scheduler, workers, progress):
     show = progress if progress is not None else sys.stderr.isatty()
     from tqdm.auto import tqdm  # noqa: PLC0415
 
-    bar = tqdm(total=len(tasks), initial=len(tasks) - len(todo), desc=spec.name,
-               unit="chunk", disable=not show)
+    # counted in cases (points), so the bar shows cases per second and the time left
+    bar = tqdm(total=sum(len(p) for _, p in tasks),
+               initial=sum(len(p) for f, p in tasks if f.exists()), desc=spec.name,
+               unit="case", disable=not show)
 
     def save(fname, result):
         tmp = fname.with_name(fname.stem + ".part.npy")
         np.save(tmp, result)
         os.replace(tmp, fname)
-        bar.update(1)
+        bar.update(len(result))
 
     try:
         if not todo:
