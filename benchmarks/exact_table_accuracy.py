@@ -1,0 +1,117 @@
+"""Accuracy of the exact-theory table: off-node random cases of every sign against the solver
+at the table's setting (interpolation error), and CONTACT's 21 converged cases (the table's
+whole error against the exact theory). Prints figures by a/b and spin class; asserts nothing.
+
+    python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7]
+
+Random cases: a0/b0 log-uniform in [0.1, 10], nu uniform in [0, 0.5], creepage direction
+uniform on the circle, |v| (Kalker-weighted, over the saturation creepage) log-uniform in
+[0.01, 5], spin coordinate tau log-uniform in [0.01, 20] with a random sign (a third of the
+cases without spin). The reference is creep_force_3d(method="exact", grid=(40, 20),
+extrapolate=True), the solver the table was built from.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "fmu_src")]
+
+from railcontact import creep_force_3d  # noqa: E402
+from railcontact.creep3d import REFERENCE_CONTACT, load_exact_table  # noqa: E402
+from railcontact.exact_table import exact_table_inverse, creepage_coordinate  # noqa: E402
+
+
+def random_cases(n, rng):
+    g = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
+    nu = rng.uniform(0.0, 0.5, n)
+    rho = np.exp(rng.uniform(np.log(0.01), np.log(5.0), n))
+    theta = rng.uniform(-np.pi, np.pi, n)
+    tau = np.exp(rng.uniform(np.log(0.01), np.log(20.0), n)) * rng.choice([-1.0, 1.0], n)
+    tau[rng.random(n) < 1.0 / 3.0] = 0.0
+    return exact_table_inverse(np.log(g), nu, creepage_coordinate(rho), theta, tau,
+                               contact=REFERENCE_CONTACT), g, tau
+
+
+def contact_converged():
+    path = ROOT / "tests" / "data" / "contact_hertz3d_grid_convergence.csv"
+    rows = list(csv.DictReader(l for l in open(path) if not l.startswith("#")))
+    by = {}
+    for r in rows:
+        by.setdefault((r["a_over_b"], r["case"]), {})[(int(r["mx"]), int(r["my"]))] = r
+    out = []
+    for (g, case), grids in by.items():
+        r1, r2 = grids[(120, 60)], grids[(240, 60)]
+        fx = 2 * float(r2["fx_over_mu_fn"]) - float(r1["fx_over_mu_fn"])
+        fy = 2 * float(r2["fy_over_mu_fn"]) - float(r1["fy_over_mu_fn"])
+        nu = float(r2["nu"])
+        args = (float(r2["cksi"]), float(r2["ceta"]), float(r2["cphi_per_m"]),
+                float(r2["Fn_N"]), float(r2["a_m"]), float(r2["b_m"]),
+                2 * float(r2["G_Pa"]) * (1 + nu), nu, float(r2["mu"]))
+        out.append((g, case, args, fx, fy))
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=1000)
+    ap.add_argument("--seed", type=int, default=7)
+    opts = ap.parse_args(argv)
+    table = load_exact_table()
+    print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
+
+    print("\n== against CONTACT's 21 cases, converged (Richardson of 120x60 and 240x60) ==")
+    errs = []
+    for g, case, args, fx, fy in contact_converged():
+        f = table.creep_force_3d(*args)
+        s = creep_force_3d(*args, method="exact", grid=(40, 20), extrapolate=True)
+        mu_n = args[3] * args[8]
+        e_tab = math.hypot(f.tx / mu_n - fx, f.ty / mu_n - fy)
+        e_sol = math.hypot(s.tx / mu_n - fx, s.ty / mu_n - fy)
+        errs.append((g, case, e_tab, e_sol))
+        print(f"  a/b {g:>4s} {case:14s} table {e_tab * 100:6.3f} %  solver {e_sol * 100:6.3f} % "
+              "of mu N")
+    e = np.array([x[2] for x in errs])
+    s_ = np.array([x[3] for x in errs])
+    print(f"  table: max {e.max() * 100:.3f} %, RMS {math.sqrt(np.mean(e**2)) * 100:.3f} %;"
+          f" its solver: max {s_.max() * 100:.3f} %, RMS {math.sqrt(np.mean(s_**2)) * 100:.3f} %")
+
+    print(f"\n== {opts.n} random off-node cases of every sign, against the solver ==")
+    rng = np.random.default_rng(opts.seed)
+    phys, g, tau = random_cases(opts.n, rng)
+    keys = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+            "youngs_modulus", "poisson_ratio", "friction_coefficient")
+    args = [phys[k] for k in keys]
+    t0 = time.perf_counter()
+    tab = table.creep_solution_3d(*args, sensitivities=False)
+    t_tab = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    ref = creep_force_3d(*args, method="exact", grid=(40, 20), extrapolate=True)
+    t_ref = time.perf_counter() - t0
+    mu_n = phys["normal_load"] * phys["friction_coefficient"]
+    err = np.hypot(tab.tx - ref.tx, tab.ty - ref.ty) / mu_n
+    print(f"  all: max {err.max() * 100:.3f} %, RMS {math.sqrt(np.mean(err**2)) * 100:.3f} % of "
+          f"mu N; table {t_tab / opts.n * 1e6:.1f} us/case, solver {t_ref / opts.n * 1e3:.1f} "
+          "ms/case")
+    worst = int(np.argmax(err))
+    print("  worst: " + ", ".join(f"{k} = {float(phys[k][worst]):.4g}" for k in keys))
+    for name, sel in (("a/b < 0.3", g < 0.3), ("0.3 <= a/b <= 3", (g >= 0.3) & (g <= 3)),
+                      ("a/b > 3", g > 3), ("no spin", tau == 0),
+                      ("|tau| <= 1", (tau != 0) & (np.abs(tau) <= 1)),
+                      ("1 < |tau| <= 5", (np.abs(tau) > 1) & (np.abs(tau) <= 5)),
+                      ("|tau| > 5", np.abs(tau) > 5)):
+        if np.any(sel):
+            print(f"  {name:18s} n = {int(sel.sum()):4d}: max {err[sel].max() * 100:.3f} %, "
+                  f"RMS {math.sqrt(np.mean(err[sel]**2)) * 100:.3f} %")
+
+
+if __name__ == "__main__":
+    main()
