@@ -26,8 +26,8 @@ Example (``examples/scenes/creep_only_analytic.toml``)::
     friction_coefficient = 0.3  # [-]
 
     [effects.creep]
-    method = "modified_strip"   # linear | she | strip | modified_strip
-    source = "analytic"         # analytic | table
+    method = "exact"            # exact (default) | linear | she | strip | modified_strip | ...
+    source = "table"            # analytic | table (default: table for exact, else analytic)
     spin = true
 
     [simulation]
@@ -48,8 +48,9 @@ Table sources
 built by ``python -m tablegen build``, read by :mod:`railcontact.tables`) instead of the
 analytic solver. Allowed combinations (anything else is a :class:`SceneError` naming the key):
 
-* ``creep``: ``method = "modified_strip"`` (table ``creep_modified_strip``) or ``"exact"``
-  (table ``creep_exact``; the exact theory is table-only).
+* ``creep``: ``method = "exact"`` (the default method; table ``creep_exact``, the exact theory
+  is table-only, and its source defaults to the table) or ``"modified_strip"`` (table
+  ``creep_modified_strip``; the thesis's method, analytic unless ``source = "table"``).
 * ``corrugation``: ``method = "linear"`` only: the table ``corrugation_response`` holds the
   normalised first-harmonic response coefficients of the *linearised* theory
   (:func:`railcontact.wear.linear_response`), superposed over the harmonics exactly as
@@ -99,8 +100,9 @@ it; where an error estimate exists, the FMU reports it as an output (-1 = not es
   built (``python -m tablegen build --resolution ...``); the output
   ``creep_table_error_estimate`` is the max error of ``|(Fx, Fy)| / (mu N)`` the file records
   against the direct solution of the theory it holds (netCDF attributes ``max_abs_error``, read
-  at initialisation; ``creep_modified_strip``: about 2e-7; ``creep_exact``: about 0.064,
-  against its 40 x 20 element solver, not against the continuum theory). With
+  at initialisation; ``creep_modified_strip``: about 2e-7; ``creep_exact``: its recorded
+  interpolation error against the extrapolated solver it was built from, docs/tables.md; the
+  solver's own error against the converged theory is about 0.3 % of mu N). With
   ``source = "analytic"`` it is -1: there is no interpolation error, and the error of the
   strip, modified strip, SHE and linear theories against Kalker's exact theory is not
   estimated at run time (the package's tests and benchmarks measure it).
@@ -210,8 +212,8 @@ class SceneError(ValueError):
 
 
 #: Creep theories: the 3-D ones of :func:`railcontact.creep3d.creep_force_3d` (elliptic
-#: contact), Kalker's exact theory (``"exact"``, from the shipped table ``creep_exact`` of
-#: :class:`railcontact.tables.ExactCreepTable`) and Carter's 2-D theory
+#: contact), Kalker's exact theory (``"exact"``, the default, from the shipped table
+#: ``creep_exact`` of :class:`railcontact.exact_table.ExactCreepTable`) and Carter's 2-D theory
 #: (:func:`railcontact.carter.carter_creep_force`, line contact, ``geometry.kind = "line"``).
 CREEP_METHODS = ("linear", "she", "strip", "modified_strip", "exact", "carter", "fastsim",
                  "polach", "fastrip")
