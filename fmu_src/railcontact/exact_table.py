@@ -433,8 +433,7 @@ class ExactCreepTable:
         self.tau_max = float(table.axes[4]["nodes"][-1])
         self._res = np.zeros(14)
         self._work = np.empty(336)
-        self._contact_key = None
-        self._contact = None
+        self._contacts = {}
         self._point = _creep_point    # the compiled kernel (see _fast_kernel)
 
     @classmethod
@@ -452,20 +451,26 @@ class ExactCreepTable:
 
     # -- one contact's (ln g, nu) summed out once -------------------------------------------
     def _slab_for(self, log_g, nu):
+        """:meth:`_slab_of`, remembered for the last contact (the vectorised path)."""
         key = (log_g, nu)
         if key != self._slab_key:
-            w = []
-            for d, x in ((0, log_g), (1, nu)):
-                t = self._knot_list[d]
-                i = _span(t, self._coef.shape[d], x)
-                b, db = np.empty(4), np.empty(4)
-                _cubic_basis(t, i, x, b, db, np.empty(12))
-                w.append((i, b))
-            (i0, w0), (i1, w1) = w
-            block = self._coef[i0 - 3:i0 + 1, i1 - 3:i1 + 1]
-            self._slab = np.ascontiguousarray(np.einsum("p,q,pq...->...", w0, w1, block))
+            self._slab = self._slab_of(log_g, nu)
             self._slab_key = key
         return self._slab
+
+    def _slab_of(self, log_g, nu):
+        """The coefficients summed over the (ln g, nu) axes at one contact: (n_s, n_theta,
+        n_tau, 4)."""
+        w = []
+        for d, x in ((0, log_g), (1, nu)):
+            t = self._knot_list[d]
+            i = _span(t, self._coef.shape[d], x)
+            b, db = np.empty(4), np.empty(4)
+            _cubic_basis(t, i, x, b, db, np.empty(12))
+            w.append((i, b))
+        (i0, w0), (i1, w1) = w
+        block = self._coef[i0 - 3:i0 + 1, i1 - 3:i1 + 1]
+        return np.ascontiguousarray(np.einsum("p,q,pq...->...", w0, w1, block))
 
     # -- scalar path (FMU) ------------------------------------------------------------------
     def step(self, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
@@ -506,14 +511,19 @@ class ExactCreepTable:
             return None
         g = a0 / b0
         key = (g, poisson_ratio)
-        if key != self._contact_key:
+        contact = self._contacts.get(key)
+        if contact is None:     # a new contact: its Kalker coefficients and (ln g, nu) slab
             log_g = math.log(g) if g > 0.0 else -_inf
             inside = self._log_g[0] <= log_g <= self._log_g[1]
-            self._contact = ((_kalker_pair(float(g), float(poisson_ratio)) if inside
-                              else (0.0, 0.0, 0.0)), log_g, inside,
-                             self._slab_for(log_g, float(poisson_ratio)) if inside else None)
-            self._contact_key = key
-        (c11, c22, c23), log_g, inside, slab = self._contact
+            contact = ((_kalker_pair(float(g), float(poisson_ratio)) if inside
+                        else (0.0, 0.0, 0.0)), log_g, inside,
+                       self._slab_of(log_g, float(poisson_ratio)) if inside else None)
+            if len(self._contacts) >= 16:
+                self._contacts.clear()
+            # (a Hertz contact's a0/b0 = (a1 s)/(b1 s) takes a few rounded values as the load
+            # changes: each keeps its entry)
+            self._contacts[key] = contact
+        (c11, c22, c23), log_g, inside, slab = contact
         if not inside:
             return None
         w_sat = 4.71238898038469 * (1.0 + poisson_ratio) * friction_coefficient \
