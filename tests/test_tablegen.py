@@ -177,3 +177,25 @@ def test_check_table_rewrites_accuracy_attributes(tmp_path):
                                                                          abs=1e-300)
         assert out[v]["max_abs_error"] == table.variable_attrs[v]["max_abs_error"]
     assert "accuracy re-checked" in table.attrs["history"]
+
+
+def test_float32_node_values_are_declared_and_read(tmp_path, monkeypatch):
+    """A spec that stores its node values in float32 (the exact creep table: under 20 MB)
+    writes them flagged per variable; the reader accepts them (integrity to 1e-6) and the
+    float64 coefficients give the same spline as a float64 file."""
+    import netCDF4
+
+    spec = get_spec("selftest")
+    ref = build_table("selftest", "coarse", output_dir=tmp_path / "a", scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False, keep_chunks=True)
+    monkeypatch.setattr(spec, "node_values_float32", True)
+    res = build_table("selftest", "coarse", output_dir=tmp_path / "b", scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False)
+    with netCDF4.Dataset(res["path"]) as nc:
+        for v in spec.variables:
+            assert nc.variables[v.name].dtype == np.float32
+            assert nc.variables[v.name].getncattr("node_value_precision") == "float32"
+            assert nc.variables[f"{v.name}_bspline_coefficients"].dtype == np.float64
+    a, b = Table.from_file(ref["path"]), Table.from_file(res["path"])
+    pts = np.array([[0.3, 0.9], [1.1, 1.7]])
+    np.testing.assert_array_equal(a.spline.evaluate(pts), b.spline.evaluate(pts))
