@@ -399,11 +399,21 @@ class ExactCreepTable:
     solver's own error against the converged exact theory are in ``docs/tables.md``.
 
     **Domain.** Every creepage and spin of either sign; Poisson's ratio 0-0.5; a0/b0 and the
-    spin coordinate |tau| within the file's axes (0.1-10 and 20). Outside them the reader
-    falls back to the solver itself, ``creep_force_3d(method="exact", grid=(40, 20),
-    extrapolate=True)`` (the table's own setting, milliseconds per call; documented choice,
-    so every finite input gets an answer). |T| <= mu N always; the spline is C2 in every input
-    (across xi_x = 0 and phi = 0 too), C1 only where it clips an overshoot to mu N.
+    spin coordinate |tau| within the file's axes (0.1-10 and 20). Outside them the ``solver``
+    answers: :func:`railcontact.creep3d.load_exact_table` (what ``creep_force_3d(...,
+    method="exact_table")`` and the FMU use) attaches ``creep_solution_3d(method="exact",
+    grid=(40, 20), extrapolate=True)``, the table's own setting (milliseconds per call), so
+    every finite input gets an answer; without a solver a ValueError names the input and the
+    range. |T| <= mu N always; the spline is C2 in every input (across xi_x = 0 and phi = 0
+    too), C1 only where it clips an overshoot to mu N.
+
+    Parameters
+    ----------
+    table : railcontact.tables.Table
+        The loaded file ``creep_exact.nc``.
+    solver : callable, optional
+        ``solver(xi_x, xi_y, phi, N, a0, b0, E, nu, mu, sensitivities=bool)`` returning an
+        :class:`railcontact.creep_common.ExactCreepSolution3D`, used beyond the table's axes.
     """
 
     def __init__(self, table, solver=None):
@@ -423,8 +433,7 @@ class ExactCreepTable:
         self._knot_list = [np.ascontiguousarray(a["knots"], dtype=float) for a in table.axes]
         self._knots = np.ascontiguousarray(np.concatenate(self._knot_list))
         self._kstart = np.cumsum([0] + [len(t) for t in self._knot_list[:-1]]).astype(np.int64)
-        coef = table.spline._coef.reshape((len(VARIABLES),) + tuple(table.spline._shape))
-        self._coef = np.ascontiguousarray(np.moveaxis(coef, 0, -1))
+        self._coef = np.ascontiguousarray(np.moveaxis(table.coefficients, 0, -1))
         self._empty_slab = np.zeros((1, 1, 1, 4))
         self._slab_key = None
         self._slab = self._empty_slab
@@ -434,7 +443,7 @@ class ExactCreepTable:
         self._res = np.zeros(14)
         self._work = np.empty(336)
         self._contacts = {}
-        self._point = _creep_point    # the compiled kernel (see _fast_kernel)
+        self._point = _creep_point    # the compiled kernel (its entry point once compiled)
 
     @classmethod
     def from_file(cls, path=None, directory=None, solver=None):

@@ -578,6 +578,8 @@ class Table:
         self.variables = list(variables)
         self.variable_attrs = variable_attrs
         self.values = values
+        #: B-spline coefficients, shape (n_var, n_1, ..., n_D) (float64). [variable units]
+        self.coefficients = np.asarray(coefficients, dtype=float)
         self.spline = TensorSpline(axes, coefficients, variables, source=str(self.path))
 
     @classmethod
