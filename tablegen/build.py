@@ -160,6 +160,7 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
              for i, (a, b) in enumerate(_chunks(len(points), spec.chunk_size))]
     tasks += [(work / f"check_{i:06d}.npy", check[a:b])
               for i, (a, b) in enumerate(_chunks(len(check), spec.chunk_size))]
+    reused = sum(f.exists() for f, _ in tasks)
     t0 = time.perf_counter()
     _run(spec, tasks, work, scheduler, workers, progress)
     seconds = time.perf_counter() - t0
@@ -179,6 +180,9 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     path = out_dir / f"{name}.nc"
     info = {"resolution": resolution, "grid_points": np.int32(len(points)),
             "build_seconds": float(round(seconds, 3)),
+            "build_chunks_reused": (f"{reused} of {len(tasks)} chunks were computed by an "
+                                    "earlier run (resumed build; build_seconds is this run's "
+                                    "time only)") if reused else "none (one run)",
             "build_scheduler": "local cluster" if scheduler is None else str(scheduler)}
     write_table(path, spec, axes, knots, values, coefs, accuracy,
                 command or f"python -m tablegen build --only {name} --resolution {resolution}",
