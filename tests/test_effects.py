@@ -1442,15 +1442,15 @@ def test_roughness_effect_is_rough_rail_contact():
 
 @pytest.fixture
 def counted_roughness(monkeypatch):
-    # the effect's per-step solver: rough_rail_contact's float path (which calls
+    # the effect's per-step solver: RoughRailSolver.contact (which calls
     # rough_rail_contact itself only for errors and the full-stick series)
     counts = {"rough_rail_contact": 0}
-    original = roughness._rough_rail_contact_float
+    original = roughness.RoughRailSolver.contact
 
     def counter(*args, **kwargs):
         counts["rough_rail_contact"] += 1
         return original(*args, **kwargs)
-    monkeypatch.setattr(roughness, "_rough_rail_contact_float", counter)
+    monkeypatch.setattr(roughness.RoughRailSolver, "contact", counter)
     return counts
 
 

@@ -31,7 +31,7 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
                   used by tests and the accuracy report, never by the FMU
     scene, effects, run   the FMU's scenes, its effect pipeline, and
                   ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
-Submodules other than polynomial, roughness, friction and nonsteady are imported on first
+Submodules other than polynomial, friction and nonsteady are imported on first
 attribute access (``railcontact.wear``) or with ``import railcontact.wear``.
 
 Conventions (one set, used by every function, table and the FMU)
@@ -67,15 +67,14 @@ from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,
 from .creep3d import ExactCreepSolution3D
 from .errors import RollingConvergenceError
 from . import polynomial
-from . import roughness
 from . import friction, nonsteady
 
 __version__ = "0.1.0"
 
 #: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
 #: pays for at load time).
-_LAZY_SUBMODULES = ("corrugation", "wear", "evolution", "filters", "kalker", "tables",
-                    "reference", "scene", "effects", "run")
+_LAZY_SUBMODULES = ("corrugation", "wear", "roughness", "evolution", "filters", "kalker",
+                    "tables", "reference", "scene", "effects", "run")
 
 __all__ = [
     # chapter 2: Hertz, Carter, Kalker, 3-D creep

@@ -1230,13 +1230,10 @@ class Roughness(_Effect):
                              f"than the wheel gives multiple contact / impact, out of scope); "
                              f"got R max r'' = {curvature * self._radius:.6g} with "
                              f"geometry.radius = {self._radius:g} m")
-        # the float path (railcontact.roughness._rough_rail_contact_float: the same arithmetic
-        # as rough_rail_contact without its per-call checks, which the build-time checks above
-        # and the slave's input check cover; it calls rough_rail_contact itself for errors)
-        self._solve = module._rough_rail_contact_float
-        self._local_gap = module._local_gap_only_float
-        self._constants = module._float_constants(self.surface, self._radius, self._e,
-                                                  self._nu)
+        # rough_rail_contact as floats from one compiled kernel (it calls rough_rail_contact
+        # itself for errors and the full-stick series)
+        solver = module.RoughRailSolver(self.surface, self._radius, self._e, self._nu)
+        self._solve, self._local_gap = solver.contact, solver.local_gap
         # N~ per unit of normal_force (text after Nielsen (6.10))
         self._nt_per_newton = float(module.normalised_load(1.0, self._e, self._nu)) / self._width
 
@@ -1244,8 +1241,7 @@ class Roughness(_Effect):
         self.calls += 1
         if not c.normal_force * self._nt_per_newton >= 2.2250738585072014e-308:
             (c.patch_shift, c.gap_curvature, c.gap_skewness,
-             c.gap_flatness) = self._local_gap(self.surface, c.rail_position, self._radius,
-                                               self._constants)
+             c.gap_flatness) = self._local_gap(c.rail_position)
             c.Fx = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
             c.contact_half_width = 0.0
@@ -1253,8 +1249,8 @@ class Roughness(_Effect):
             return
         (shift, c.gap_curvature, c.gap_skewness, c.gap_flatness, c.contact_half_width, delta,
          force, ratio, c.critical_creepage) = self._solve(
-            self.surface, c.rail_position, c.normal_force / self._width, self._radius, self._e,
-            self._nu, c.friction_coefficient, c.creepage_longitudinal, self._constants)
+            c.rail_position, c.normal_force / self._width, c.friction_coefficient,
+            c.creepage_longitudinal)
         c.patch_shift = shift + delta
         c.Fx = force * self._width
         c.r_a0 = c.stick_area_fraction = ratio

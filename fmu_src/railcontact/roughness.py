@@ -62,13 +62,13 @@ References
 
 from __future__ import annotations
 
-import bisect
 import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
 
+from . import _roughness_kernels as _kernels
 from . import polynomial as _poly
 from ._validation import check_choice, check_range
 
@@ -95,6 +95,7 @@ __all__ = [
     "local_gap",
     "RoughRailContact",
     "rough_rail_contact",
+    "RoughRailSolver",
 ]
 
 
@@ -171,16 +172,6 @@ def asperity_pressure_coefficients(half_width, shift, curvature, skewness=0.0, f
                      -l4 / (6.0 * np.pi)])
 
 
-def _odd_condition(d, a2, l2, l3, l4):
-    """Right-hand side of (6.9): Delta Z'(Delta)/Delta... = Z'(Delta) + a^2 Z'''(Delta)/4."""
-    return d * (l2 + 0.5 * l3 * d + l4 * d * d / 6.0) + 0.25 * a2 * (l3 + l4 * d)
-
-
-def _load_condition(d, a2, l2, l3, l4):
-    """N~ of (6.10)."""
-    return (l2 + l3 * d + 0.5 * l4 * d * d) * a2 + l4 * a2 * a2 / 8.0
-
-
 @dataclass(frozen=True)
 class AsperityContact:
     r"""Normal contact of one asperity (result of :func:`asperity_normal_contact`).
@@ -233,13 +224,6 @@ class AsperityContact:
     def pressure(self, x):
         """Pressure at ``xbar = x`` (asperity coordinate). [Pa]"""
         return self.normal_contact.pressure(x)
-
-
-def _pressure_nonnegative(contact):
-    b = contact.normal_contact.normalised_coefficients
-    s = np.cos(np.linspace(0.0, np.pi, 201))[1:-1]
-    v = np.polynomial.polynomial.polyval(s, b)
-    return v.min() >= -1e-9 * np.abs(v).max()
 
 
 def asperity_normal_contact(normal_load, curvature, skewness, flatness, youngs_modulus,
@@ -298,109 +282,56 @@ def asperity_normal_contact(normal_load, curvature, skewness, flatness, youngs_m
     l3 = float(check_range("skewness", skewness, "1/m^2"))
     l4 = float(check_range("flatness", flatness, "1/m^3"))
     nt = float(normalised_load(load, youngs_modulus, poisson_ratio))
-    common = dict(normal_load=load, curvature=l2, skewness=l3, flatness=l4,
-                  youngs_modulus=float(youngs_modulus), poisson_ratio=float(poisson_ratio))
-    if l2 == 0.0 and not (l3 == 0.0 and l4 != 0.0):
-        raise ValueError("curvature must be > 0 [1/m] when skewness != 0 or flatness = 0 "
-                         f"(Table 6.1: asperity is not convex); got {l2:g}")
-    if l4 == 0.0 and l3 == 0.0:
-        return AsperityContact(np.sqrt(nt / l2), 0.0, case="l4 = 0, l3 = 0 (Hertz)",
-                               method="closed form", **common)
-    if l4 == 0.0:
-        x = nt * nt * l3**4 / l2**6
-        if not 27.0 / 16.0 * x < 1.0:
-            raise ValueError("normal_load too large for this skewness: Table 6.1(A) needs "
-                             f"(27/16) N~^2 l3^4 / l2^6 < 1 [N/m]; got {27.0 / 16.0 * x:g} "
-                             f"(normal_load = {load:g})")
-        theta = np.arccos(27.0 / 8.0 * x - 1.0) / 3.0
-        # erratum: Table 6.1(A) prints a = ((2/3)(l2/l3)(2 cos(Theta) - 1))^(1/2): l2/l3 must be
-        # squared and the bracket is 1 + 2 cos(Theta + pi/3) (the printed one is minus the
-        # negative root of the cubic); verified against railcontact.polynomial and the 2-D
-        # reference solver in tests/test_roughness.py.
-        a2 = 2.0 / 3.0 * (l2 / l3) ** 2 * (1.0 + 2.0 * np.cos(theta + np.pi / 3.0))
-        d = (nt / a2 - l2) / l3
-        return AsperityContact(np.sqrt(a2), float(d), case="l4 = 0, l3 != 0, l2 > 0",
-                               method="closed form", **common)
-    if l3 == 0.0 and l2 == 0.0:
-        if not l4 > 0.0:
-            raise ValueError(f"flatness must be > 0 [1/m^3] when curvature = skewness = 0 "
-                             f"(Table 6.1(B)); got {l4:g}")
-        return AsperityContact((8.0 * nt / l4) ** 0.25, 0.0, case="l4 != 0, l3 = 0, l2 = 0",
-                               method="closed form", **common)
-    if l3 == 0.0:
-        arg = 0.5 * l4 * nt / l2**2
-        if not arg > -1.0:
-            raise ValueError("normal_load too large for this negative flatness: Table 6.1(B) "
-                             f"needs l4 N~ / (2 l2^2) > -1 [N/m]; got {arg:g} "
-                             f"(normal_load = {load:g})")
-        # 4 (l2/l4)(sqrt(1 + arg) - 1) written without cancellation for small arg
-        a2 = 4.0 * (l2 / l4) * arg / (np.sqrt(1.0 + arg) + 1.0)
-        out = AsperityContact(np.sqrt(a2), 0.0, case="l4 != 0, l3 = 0, l2 > 0",
-                              method="closed form", **common)
-        if l4 < 0 and not _pressure_nonnegative(out):
-            raise ValueError("normal_load too large for this negative flatness [N/m]: "
-                             "negative pressure (contact not coherent)")
-        return out
-    special = abs(l2 - l3 * l3 / (3.0 * l4)) <= 1e-12 * abs(l2)
-    if special:
-        # erratum: Table 6.1(B) prints (sqrt(1 + 2 l4 N~/l2^2) - 1); with l4 > 0 (implied by
-        # l2 = l3^2/(3 l4) > 0) that root is negative. Verified against railcontact.polynomial
-        # in tests/test_roughness.py.
-        a2 = 2.0 * (l2 / l4) * (np.sqrt(1.0 + 2.0 * l4 * nt / l2**2) + 1.0)
-        out = AsperityContact(np.sqrt(a2), -l3 / l4, case="l4, l3 != 0, l2 = l3^2/(3 l4)",
-                              method="closed form", **common)
-        if not _pressure_nonnegative(out):
-            raise ValueError("normal_load too small: with curvature = skewness^2/(3 flatness) "
-                             "the asperity is a symmetric double well and the single bridging "
-                             "patch of Table 6.1(B) has negative pressure [N/m]; got "
-                             f"normal_load = {load:g} (use two_patch_normal_contact)")
-        return out
+    kfac = float(_poly.kernel_factor(youngs_modulus, poisson_ratio))
+    a, d, case = _kernels.asperity_normal(nt, l2, l3, l4, kfac)
+    if case < 0:
+        raise _asperity_normal_error(case, load, nt, l2, l3, l4)
+    return AsperityContact(a, d, normal_load=load, curvature=l2, skewness=l3, flatness=l4,
+                           youngs_modulus=float(youngs_modulus),
+                           poisson_ratio=float(poisson_ratio), case=_CASES[case][0],
+                           method=_CASES[case][1])
 
-    # general case: a^2(Delta) from (6.9), then N~(Delta) = target
-    def a2_of(d):
-        return -4.0 * d * (l2 + 0.5 * l3 * d + l4 * d * d / 6.0) / (l3 + l4 * d)
 
-    def f(d):
-        return _load_condition(d, a2_of(d), l2, l3, l4) - nt
+#: Table 6.1's case names and methods by the kernel's case code.
+_CASES = {_kernels.CASE_HERTZ: ("l4 = 0, l3 = 0 (Hertz)", "closed form"),
+          _kernels.CASE_A: ("l4 = 0, l3 != 0, l2 > 0", "closed form"),
+          _kernels.CASE_B_FLAT: ("l4 != 0, l3 = 0, l2 = 0", "closed form"),
+          _kernels.CASE_B: ("l4 != 0, l3 = 0, l2 > 0", "closed form"),
+          _kernels.CASE_DOUBLE_WELL: ("l4, l3 != 0, l2 = l3^2/(3 l4)", "closed form"),
+          _kernels.CASE_NUMERICAL: ("l4, l3 != 0, l2 > 0", "numerical")}
 
-    direction = -np.sign(l3)
-    # first step: a tenth of the smaller of the Hertz half-width and the small-load shift
-    # |Delta| ~ N~ |l3| / (4 l2^2) (so that the bracket is found, and Brent converges, for any
-    # load, down to N~ ~ 1e-300 m, where Delta << a)
-    step = 0.1 * min(np.sqrt(nt / l2), nt * abs(l3) / (4.0 * l2 * l2))
-    # with l4 > 0, a^2(Delta) has a pole at Delta = -l3/l4 on the search side and the whole load
-    # range lies before it (N~ -> inf there): approach it by halving the remaining distance
-    # (needed when |l3| is small, e.g. a rail trough, where the pole is far closer than step)
-    c_pole = abs(l3) / l4 if l4 > 0.0 else np.inf
-    lo = 0.0
-    hi = None
-    for _ in range(200):
-        cand = lo + step
-        if cand >= c_pole:
-            cand = lo + 0.5 * (c_pole - lo)
-            if cand <= lo:
-                break
-        d = direction * cand
-        if l3 + l4 * d == 0 or np.sign(l3 + l4 * d) != np.sign(l3) or a2_of(d) <= 0:
-            break
-        if f(d) >= 0.0:
-            hi = cand
-            break
-        lo, step = cand, step * 1.5
-    if hi is None:
-        raise ValueError("normal_load: no coherent single-patch solution of (6.9)-(6.10) for "
-                         f"these lambdas [N/m]; got normal_load = {load:g}")
-    # Brent in scaled variables (|Delta| / hi and N~ / target of order 1): with tiny loads the
-    # products of residuals in its interpolation would otherwise underflow
-    s = hi * optimize.brentq(lambda u: f(direction * hi * u) / nt, lo / hi, 1.0, xtol=1e-300,
-                             rtol=1e-15)
-    d = direction * s
-    out = AsperityContact(float(np.sqrt(a2_of(d))), float(d), case="l4, l3 != 0, l2 > 0",
-                          method="numerical", **common)
-    if not _pressure_nonnegative(out):
-        raise ValueError("normal_load: the single-patch solution has negative pressure (contact "
-                         f"not coherent) [N/m]; got normal_load = {load:g}")
-    return out
+
+def _asperity_normal_error(case, load, nt, l2, l3, l4):
+    """The ValueError for a failure code of the kernel ``asperity_normal``."""
+    k = _kernels
+    if case == k.NOT_CONVEX:
+        return ValueError("curvature must be > 0 [1/m] when skewness != 0 or flatness = 0 "
+                          f"(Table 6.1: asperity is not convex); got {l2:g}")
+    if case == k.LOAD_TOO_LARGE_A:
+        x = 27.0 / 16.0 * (nt * nt * l3**4 / l2**6)
+        return ValueError("normal_load too large for this skewness: Table 6.1(A) needs "
+                          f"(27/16) N~^2 l3^4 / l2^6 < 1 [N/m]; got {x:g} "
+                          f"(normal_load = {load:g})")
+    if case == k.FLATNESS_NOT_POSITIVE:
+        return ValueError(f"flatness must be > 0 [1/m^3] when curvature = skewness = 0 "
+                          f"(Table 6.1(B)); got {l4:g}")
+    if case == k.LOAD_TOO_LARGE_B:
+        return ValueError("normal_load too large for this negative flatness: Table 6.1(B) "
+                          f"needs l4 N~ / (2 l2^2) > -1 [N/m]; got {0.5 * l4 * nt / l2**2:g} "
+                          f"(normal_load = {load:g})")
+    if case == k.NEGATIVE_PRESSURE_B:
+        return ValueError("normal_load too large for this negative flatness [N/m]: "
+                          "negative pressure (contact not coherent)")
+    if case == k.NEGATIVE_PRESSURE_DOUBLE_WELL:
+        return ValueError("normal_load too small: with curvature = skewness^2/(3 flatness) "
+                          "the asperity is a symmetric double well and the single bridging "
+                          "patch of Table 6.1(B) has negative pressure [N/m]; got "
+                          f"normal_load = {load:g} (use two_patch_normal_contact)")
+    if case == k.NEGATIVE_PRESSURE:
+        return ValueError("normal_load: the single-patch solution has negative pressure "
+                          f"(contact not coherent) [N/m]; got normal_load = {load:g}")
+    return ValueError("normal_load: no coherent single-patch solution of (6.9)-(6.10) for "
+                      f"these lambdas [N/m]; got normal_load = {load:g}")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -441,18 +372,16 @@ def asperity_tangential_state(contact, friction_coefficient, stick_ratio):
     c = _check_asperity(contact)
     mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None))
     r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
-    return _tangential_state(c, mu, r)
+    xi, force = _kernels.tangential_state_array(*_asperity_args(c, mu), r.ravel())
+    return xi.reshape(r.shape), force.reshape(r.shape)
 
 
-def _tangential_state(c, mu, r):
-    """:func:`asperity_tangential_state` without the input checks (inputs already valid)."""
-    a_s = r * c.half_width
-    d_s = c.shift + c.half_width - a_s
-    l2, l3, l4 = c.curvature, c.skewness, c.flatness
-    xi = -mu * _odd_condition(d_s, a_s**2, l2, l3, l4)
+def _asperity_args(c, mu):
+    """The kernels' description of the asperity contact ``c``: ``(a, Delta, N, l2, l3, l4,
+    pi E / (8 (1 - nu^2)), mu)``."""
     ref = np.pi * c.youngs_modulus / (8.0 * (1.0 - c.poisson_ratio**2))
-    force = mu * (c.normal_load - ref * _load_condition(d_s, a_s**2, l2, l3, l4))
-    return xi, force
+    return (float(c.half_width), float(c.shift), float(c.normal_load), float(c.curvature),
+            float(c.skewness), float(c.flatness), ref, mu)
 
 
 def asperity_critical_creepage(contact, friction_coefficient):
@@ -477,8 +406,8 @@ def asperity_critical_creepage(contact, friction_coefficient):
     """
     c = _check_asperity(contact)
     mu = float(check_range("friction_coefficient", friction_coefficient, "-", 0.0, None))
-    e = c.shift + c.half_width
-    return mu * e * (c.curvature + 0.5 * c.skewness * e + c.flatness * e * e / 6.0)
+    return _kernels.critical_creepage(float(c.half_width), float(c.shift), c.curvature,
+                                      c.skewness, c.flatness, mu)
 
 
 def asperity_initial_slope(contact):
@@ -538,9 +467,6 @@ class AsperityTangentialContact:
         return -np.sign(self.creepage) * self.friction_coefficient * p
 
 
-_SCAN_GRID = np.linspace(1.0, 0.0, 65)
-
-
 def asperity_tangential_contact(contact, friction_coefficient, creepage=None,
                                 tangential_force=None):
     r"""Steady rolling on one asperity: stick ratio and force (or creepage), (6.38)-(6.39).
@@ -568,55 +494,37 @@ def asperity_tangential_contact(contact, friction_coefficient, creepage=None,
         raise ValueError("creepage and tangential_force: give exactly one of them; got "
                          f"creepage={creepage!r}, tangential_force={tangential_force!r}")
 
-    def xi_mag(r):
-        return -float(_tangential_state(c, mu, r)[0])
-
-    def t_mag(r):
-        return float(_tangential_state(c, mu, r)[1])
-
-    def root(target, which, scalar):
-        # railcontact.polynomial._stick_ratio_for (largest root, scan from r = 1 down in 64
-        # steps, Brent in the first bracket) with the scan vectorised: the same values, the
-        # same bracket, the same result
-        grid = _SCAN_GRID
-        vals = _tangential_state(c, mu, grid)[which] * (-1.0 if which == 0 else 1.0) - target
-        if vals[0] == 0.0:
-            return 1.0
-        change = np.nonzero(np.sign(vals[1:]) != np.sign(vals[:-1]))[0]
-        if change.size == 0:
-            return 0.0
-        i = int(change[0]) + 1
-        return optimize.brentq(lambda x: scalar(x) - target, grid[i], grid[i - 1], xtol=1e-15,
-                               rtol=1e-14)
-
+    args = _asperity_args(c, mu)
     tiny = _poly._SERIES_LIMIT
-    if creepage is not None and mu > 0 and 0 < abs(float(check_range(
-            "creepage", creepage, "-"))) < tiny * asperity_critical_creepage(c, mu):
-        # (6.38)-(6.39) cancel as a* -> a: use the full-stick series of the Ch. 3 solver
-        t = _poly.solve_tangential_polynomial(c.normal_contact, mu, creepage=creepage)
-        return AsperityTangentialContact(c, mu, t.creepage, t.tangential_force, t.stick_ratio)
-    if tangential_force is not None and mu > 0 and 0 < abs(float(check_range(
-            "tangential_force", tangential_force, "N/m"))) < tiny * mu * c.normal_load:
-        t = _poly.solve_tangential_polynomial(c.normal_contact, mu,
-                                              tangential_force=tangential_force)
-        return AsperityTangentialContact(c, mu, t.creepage, t.tangential_force, t.stick_ratio)
     if creepage is not None:
         xi = float(check_range("creepage", creepage, "-"))
-        target, sgn = abs(xi), np.sign(xi)
-        if target == 0.0 or mu == 0.0:
-            r = 1.0
-        elif target >= xi_mag(0.0):
-            r = 0.0
-        else:
-            r = root(target, 0, xi_mag)
-        force = -sgn * t_mag(r) if target > 0 else 0.0
+        force, r, _, status = _kernels.asperity_tangential(*args, xi, tiny)
+        if status == _kernels.SERIES_NEEDED:
+            # (6.38)-(6.39) cancel as a* -> a: use the full-stick series of the Ch. 3 solver
+            t = _poly.solve_tangential_polynomial(c.normal_contact, mu, creepage=creepage)
+            return AsperityTangentialContact(c, mu, t.creepage, t.tangential_force,
+                                             t.stick_ratio)
     else:
         force = float(check_range("tangential_force", tangential_force, "N/m",
                                   -mu * c.normal_load, mu * c.normal_load,
                                   condition="|T| <= mu N"))
-        target, sgn = abs(force), -np.sign(force)
-        r = 1.0 if target == 0 else root(target, 1, t_mag)
-        xi = sgn * xi_mag(r) if target > 0 else 0.0
+        target = abs(force)
+        if mu > 0 and 0 < target < tiny * mu * c.normal_load:
+            t = _poly.solve_tangential_polynomial(c.normal_contact, mu,
+                                                  tangential_force=tangential_force)
+            return AsperityTangentialContact(c, mu, t.creepage, t.tangential_force,
+                                             t.stick_ratio)
+        r, status = 1.0, 0
+        if target > 0:
+            r, ok = _kernels.stick_ratio(*args, target, True)
+            status = 0 if ok else _kernels.NO_ROOT
+        # xi = sgn(-T) |xi(a*)|: the creepage of (6.38) has the sign of -T
+        xi = float(np.sign(force) * _kernels.tangential_state(*args, r)[0]) if target > 0 \
+            else 0.0
+    if status == _kernels.NO_ROOT:
+        raise ValueError("creepage: the stick ratio a*/a of (6.38)-(6.39) was not found "
+                         f"(no sign change or no convergence) [-]; got creepage = {creepage}, "
+                         f"tangential_force = {tangential_force}")
     return AsperityTangentialContact(c, mu, float(xi), float(force), float(r))
 
 
@@ -1126,6 +1034,14 @@ def two_patch_tangential_contact(normal, friction_coefficient, creepage, *, cros
 # ---------------------------------------------------------------------------------------------
 # a rough rail under a rolling wheel: local 4th-order gap at a wheel position
 # ---------------------------------------------------------------------------------------------
+def _surface_derivatives(roughness, rail_position):
+    """``r .. r''''`` of a HarmonicRoughness or ProfileRoughness at ``rail_position``."""
+    x = np.asarray(rail_position, dtype=float)
+    out = _kernels.surface_derivatives_array(*roughness._kernel_surface,
+                                             np.ascontiguousarray(x.ravel()))
+    return out.reshape((5,) + x.shape)
+
+
 class HarmonicRoughness:
     r"""Rail roughness as a sum of harmonics, the rail surface height of Eq. (4.1).
 
@@ -1154,18 +1070,20 @@ class HarmonicRoughness:
         self._k = 2.0 * np.pi / lam
         self._zeta = za - 1j * zb
         # (i k)^n (Z_A - i Z_B) for n = 0..4, shape (5, M)
-        self._coef = (1j * self._k) ** np.arange(5)[:, None] * self._zeta
+        coef = (1j * self._k) ** np.arange(5)[:, None] * self._zeta
+        self._kernel_surface = (_kernels.HARMONIC, self._k, np.stack((coef.real, coef.imag)),
+                                np.zeros(2))
 
     def derivatives(self, rail_position):
         r"""``r, r', r'', r''', r''''`` at ``rail_position``. [m, -, 1/m, 1/m^2, 1/m^3]
+
+        ``r^(n)(X) = sum_m Re[(i k_m)^n (Z_A,m - i Z_B,m) e^(i k_m X)]``.
 
         Returns
         -------
         ndarray, shape (5,) + shape of rail_position
         """
-        x = np.asarray(rail_position, dtype=float)
-        phase = np.exp(1j * self._k * x[..., None])                     # (..., M)
-        return np.real(self._coef.reshape((5,) + (1,) * x.ndim + (-1,)) * phase).sum(-1)
+        return _surface_derivatives(self, rail_position)
 
     def max_height_curvature(self):
         r"""``sum_m k_m^2 |Z_m|``, an upper bound of ``r''(X)``. [1/m]
@@ -1230,15 +1148,17 @@ class ProfileRoughness:
         self.positions, self.heights, self.extension = x, y, extension
         self.spline = spline
         self._start, self._period = float(x[0]), float(x[-1] - x[0])
-        self._derivs = [spline] + [spline.derivative(n) for n in range(1, 5)]
         self._ppoly = PPoly.from_spline(spline)
-        # piecewise-polynomial coefficients of r, r', ..., r^(4) (highest power first) for a
-        # direct Horner evaluation of all five at once
-        self._dcoef = [self._ppoly.derivative(n).c if n else self._ppoly.c for n in range(5)]
-        self._breaks = self._ppoly.x
-        self._breaks_list = self._breaks.tolist()
-        self._columns = [[c[:, i].tolist() for c in self._dcoef]
-                         for i in range(self._ppoly.c.shape[1])]
+        # piecewise-polynomial coefficients of r, r', ..., r^(4) (highest power first, padded
+        # with leading zeros to the quintic's 6) for a direct Horner evaluation of all five
+        c = self._ppoly.c
+        coef = np.zeros((5,) + c.shape)
+        for n in range(5):
+            cn = self._ppoly.derivative(n).c if n else c
+            coef[n, c.shape[0] - cn.shape[0]:] = cn
+        kind = _kernels.PERIODIC_PROFILE if extension == "periodic" else _kernels.HELD_PROFILE
+        self._kernel_surface = (kind, np.ascontiguousarray(self._ppoly.x), coef,
+                                np.array([self._start, self._period]))
         self._max_curvature = self._max_of_derivative(2)
         self._max_slope = self._max_of_derivative(1, absolute=True)
 
@@ -1249,37 +1169,7 @@ class ProfileRoughness:
         -------
         ndarray, shape (5,) + shape of rail_position
         """
-        x = np.asarray(rail_position, dtype=float)
-        if self.extension == "periodic":
-            xe = self._start + np.mod(x - self._start, self._period)
-        else:
-            xe = np.clip(x, self._start, self._start + self._period)
-        if xe.ndim == 0:
-            out = np.array(self._horner_scalar(float(xe)))
-        else:
-            idx = np.clip(np.searchsorted(self._breaks, xe, side="right") - 1, 0,
-                          self._dcoef[0].shape[1] - 1)
-            t = xe - self._breaks[idx]
-            out = np.empty((5,) + xe.shape)
-            for n, c in enumerate(self._dcoef):
-                v = c[0, idx]
-                for row in c[1:]:
-                    v = v * t + row[idx]
-                out[n] = v
-        if self.extension == "hold":
-            out[1:] = np.where(xe == x, out[1:], 0.0)
-        return out
-
-    def _horner_scalar(self, x):
-        i = min(max(bisect.bisect_right(self._breaks_list, x) - 1, 0), len(self._columns) - 1)
-        t = x - self._breaks_list[i]
-        out = []
-        for col in self._columns[i]:
-            v = col[0]
-            for cm in col[1:]:
-                v = v * t + cm
-            out.append(v)
-        return out
+        return _surface_derivatives(self, rail_position)
 
     def _max_of_derivative(self, order, absolute=False):
         """Exact max of ``r^(order)`` (or of its magnitude) over the profile (critical points
@@ -1331,6 +1221,19 @@ class LocalGap:
     rail_height: np.ndarray
 
 
+def _check_gap(roughness, radius):
+    """The surface type, ``radius > 0`` and the convexity ``R max r'' < 1``: the radius."""
+    if not isinstance(roughness, (HarmonicRoughness, ProfileRoughness)):
+        raise ValueError("roughness must be a HarmonicRoughness or ProfileRoughness; got "
+                         f"{type(roughness).__name__}")
+    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    check_range("radius * max_height_curvature", big_r * roughness.max_height_curvature(), "-",
+                None, 1.0, upper_closed=False,
+                condition="the gap x^2/(2R) - r(X + x) must be convex: R max r'' < 1, "
+                          "Eq. (4.2) generalised")
+    return big_r
+
+
 def local_gap(roughness, rail_position, radius, *, max_iter=60):
     r"""Local 4th-order gap of a wheel (equivalent radius R) on a rough rail, about its minimum.
 
@@ -1366,42 +1269,18 @@ def local_gap(roughness, rail_position, radius, *, max_iter=60):
         condition (4.2); the rail is then more curved than the wheel somewhere and a second
         contact can appear).
     """
-    if not hasattr(roughness, "derivatives"):
-        raise ValueError("roughness must be a HarmonicRoughness or ProfileRoughness; got "
-                         f"{type(roughness).__name__}")
-    big_r = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+    big_r = _check_gap(roughness, radius)
     x_axis = check_range("rail_position", rail_position, "m")
-    check_range("radius * max_height_curvature", big_r * roughness.max_height_curvature(), "-",
-                None, 1.0, upper_closed=False,
-                condition="the gap x^2/(2R) - r(X + x) must be convex: R max r'' < 1, "
-                          "Eq. (4.2) generalised")
     bound = big_r * roughness.max_slope()
-    if x_axis.ndim == 0:
-        return _local_gap_scalar(roughness, float(x_axis), big_r, bound, max_iter)
-    x = np.zeros_like(x_axis)
-    if bound > 0.0:
-        lo = np.full_like(x_axis, -bound * (1.0 + 1e-9))
-        hi = np.full_like(x_axis, bound * (1.0 + 1e-9))
-        tol = 1e-14 * bound
-        for _ in range(max_iter):
-            d = roughness.derivatives(x_axis + x)
-            g1 = x / big_r - d[1]
-            g2 = 1.0 / big_r - d[2]
-            lo = np.where(g1 < 0.0, x, lo)
-            hi = np.where(g1 > 0.0, x, hi)
-            step = g1 / g2
-            new = x - step
-            new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-            done = np.all((np.abs(new - x) <= tol) | (g1 == 0.0))
-            x = np.where(g1 == 0.0, x, new)
-            if done:
-                break
-        else:
-            raise ValueError("rail_position: the gap minimum did not converge in max_iter = "
-                             f"{max_iter} iterations [m]")
-    d = roughness.derivatives(x_axis + x)
-    return LocalGap(contact_point_shift=x, curvature=1.0 / big_r - d[2], skewness=-d[3],
-                    flatness=-d[4], rail_height=d[0])
+    out, converged = _kernels.local_gap_array(*roughness._kernel_surface,
+                                              np.ascontiguousarray(x_axis.ravel()), big_r,
+                                              bound, int(max_iter))
+    if not converged:
+        raise ValueError("rail_position: the gap minimum did not converge in max_iter = "
+                         f"{max_iter} iterations [m]")
+    out = out.reshape((5,) + x_axis.shape)
+    return LocalGap(contact_point_shift=out[0], curvature=out[1], skewness=out[2],
+                    flatness=out[3], rail_height=out[4])
 
 
 @dataclass(frozen=True)
@@ -1509,497 +1388,75 @@ def rough_rail_contact(roughness, rail_position, normal_load, radius, youngs_mod
                             float(asperity_critical_creepage(normal, friction_coefficient)))
 
 
-def _local_gap_scalar(roughness, x_axis, big_r, bound, max_iter):
-    """:func:`local_gap` for one position: the same iteration in Python floats."""
-    x = 0.0
-    if bound > 0.0:
-        lo, hi = -bound * (1.0 + 1e-9), bound * (1.0 + 1e-9)
-        tol = 1e-14 * bound
-        for _ in range(max_iter):
-            d = roughness.derivatives(x_axis + x)
-            g1 = x / big_r - float(d[1])
-            if g1 == 0.0:
-                break
-            if g1 < 0.0:
-                lo = x
-            else:
-                hi = x
-            new = x - g1 / (1.0 / big_r - float(d[2]))
-            if not lo < new < hi:
-                new = 0.5 * (lo + hi)
-            done = abs(new - x) <= tol
-            x = new
-            if done:
-                break
-        else:
-            raise ValueError("rail_position: the gap minimum did not converge in max_iter = "
-                             f"{max_iter} iterations [m]")
-    d = roughness.derivatives(x_axis + x)
-    return LocalGap(contact_point_shift=np.asarray(x), curvature=np.asarray(1.0 / big_r - d[2]),
-                    skewness=np.asarray(-d[3]), flatness=np.asarray(-d[4]),
-                    rail_height=np.asarray(d[0]))
+class RoughRailSolver:
+    r""":func:`rough_rail_contact` at many positions, for a fixed surface, radius and material.
 
+    The FMU's Roughness effect calls it once per step. The surface, radius and material are
+    checked once here; :meth:`contact` returns plain floats from one compiled kernel (the same
+    kernels as :func:`local_gap`, :func:`asperity_normal_contact` and
+    :func:`asperity_tangential_contact`) and calls :func:`rough_rail_contact` itself where
+    that raises (a non-finite position or creepage, an underflowing normalised load, a
+    restriction of Table 6.1) or uses the full-stick series of Ch. 3 (``0 < |creepage| <
+    1e-4 critical creepage``), so the errors and results are the public function's.
 
-# ---------------------------------------------------------------------------------------------
-# Float path (plain Python floats): the FMU's per-step call of the Roughness effect
-# ---------------------------------------------------------------------------------------------
-# rough_rail_contact costs ~0.4 ms per call on scalars, for a few us of arithmetic: about half
-# is check_range (13 calls), the rest numpy scalar dispatch, scipy's brentq wrapper and the
-# dataclasses. The functions below repeat the arithmetic of local_gap, asperity_normal_contact
-# (every case of Table 6.1 that a local gap can reach: Hertz, (A), (B), the special double
-# well, the numerical case with its pole approach for troughs and its scaled Brent for tiny
-# loads), asperity_tangential_contact and asperity_critical_creepage operation for operation
-# on floats with the math module, for a caller that has checked its inputs once (the
-# Roughness effect: the surface, radius, E, nu and the convexity R max r'' < 1 at build time;
-# the slave's _inputs_plausible per step). They ASSUME, and do not check: roughness a
-# HarmonicRoughness or ProfileRoughness; every number a finite float; radius > 0 with
-# radius * max_height_curvature < 1; youngs_modulus > 0; 0 <= poisson_ratio < 0.5;
-# friction_coefficient >= 0; normal_load > 0 (the caller treats an underflowing normalised
-# load as no contact, see below). rail_position and creepage are checked (finite) because the
-# public function would raise for them.
-# Where a case fails (a restriction of Table 6.1, negative pressure, a root finder that does
-# not converge, an underflowing normalised load) or needs the full-stick series of the Ch. 3
-# solver (0 < |creepage| < 1e-4 critical creepage), they call the public rough_rail_contact,
-# which raises the documented error or returns the series result: no separate error texts.
-# _brentq_float is scipy's brentq (scipy/optimize/Zeros/brentq.c, Charles Harris) in Python
-# floats, statement for statement, so the roots are the same to the last bit wherever the
-# function values are. Two shortcuts skip work without changing the outcome (each states its
-# proof where it is): the pressure-sign check and the stick-ratio scan. Agreement with the
-# public functions is tested in tests/test_roughness.py (test_float_*, test_brentq_float_*):
-# 4 eps for profiles (the same operations; measured bit-identical), for harmonics the
-# lambdas to 4 eps of the largest term sum k^n |Z| (math.cos/sin per harmonic against numpy's
-# complex exp and pairwise sum; measured 2.3e-16) and the rest to 1e-13 (the stick-ratio root
-# may move within the solver tolerance rtol 1e-14 when its inputs move by an ulp).
-_FLOAT_SCAN_GRID = _SCAN_GRID.tolist()
-# the nodes of _pressure_nonnegative, for the same sampled check
-_PRESSURE_NODES = np.cos(np.linspace(0.0, np.pi, 201))[1:-1]
-
-
-class _UseGeneralPath(Exception):
-    """Internal: the float path hands this case to the public function."""
-
-
-def _harmonic_derivatives_float(roughness, x):
-    """``r .. r''''`` of a HarmonicRoughness at one position, as five floats."""
-    cols = roughness.__dict__.get("_float_columns")
-    if cols is None:
-        cols = [(float(k), [(float(c.real), float(c.imag)) for c in roughness._coef[:, m]])
-                for m, k in enumerate(roughness._k)]
-        roughness._float_columns = cols
-    out = [0.0, 0.0, 0.0, 0.0, 0.0]
-    cos, sin = math.cos, math.sin
-    for k, coef in cols:
-        t = k * x
-        c, s = cos(t), sin(t)
-        for n in range(5):
-            cr, ci = coef[n]
-            out[n] += cr * c - ci * s
-    return out
-
-
-def _profile_derivatives_float(roughness, x):
-    """``r .. r''''`` of a ProfileRoughness at one position, as five floats."""
-    start, period = roughness._start, roughness._period
-    if roughness.extension == "periodic":
-        return roughness._horner_scalar(start + (x - start) % period)
-    xe = min(max(x, start), start + period)
-    out = roughness._horner_scalar(xe)
-    if xe != x:
-        out[1:] = [0.0, 0.0, 0.0, 0.0]
-    return out
-
-
-def _harmonic_slope_curvature_float(roughness, x):
-    """``[0, r', r'']`` of a HarmonicRoughness (the Newton iteration's; as in the full set)."""
-    cols = roughness.__dict__.get("_float_columns")
-    if cols is None:
-        _harmonic_derivatives_float(roughness, x)
-        cols = roughness._float_columns
-    d1 = d2 = 0.0
-    cos, sin = math.cos, math.sin
-    for k, coef in cols:
-        t = k * x
-        c, s = cos(t), sin(t)
-        d1 += coef[1][0] * c - coef[1][1] * s
-        d2 += coef[2][0] * c - coef[2][1] * s
-    return 0.0, d1, d2
-
-
-def _profile_slope_curvature_float(roughness, x):
-    """``[0, r', r'']`` of a ProfileRoughness: _horner_scalar's Horner sums for n = 1, 2."""
-    start, period = roughness._start, roughness._period
-    if roughness.extension == "periodic":
-        xe = start + (x - start) % period
-    else:
-        xe = min(max(x, start), start + period)
-        if xe != x:
-            return 0.0, 0.0, 0.0
-    breaks = roughness._breaks_list
-    columns = roughness._columns
-    i = min(max(bisect.bisect_right(breaks, xe) - 1, 0), len(columns) - 1)
-    t = xe - breaks[i]
-    col = columns[i]
-    c1, c2 = col[1], col[2]
-    v1 = c1[0]
-    for cm in c1[1:]:
-        v1 = v1 * t + cm
-    v2 = c2[0]
-    for cm in c2[1:]:
-        v2 = v2 * t + cm
-    return 0.0, v1, v2
-
-
-def _local_gap_float(derivatives, roughness, x_axis, big_r, bound, max_iter=60):
-    """:func:`local_gap` (``_local_gap_scalar``) in floats: ``(x_c, l2, l3, l4)``."""
-    x = 0.0
-    if bound > 0.0:
-        lo, hi = -bound * (1.0 + 1e-9), bound * (1.0 + 1e-9)
-        tol = 1e-14 * bound
-        slope_curvature = (_harmonic_slope_curvature_float
-                           if derivatives is _harmonic_derivatives_float
-                           else _profile_slope_curvature_float)
-        for _ in range(max_iter):
-            d = slope_curvature(roughness, x_axis + x)
-            g1 = x / big_r - d[1]
-            if g1 == 0.0:
-                break
-            if g1 < 0.0:
-                lo = x
-            else:
-                hi = x
-            new = x - g1 / (1.0 / big_r - d[2])
-            if not lo < new < hi:
-                new = 0.5 * (lo + hi)
-            done = abs(new - x) <= tol
-            x = new
-            if done:
-                break
-        else:
-            raise _UseGeneralPath
-    d = derivatives(roughness, x_axis + x)
-    return x, 1.0 / big_r - d[2], -d[3], -d[4]
-
-
-def _brentq_float(f, xa, xb, xtol, rtol, maxiter=100):
-    """scipy.optimize.brentq (brentq.c) in Python floats; ``_UseGeneralPath`` where scipy
-    would raise (sign error, NaN, no convergence)."""
-    xpre, xcur = xa, xb
-    xblk = fblk = spre = scur = 0.0
-    fpre = f(xpre)
-    fcur = f(xcur)
-    if fpre != fpre or fcur != fcur:
-        raise _UseGeneralPath
-    if fpre == 0:
-        return xpre
-    if fcur == 0:
-        return xcur
-    if math.copysign(1.0, fpre) == math.copysign(1.0, fcur):
-        raise _UseGeneralPath
-    for _ in range(maxiter):
-        if fpre != 0 and fcur != 0 and math.copysign(1.0, fpre) != math.copysign(1.0, fcur):
-            xblk = xpre
-            fblk = fpre
-            spre = scur = xcur - xpre
-        if abs(fblk) < abs(fcur):
-            xpre = xcur
-            xcur = xblk
-            xblk = xpre
-            fpre = fcur
-            fcur = fblk
-            fblk = fpre
-        delta = (xtol + rtol * abs(xcur)) / 2
-        sbis = (xblk - xcur) / 2
-        if fcur == 0 or abs(sbis) < delta:
-            return xcur
-        if abs(spre) > delta and abs(fcur) < abs(fpre):
-            if xpre == xblk:
-                stry = -fcur * (xcur - xpre) / (fcur - fpre)
-            else:
-                dpre = (fpre - fcur) / (xpre - xcur)
-                dblk = (fblk - fcur) / (xblk - xcur)
-                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
-            if 2 * abs(stry) < min(abs(spre), 3 * abs(sbis) - delta):
-                spre = scur
-                scur = stry
-            else:
-                spre = sbis
-                scur = sbis
-        else:
-            spre = sbis
-            scur = sbis
-        xpre = xcur
-        fpre = fcur
-        if abs(scur) > delta:
-            xcur += scur
-        else:
-            xcur += (delta if sbis > 0 else -delta)
-        fcur = f(xcur)
-        if fcur != fcur:
-            raise _UseGeneralPath
-    raise _UseGeneralPath
-
-
-def _sign(v):
-    """np.sign of a float (NaN stays NaN)."""
-    return 1.0 if v > 0.0 else (-1.0 if v < 0.0 else (0.0 if v == 0.0 else v))
-
-
-def _pressure_nonnegative_float(a, d, l2, l3, l4, kfac):
-    """:func:`_pressure_nonnegative` of the contact ``(a, Delta)``: the same coefficients
-    (asperity_pressure_coefficients / K * a^n) and the same Horner steps on the same nodes."""
-    pi = np.pi
-    curv = l2 + l3 * d + 0.5 * l4 * d * d
-    odd = d * (l2 + 0.5 * l3 * d + l4 * d * d / 6.0)
-    skew = l3 + l4 * d
-    g = (a * a / pi * (curv + l4 * a * a / 12.0), (0.25 * a * a * skew - odd) / pi,
-         (l4 * a * a / 12.0 - curv) / pi, -skew / (2.0 * pi), -l4 / (6.0 * pi))
-    b = [g[n] / kfac * a**n if n else g[0] / kfac * 1.0 for n in range(5)]
-    # Shortcut, a sufficient condition for the sampled check to pass: P(s) = sum b_n s^n =
-    # (1 - s^2) Q(s) + r0 + r1 s with Q = -(b2 + b4) - b3 s - b4 s^2, r0 = b0 + b2 + b4 (the
-    # even edge condition), r1 = b1 + b3 (the odd one). If min Q over [-1, 1] >= 0, every sample
-    # is >= -(|r0| + |r1|) up to the rounding of the decomposition and of Horner (a few eps of
-    # sum |b_n|), and the largest sample magnitude is >= |P(~0)| = b0 (s = cos(pi/2) is a
-    # node); so with (|r0| + |r1|) + 1e-12 sum |b_n| <= 0.5e-9 b0 the check
-    # min >= -1e-9 max|v| holds. Otherwise: the same sampled check as the public path.
-    q0, q1, q2 = -(b[2] + b[4]), -b[3], -b[4]
-    q_min = min(q0 - q1 + q2, q0 + q1 + q2)
-    if q2 > 0.0 and abs(q1) < 2.0 * q2:
-        q_min = min(q_min, q0 - q1 * q1 / (4.0 * q2))
-    if (q_min >= 0.0 and b[0] > 0.0
-            and (abs(b[0] + b[2] + b[4]) + abs(b[1] + b[3])
-                 + 1e-12 * (abs(b[0]) + abs(b[1]) + abs(b[2]) + abs(b[3]) + abs(b[4])))
-            <= 0.5e-9 * b[0]):
-        return True
-    s = _PRESSURE_NODES
-    v = b[3] + b[4] * s
-    v = b[2] + v * s
-    v = b[1] + v * s
-    v = b[0] + v * s
-    return v.min() >= -1e-9 * np.abs(v).max()
-
-
-def _asperity_normal_float(nt, l2, l3, l4, kfac):
-    """:func:`asperity_normal_contact` in floats: ``(a, Delta)`` for ``N~ = nt > 0``."""
-    if l2 <= 0.0:  # l2 = 0 (only reachable with l3 = 0 < l4 by a convex gap): public path
-        raise _UseGeneralPath
-    if l4 == 0.0 and l3 == 0.0:
-        return math.sqrt(nt / l2), 0.0
-    if l4 == 0.0:
-        x = nt * nt * l3**4 / l2**6
-        if not 27.0 / 16.0 * x < 1.0:
-            raise _UseGeneralPath
-        theta = math.acos(27.0 / 8.0 * x - 1.0) / 3.0
-        a2 = 2.0 / 3.0 * (l2 / l3) ** 2 * (1.0 + 2.0 * math.cos(theta + np.pi / 3.0))
-        return math.sqrt(a2), (nt / a2 - l2) / l3
-    if l3 == 0.0:
-        arg = 0.5 * l4 * nt / l2**2
-        if not arg > -1.0:
-            raise _UseGeneralPath
-        a2 = 4.0 * (l2 / l4) * arg / (math.sqrt(1.0 + arg) + 1.0)
-        a = math.sqrt(a2)
-        if l4 < 0 and not _pressure_nonnegative_float(a, 0.0, l2, l3, l4, kfac):
-            raise _UseGeneralPath
-        return a, 0.0
-    if abs(l2 - l3 * l3 / (3.0 * l4)) <= 1e-12 * abs(l2):
-        a2 = 2.0 * (l2 / l4) * (math.sqrt(1.0 + 2.0 * l4 * nt / l2**2) + 1.0)
-        a, d = math.sqrt(a2), -l3 / l4
-        if not _pressure_nonnegative_float(a, d, l2, l3, l4, kfac):
-            raise _UseGeneralPath
-        return a, d
-
-    def a2_of(d):
-        return -4.0 * d * (l2 + 0.5 * l3 * d + l4 * d * d / 6.0) / (l3 + l4 * d)
-
-    direction = -_sign(l3)
-    sign_l3 = _sign(l3)
-    step = 0.1 * min(math.sqrt(nt / l2), nt * abs(l3) / (4.0 * l2 * l2))
-    c_pole = abs(l3) / l4 if l4 > 0.0 else math.inf
-    lo = 0.0
-    hi = None
-    for _ in range(200):
-        cand = lo + step
-        if cand >= c_pole:
-            cand = lo + 0.5 * (c_pole - lo)
-            if cand <= lo:
-                break
-        d = direction * cand
-        if l3 + l4 * d == 0 or _sign(l3 + l4 * d) != sign_l3:
-            break
-        a2 = a2_of(d)      # once for the test and f(d)
-        if a2 <= 0:
-            break
-        if (l2 + l3 * d + 0.5 * l4 * d * d) * a2 + l4 * a2 * a2 / 8.0 - nt >= 0.0:
-            hi = cand
-            break
-        lo, step = cand, step * 1.5
-    if hi is None:
-        raise _UseGeneralPath
-    scale = direction * hi
-    def scaled(u):         # f(scale u) / nt
-        d = scale * u
-        a2 = -4.0 * d * (l2 + 0.5 * l3 * d + l4 * d * d / 6.0) / (l3 + l4 * d)
-        return ((l2 + l3 * d + 0.5 * l4 * d * d) * a2 + l4 * a2 * a2 / 8.0 - nt) / nt
-
-    s = hi * _brentq_float(scaled, lo / hi, 1.0, 1e-300, 1e-15)
-    d = direction * s
-    a = math.sqrt(a2_of(d))
-    if not _pressure_nonnegative_float(a, d, l2, l3, l4, kfac):
-        raise _UseGeneralPath
-    return a, d
-
-
-def _asperity_tangential_float(a, d, load, l2, l3, l4, ref, mu, creepage):
-    """:func:`asperity_tangential_contact` (given creepage) and
-    :func:`asperity_critical_creepage` in floats: ``(force, stick_ratio, critical_creepage)``."""
-    e = d + a
-    critical = mu * e * (l2 + 0.5 * l3 * e + l4 * e * e / 6.0)
-    target = abs(creepage)
-    if mu > 0 and 0 < target < _poly._SERIES_LIMIT * critical:
-        raise _UseGeneralPath
-    edge = d + a
-
-    def xi_mag(r):  # -_tangential_state(...)[0] with a Python float r (a*^2 by pow)
-        a_s = r * a
-        d_s = edge - a_s
-        a2 = a_s**2
-        return -(-mu * (d_s * (l2 + 0.5 * l3 * d_s + l4 * d_s * d_s / 6.0)
-                        + 0.25 * a2 * (l3 + l4 * d_s)))
-
-    def t_mag(r):
-        a_s = r * a
-        d_s = edge - a_s
-        a2 = a_s**2
-        return mu * (load - ref * ((l2 + l3 * d_s + 0.5 * l4 * d_s * d_s) * a2
-                                   + l4 * a2 * a2 / 8.0))
-
-    if target == 0.0 or mu == 0.0:
-        r = 1.0
-    elif target >= xi_mag(0.0):
-        r = 0.0
-    else:
-        # the scan of asperity_tangential_contact's root() (the grid as an array there, so
-        # a*^2 by a multiplication here): the first sign change from r = 1; -mu and 0.5 l3 are
-        # the first products Python forms in the same expressions
-        m, h3 = -mu, 0.5 * l3
-        grid = _FLOAT_SCAN_GRID
-
-        def scanned(g):
-            a_s = g * a
-            d_s = edge - a_s
-            a2 = a_s * a_s
-            return (m * (d_s * (l2 + h3 * d_s + l4 * d_s * d_s / 6.0)
-                         + 0.25 * a2 * (l3 + l4 * d_s))) * -1.0 - target
-
-        def residual(x):   # xi_mag(x) - target
-            a_s = x * a
-            d_s = edge - a_s
-            a2 = a_s**2
-            return -(m * (d_s * (l2 + h3 * d_s + l4 * d_s * d_s / 6.0)
-                          + 0.25 * a2 * (l3 + l4 * d_s))) - target
-
-        r = None
-        # Shortcut: d xi/dr = mu a q(r), q = c0 + c1 r + c2 r^2 (differentiating (6.38) with
-        # a* = r a, Delta* = Delta + a - a*). If q < 0 on [0, 1] with a margin that makes the
-        # grid increments of the scanned values exceed 64 eps of their size (so their rounding
-        # cannot reorder them), the scanned values increase strictly along the grid and the
-        # first sign change is the first value >= 0: found by bisection over the grid indices,
-        # the same bracket as the scan, evaluated by the same operations.
-        c0 = -(l2 + l3 * e + 0.5 * l4 * e * e)
-        c1 = 1.5 * a * (l3 + l4 * e)
-        c2 = -1.25 * l4 * a * a
-        q_max = max(c0, c0 + c1 + c2)
-        if c2 < 0.0 and 0.0 < -c1 < -2.0 * c2:
-            q_max = max(q_max, c0 - c1 * c1 / (4.0 * c2))
-        q_max += 1e-12 * (abs(c0) + abs(c1) + abs(c2))
-        w = abs(e) + a
-        size = (mu * (w * (abs(l2) + abs(l3) * w + abs(l4) * w * w)
-                      + 0.25 * a * a * (abs(l3) + abs(l4) * w)) + target)
-        if q_max < 0.0 and mu * a * -q_max / 64.0 > 64.0 * 2.220446049250313e-16 * size:
-            first = scanned(grid[0])
-            if first == 0.0:
-                r = 1.0
-            elif first < 0.0 and scanned(grid[-1]) >= 0.0:
-                lo_j, hi_j = 0, len(grid) - 1
-                while hi_j - lo_j > 1:
-                    mid = (lo_j + hi_j) // 2
-                    if scanned(grid[mid]) < 0.0:
-                        lo_j = mid
-                    else:
-                        hi_j = mid
-                r = _brentq_float(residual, grid[hi_j], grid[hi_j - 1], 1e-15, 1e-14)
-            # else no sign change (r = 0 below)
-        else:
-            prev = None
-            for j, g in enumerate(grid):
-                v = scanned(g)
-                sv = 1.0 if v > 0.0 else (-1.0 if v < 0.0 else (0.0 if v == 0.0 else v))
-                if sv != prev and j:
-                    r = _brentq_float(residual, g, grid[j - 1], 1e-15, 1e-14)
-                    break
-                if v == 0.0 and not j:
-                    r = 1.0
-                    break
-                prev = sv
-        if r is None:
-            r = 0.0
-    force = -_sign(creepage) * t_mag(r) if target > 0 else 0.0
-    return force, r, critical
-
-
-def _rough_rail_contact_float(roughness, rail_position, normal_load, radius, youngs_modulus,
-                              poisson_ratio, friction_coefficient, creepage, constants):
-    """:func:`rough_rail_contact` in floats (assumptions: see the comment block above).
-
-    ``constants = _float_constants(roughness, radius, youngs_modulus, poisson_ratio)``.
-
-    Returns
-    -------
-    tuple of float
-        ``(x_c, lambda2, lambda3, lambda4, a, Delta, force, stick_ratio, critical_creepage)``:
-        the gap minimum's shift [m], the lambdas, the half-width and shift [m], the
-        tangential force [N/m], ``a*/a`` and Eq. (6.40)'s critical creepage.
+    Parameters
+    ----------
+    roughness : HarmonicRoughness or ProfileRoughness
+    radius : float
+        Equivalent radius ``R``, > 0, with ``R max r'' < 1``. [m]
+    youngs_modulus : float
+        > 0. [Pa]
+    poisson_ratio : float
+        In [0, 0.5). [-]
     """
-    derivatives, bound, kfac2, kfac, ref = constants
-    if math.isfinite(rail_position) and math.isfinite(creepage):
-        nt = normal_load * kfac2
-        if nt >= 2.2250738585072014e-308:
-            try:
-                xc, l2, l3, l4 = _local_gap_float(derivatives, roughness, rail_position, radius,
-                                                  bound)
-                a, d = _asperity_normal_float(nt, l2, l3, l4, kfac)
-                force, r, critical = _asperity_tangential_float(
-                    a, d, normal_load, l2, l3, l4, ref, friction_coefficient, creepage)
-                return xc, l2, l3, l4, a, d, force, r, critical
-            except _UseGeneralPath:
-                pass
-    res = rough_rail_contact(roughness, rail_position, normal_load, radius, youngs_modulus,
-                             poisson_ratio, friction_coefficient, creepage)
-    gap = res.gap
-    return (float(gap.contact_point_shift), float(gap.curvature), float(gap.skewness),
-            float(gap.flatness), float(res.half_width), float(res.normal.shift),
-            float(res.tangential_force), float(res.stick_ratio), float(res.critical_creepage))
 
+    def __init__(self, roughness, radius, youngs_modulus, poisson_ratio):
+        self.radius = _check_gap(roughness, radius)
+        self.roughness = roughness
+        self.youngs_modulus, self.poisson_ratio = float(youngs_modulus), float(poisson_ratio)
+        kfac = float(_poly.kernel_factor(youngs_modulus, poisson_ratio))
+        e, nu = self.youngs_modulus, self.poisson_ratio
+        self._constants = (self.radius * roughness.max_slope(), kfac,
+                           np.pi * e / (8.0 * (1.0 - nu**2)))
+        self._surface = roughness._kernel_surface
+        self._nt_per_load = 2.0 * kfac              # normalised_load: n * 2.0 * K
 
-def _float_constants(roughness, radius, youngs_modulus, poisson_ratio):
-    """The per-scene constants of :func:`_rough_rail_contact_float` (checked here, once)."""
-    radius = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
-    kfac = float(_poly.kernel_factor(youngs_modulus, poisson_ratio))
-    e, nu = float(youngs_modulus), float(poisson_ratio)
-    derivatives = (_harmonic_derivatives_float if isinstance(roughness, HarmonicRoughness)
-                   else _profile_derivatives_float)
-    # normalised_load: n * 2.0 * K; _tangential_state's pi E / (8 (1 - nu^2)) with nu**2 by pow
-    return (derivatives, radius * roughness.max_slope(), 2.0 * kfac, kfac,
-            np.pi * e / (8.0 * (1.0 - nu**2)))
+    def contact(self, rail_position, normal_load, friction_coefficient, creepage):
+        """:func:`rough_rail_contact` as floats.
 
+        Returns
+        -------
+        tuple of float
+            ``(x_c, lambda2, lambda3, lambda4, a, Delta, force, stick_ratio,
+            critical_creepage)``: the gap minimum's shift [m], the lambdas, the half-width
+            and shift [m], the tangential force [N/m], ``a*/a`` and Eq. (6.40)'s critical
+            creepage.
+        """
+        nt = normal_load * self._nt_per_load
+        if (2.2250738585072014e-308 <= nt < math.inf and math.isfinite(rail_position)
+                and math.isfinite(creepage) and 0.0 <= friction_coefficient < math.inf):
+            bound, kfac, ref = self._constants
+            *values, status = _kernels.rough_rail_contact(
+                *self._surface, rail_position, normal_load, nt, self.radius, bound, kfac, ref,
+                friction_coefficient, creepage, _poly._SERIES_LIMIT)
+            if status == 0:
+                return tuple(values)
+        res = rough_rail_contact(self.roughness, rail_position, normal_load, self.radius,
+                                 self.youngs_modulus, self.poisson_ratio, friction_coefficient,
+                                 creepage)
+        gap = res.gap
+        return (float(gap.contact_point_shift), float(gap.curvature), float(gap.skewness),
+                float(gap.flatness), float(res.half_width), float(res.normal.shift),
+                float(res.tangential_force), float(res.stick_ratio),
+                float(res.critical_creepage))
 
-def _local_gap_only_float(roughness, rail_position, radius, constants):
-    """:func:`local_gap` at one position in floats: ``(x_c, lambda2, lambda3, lambda4)``."""
-    if math.isfinite(rail_position):
-        try:
-            return _local_gap_float(constants[0], roughness, rail_position, radius,
-                                    constants[1])
-        except _UseGeneralPath:
-            pass
-    gap = local_gap(roughness, rail_position, radius)
-    return (float(gap.contact_point_shift), float(gap.curvature), float(gap.skewness),
-            float(gap.flatness))
+    def local_gap(self, rail_position):
+        """:func:`local_gap` at one position as floats: ``(x_c, lambda2, lambda3, lambda4)``."""
+        if math.isfinite(rail_position):
+            xc, l2, l3, l4, _, converged = _kernels.local_gap(
+                *self._surface, rail_position, self.radius, self._constants[0], 60)
+            if converged:
+                return xc, l2, l3, l4
+        gap = local_gap(self.roughness, rail_position, self.radius)
+        return (float(gap.contact_point_shift), float(gap.curvature), float(gap.skewness),
+                float(gap.flatness))
