@@ -1,6 +1,6 @@
 """Compiled kernels of the rough-rail contact (Nielsen 1998, Ch. 6): one implementation.
 
-Internal module. :mod:`railcontact.roughness` checks the inputs in Python and calls these
+Internal module. the modules of :mod:`railcontact.roughness` check the inputs in Python and calls these
 kernels; the FMU's Roughness effect calls the same kernels once per step through
 :class:`railcontact.roughness.RoughRailSolver` (the pattern of pvlib's ``spa.py``, one source
 for both speeds, and of scipy's ``_ndbspline``, validation in Python and evaluation in one
@@ -28,7 +28,7 @@ import math
 import numpy as np
 from numba import njit
 
-from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
+from .. import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 
 HARMONIC, PERIODIC_PROFILE, HELD_PROFILE = 0, 1, 2
 
