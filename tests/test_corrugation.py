@@ -498,3 +498,33 @@ def test_smallest_accepted_load_is_the_zero_load_limit(method):
     assert (a, d, ast, t) == pytest.approx((float(res.half_width), float(res.patch_shift),
                                             float(res.stick_half_width),
                                             float(res.tangential_force)), rel=1e-12)
+
+
+# ---------------------------------------------------------------------------------------------
+# the compiled kernels behind solve_normal_exact, solve_stick_zone_exact and the exact method
+# ---------------------------------------------------------------------------------------------
+def test_kernel_bessel_functions_are_scipys():
+    """The kernels' J0, J1 (scipy.special.cython_special linked by symbol name) are the
+    ufuncs' values bit for bit, on seeded arguments over the range the contact uses."""
+    from railcontact import _corrugation_kernels as kernels
+    z = np.random.default_rng(8).uniform(0.0, 80.0, 2000)
+    assert np.array_equal([kernels.bessel_j0(v) for v in z], j0(z))
+    assert np.array_equal([kernels.bessel_j1(v) for v in z], j1(z))
+
+
+def test_each_position_is_solved_on_its_own():
+    """corrugated_contact (exact) on an array of positions equals the calls at one position
+    each, bit for bit: the Newton iterations of one position do not depend on the others
+    (several harmonics, long and short waves, partial slip)."""
+    rng = np.random.default_rng(12)
+    lam = np.array([0.05, 0.013, 0.2])
+    k = 2 * np.pi / lam
+    za, zb = 0.3 / (k * k * R) * np.array([1.0, 0.5, -0.8]) / 3, 0.2 / (k * k * R) / 3
+    x = rng.uniform(-0.1, 0.1, 30)
+    for xi in (0.0, 1e-4, 2e-3):
+        arr = cg.corrugated_contact(x, N, R, E, NU, MU, xi, za, zb * np.ones(3), lam)
+        for i in range(0, 30, 3):
+            one = cg.corrugated_contact(x[i], N, R, E, NU, MU, xi, za, zb * np.ones(3), lam)
+            assert (arr.half_width[i], arr.patch_shift[i], arr.stick_half_width[i],
+                    arr.tangential_force[i]) == (one.half_width, one.patch_shift,
+                                                 one.stick_half_width, one.tangential_force)

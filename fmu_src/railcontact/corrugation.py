@@ -64,6 +64,7 @@ from collections import namedtuple
 import numpy as np
 from scipy.special import j0, j1, jv
 
+from . import _corrugation_kernels as _kernels
 from ._validation import check_range
 
 __all__ = [
@@ -330,83 +331,6 @@ def series_degree(ka, tolerance=1e-10, max_degree=400):
 # ---------------------------------------------------------------------------------------------
 # exact nonlinear solution at given rail positions (any number of harmonics)
 # ---------------------------------------------------------------------------------------------
-def _surface_terms(y, k, za, zb):
-    """S = Z_A sin ky - Z_B cos ky and Zc = Z_A cos ky + Z_B sin ky (last axis = harmonics)."""
-    s, c = np.sin(k * y), np.cos(k * y)
-    return za * s - zb * c, za * c + zb * s
-
-
-def _shift_for_half_width(x, a, big_r, k, za, zb, atol, max_iter, d=None):
-    """Delta(a) from (4.31) at fixed half-width, bracketed (vectorised over positions).
-
-    ``h(Delta) = Delta + R sum k J0(k a) S(X + Delta)`` satisfies ``h(-B) <= 0 <= h(B)`` with
-    ``B = R sum k |J0(k a)| |Z|`` and ``h' = 1 + R sum k^2 J0(k a) Zc >= 1 - sum k^2 R |Z| > 0``
-    under (4.2): one root, found by Newton safeguarded by bisection."""
-    ka = k * a[:, None]
-    jz = j0(ka)
-    bound = big_r * np.sum(k * np.abs(jz) * np.hypot(za, zb), -1)
-    lo, hi = -bound, bound.copy()
-    d = np.zeros_like(a) if d is None else np.clip(d, lo, hi)
-    for _ in range(max_iter):
-        s, c = _surface_terms(x[:, None] + d[:, None], k, za, zb)
-        h = d + big_r * np.sum(k * jz * s, -1)
-        dh = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-        lo = np.where(h <= 0, d, lo)
-        hi = np.where(h >= 0, d, hi)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            new = d - h / dh
-        new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-        done = (np.abs(new - d) <= atol) | (hi - lo <= atol) | (h == 0)
-        d = np.where(h == 0, d, new)
-        if np.all(done):
-            break
-    return d
-
-
-def _solve_normal_bracketed(x, nc, big_r, k, za, zb, atol, max_iter):
-    """(4.31), (4.33) as a bracketed 1-D problem in a (globally convergent Newton fallback).
-
-    For each a, Delta(a) is the unique root of (4.31) (:func:`_shift_for_half_width`); then
-    ``P(a) = a^2/(2R) + sum k a J1(k a) Zc(X + Delta(a)) - N C`` has ``P(0) = -N C < 0`` and
-    ``P(a_hi) > 0`` for ``a_hi = R s + sqrt((R s)^2 + 2 R N C)``, ``s = 0.582 sum k |Z|``
-    (``max |J1| = 0.5819``). Under (4.2) (convex gap) the root is unique: every root gives the
-    bounded Muskhelishvili pressure ``p ~ sqrt(a^2 - x^2) int (g'(t) - g'(x))/(t - x) ...``,
-    positive for a convex gap, i.e. a solution of the (uniquely solvable) contact problem.
-    Newton on ``P`` with ``dP/da = det / j11`` (total derivative), safeguarded by bisection.
-    """
-    x = np.asarray(x, float)
-    s_j1 = 0.582 * np.sum(k * np.hypot(za, zb))
-    lo = np.zeros_like(x)
-    hi = np.full_like(x, big_r * s_j1 + np.sqrt((big_r * s_j1) ** 2 + 2.0 * big_r * nc))
-    a = np.minimum(np.sqrt(2.0 * big_r * nc), 0.5 * hi)
-    d = None
-    for _ in range(max_iter):
-        d = _shift_for_half_width(x, a, big_r, k, za, zb, atol, max_iter, d)
-        s, c = _surface_terms(x[:, None] + d[:, None], k, za, zb)
-        ka = k * a[:, None]
-        jz, jo = j0(ka), j1(ka)
-        p = a * a / (2 * big_r) + np.sum(k * a[:, None] * jo * c, -1) - nc
-        j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-        j12 = -big_r * np.sum(k * k * jo * s, -1)
-        j21 = -np.sum(k * k * a[:, None] * jo * s, -1)
-        j22 = a / big_r + np.sum(k * k * a[:, None] * jz * c, -1)
-        lo = np.where(p <= 0, a, lo)
-        hi = np.where(p >= 0, a, hi)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            new = a - p * j11 / (j11 * j22 - j12 * j21)
-        new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-        done = (np.abs(new - a) <= atol) | (hi - lo <= atol) | (p == 0)
-        a = np.where(p == 0, a, new)
-        if np.all(done):
-            break
-    else:
-        raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) k^2 R |Z| < 1 "
-                         "[m]: the bracketed normal problem (4.31), (4.33) did not converge "
-                         f"in {max_iter} steps at rail_position = {x[~done]} m")
-    d = _shift_for_half_width(x, a, big_r, k, za, zb, atol, max_iter, d)
-    return a, d
-
-
 def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumbers, amplitudes_cos,
                        amplitudes_sin, *, a_start=None, tol=1e-13, max_iter=60):
     r"""Solve the exact normal equations (4.31) and (4.33) for ``a`` and ``Delta``.
@@ -452,71 +376,33 @@ def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumber
     ``[5e-4, 1]``, ``k^2 R |Z| < 0.999``, 400 surfaces x 37 positions: no failure, Newton and
     the bracketed fallback agree within 1.5e-11 a0).
     """
-    x = np.asarray(rail_position, dtype=float)[..., None]
-    k = np.asarray(wavenumbers, float)
-    za = np.asarray(amplitudes_cos, float)
-    zb = np.asarray(amplitudes_sin, float)
+    x = np.asarray(rail_position, dtype=float)
+    k, za, zb = _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin)
     big_r = float(radius)
     nc = float(normal_load_compliance)
-    a0 = np.sqrt(2.0 * big_r * nc)
-    a = np.full(x.shape[:-1], a0 if a_start is None else 0.0) + (0.0 if a_start is None
-                                                                else np.asarray(a_start))
-    d = np.zeros(x.shape[:-1])
-    step = np.full(x.shape[:-1], np.inf)
-    # Steps are compared with tol * (a0 + R sum k |Z|): the residual of (4.31) is a sum of terms
-    # of size |Delta| <= R sum k |Z|, so its rounding (eps R k |Z| / j11) exceeds tol * a0 for long
-    # waves (a0/L = 1e-3, k^2 R |Z| = 0.858: |Delta| = 76 a0; with tol * a0 alone Newton had
-    # converged but never met the criterion and reported "did not converge").
-    atol = tol * (a0 + big_r * float(np.sum(k * np.hypot(za, zb))))
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for _ in range(max_iter):
-            s, c = _surface_terms(x + d[..., None], k, za, zb)
-            ka = k * a[..., None]
-            jz, jo = j0(ka), j1(ka)
-            f1 = d + big_r * np.sum(k * jz * s, -1)
-            f2 = a * a / (2 * big_r) + np.sum(k * a[..., None] * jo * c, -1) - nc
-            j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-            j12 = -big_r * np.sum(k * k * jo * s, -1)
-            j21 = -np.sum(k * k * a[..., None] * jo * s, -1)
-            j22 = a / big_r + np.sum(k * k * a[..., None] * jz * c, -1)
-            det = j11 * j22 - j12 * j21
-            dd = (f1 * j22 - f2 * j12) / det
-            da = (j11 * f2 - j21 * f1) / det
-            d = d - dd
-            a = a - da
-            step = np.abs(dd) + np.abs(da)
-            if np.all(step < atol):
-                break
-    # (4.31) and (4.33) are even in a (J0 even, a J1(k a) even): a Newton step through a = 0
-    # (tiny det far from the solution, e.g. long waves near the edge of (4.2) where the patch
-    # moves by ~L/7 from the axis) lands on the mirror root (-a, Delta), the same physical
-    # solution. Positions where plain Newton did not converge (it can cycle when the patch
-    # shift is a sizeable part of the wave length) are re-solved by the bracketed reduction.
-    a = np.abs(a)
-    bad = (~(step < atol) | ~np.isfinite(a) | ~np.isfinite(d)).reshape(-1)
-    if np.any(bad):
-        a_f, d_f = a.reshape(-1).copy(), d.reshape(-1).copy()
-        a_f[bad], d_f[bad] = _solve_normal_bracketed(x.reshape(-1)[bad], nc, big_r, k, za, zb,
-                                                     atol, max(4 * max_iter, 200))
-        a, d = a_f.reshape(a.shape), d_f.reshape(d.shape)
-    curv_sum = float(np.sum(k * k * big_r * np.hypot(za, zb)))
-    s, c = _surface_terms(x + d[..., None], k, za, zb)
-    ka = k * a[..., None]
-    jz, jo = j0(ka), j1(ka)
-    j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-    j12 = -big_r * np.sum(k * k * jo * s, -1)
-    j21 = -np.sum(k * k * a[..., None] * jo * s, -1)
-    j22 = a / big_r + np.sum(k * k * a[..., None] * jz * c, -1)
-    det = j11 * j22 - j12 * j21
-    if np.any(a <= 0) or np.any(~(det > 0)) or np.any(~(j11 > 0)):
+    a_start = np.sqrt(2.0 * big_r * nc) if a_start is None else np.asarray(a_start, float)
+    x, a_start = np.broadcast_arrays(x, a_start)
+    out, status = _kernels.solve_normal_array(np.ascontiguousarray(x.ravel()), nc, big_r, k,
+                                              za, zb, np.ascontiguousarray(a_start.ravel()),
+                                              float(tol), int(max_iter))
+    if np.any(status == _kernels.NOT_CONVERGED):
+        raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) k^2 R |Z| < 1 "
+                         "[m]: the bracketed normal problem (4.31), (4.33) did not converge "
+                         f"in {max(4 * int(max_iter), 200)} steps at rail_position = "
+                         f"{x.ravel()[status == _kernels.NOT_CONVERGED]} m")
+    if np.any(status != _kernels.OK):
+        curv_sum = float(np.sum(k * k * big_r * np.hypot(za, zb)))
         raise ValueError("amplitudes_cos, amplitudes_sin must satisfy sum k^2 R |Z| < 1 (Eq. "
                          f"(4.2) for the sum of the harmonics; got {curv_sum:g}) [m]: no "
                          "single-patch solution")
-    g1 = big_r * np.sum(k * k * jz * c, -1)              # dF1/dX
-    g2 = -np.sum(k * k * a[..., None] * jo * s, -1)      # dF2/dX
-    dd_dx = -(g1 * j22 - g2 * j12) / det
-    da_dx = -(j11 * g2 - j21 * g1) / det
+    a, d, da_dx, dd_dx = (v.reshape(x.shape) for v in out)
     return a, d, da_dx, dd_dx
+
+
+def _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin):
+    """The harmonics as the kernels' contiguous float arrays ``(k, Z_A, Z_B)``."""
+    return tuple(np.ascontiguousarray(np.atleast_1d(np.asarray(v, dtype=float)))
+                 for v in (wavenumbers, amplitudes_cos, amplitudes_sin))
 
 
 def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radius, wavenumbers,
@@ -543,80 +429,13 @@ def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radi
     ndarray
         ``a*``. [m]
     """
-    x = np.asarray(rail_position, dtype=float)
-    a = np.asarray(a, float)
-    d = np.asarray(delta, float)
-    offset = _stick_offset(x, a, d, float(creepage_over_friction), float(radius),
-                           np.asarray(wavenumbers, float), np.asarray(amplitudes_cos, float),
-                           np.asarray(amplitudes_sin, float), tol, max_iter)
-    return a - offset
-
-
-# Small offsets delta = a - a* (tiny creepage) are handled by second-order Taylor expansions in
-# delta of the *differences* below, so that neither delta nor T is the difference of two
-# nearly equal O(1) numbers (xi -> 0 gives delta = 0 and T = 0 exactly).
-_TAYLOR_LIMIT = 1e-4          # k delta below which the Taylor forms are used
-
-
-def _j1_over_z(z):
-    return np.where(z > 1e-8, j1(z) / np.where(z > 1e-8, z, 1.0), 0.5)
-
-
-def _stick_bracket(y, a, delta, k, za, zb):
-    """G(delta) - G(0), G = sum k J0(k (a - delta)) S(y + delta), and dG/d delta."""
-    kd = k * delta[..., None]
-    small = np.max(kd, -1, initial=0.0) < _TAYLOR_LIMIT
-    s0, c0 = _surface_terms(y[..., None], k, za, zb)
-    z = k * a[..., None]
-    jz, jo = j0(z), j1(z)
-    g1 = np.sum(k * k * (jo * s0 + jz * c0), -1)
-    g2 = np.sum(k ** 3 * (-(2 * jz - _j1_over_z(z)) * s0 + 2 * jo * c0), -1)
-    taylor = delta * g1 + 0.5 * delta * delta * g2
-    s1, c1 = _surface_terms(y[..., None] + delta[..., None], k, za, zb)
-    zs = k * (a - delta)[..., None]
-    direct = np.sum(k * (j0(zs) * s1 - jz * s0), -1)
-    deriv = np.sum(k * k * (j1(zs) * s1 + j0(zs) * c1), -1)
-    return np.where(small, taylor, direct), deriv
-
-
-def _stick_offset(x, a, d, xi, big_r, k, za, zb, tol=1e-13, max_iter=60):
-    """Solve delta = a - a* from delta/R + [G(delta) - G(0)] = xi/mu, delta in [0, a].
-
-    (The creepage condition minus the normal condition (4.31), which holds at delta = 0.)"""
-    y = x + d
-    delta = np.clip(np.full(np.shape(y), xi * big_r), 0.0, a)
-    for _ in range(max_iter):
-        bracket, deriv = _stick_bracket(y, a, delta, k, za, zb)
-        f = delta / big_r + bracket - xi
-        df = 1.0 / big_r + deriv
-        new = np.clip(delta - f / df, 0.0, a)
-        done = np.all(np.abs(new - delta) <= tol * np.maximum(np.abs(new), 1e-300)
-                      + 1e-15 * tol * a)
-        delta = new
-        if done:
-            break
-    return delta
-
-
-def _tangential_force_exact(x, a, d, delta, mu, comp, big_r, k, za, zb):
-    """|T| = (mu/C) [delta (2a - delta)/(2R) + H(0) - H(delta)] (4.67) minus (4.33),
-    H(delta) = sum k (a - delta) J1(k (a - delta)) Zc(y + delta), y = X + Delta."""
-    y = (x + d)[..., None]
-    kd = k * delta[..., None]
-    small = np.max(kd, -1, initial=0.0) < _TAYLOR_LIMIT
-    s0, c0 = _surface_terms(y, k, za, zb)
-    z = k * a[..., None]
-    jz, jo = j0(z), j1(z)
-    av = a[..., None]
-    h1 = -np.sum(k * k * av * (jz * c0 + jo * s0), -1)
-    h2 = np.sum(k * k * (jz * c0 + jo * s0)
-                - k ** 3 * av * (2 * jo * c0 - (2 * jz - _j1_over_z(z)) * s0), -1)
-    taylor = -(delta * h1 + 0.5 * delta * delta * h2)
-    s1, c1 = _surface_terms(y + delta[..., None], k, za, zb)
-    ast = (a - delta)[..., None]
-    direct = np.sum(k * (av * jo * c0 - ast * j1(k * ast) * c1), -1)
-    diff = np.where(small, taylor, direct)
-    return mu / comp * (delta * (2 * a - delta) / (2 * big_r) + diff)
+    x, a, d = np.broadcast_arrays(np.asarray(rail_position, dtype=float),
+                                  np.asarray(a, float), np.asarray(delta, float))
+    k, za, zb = _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin)
+    offset = _kernels.stick_offset_array(
+        *(np.ascontiguousarray(v.ravel()) for v in (x, a, d)), float(creepage_over_friction),
+        float(radius), k, za, zb, float(tol), int(max_iter))
+    return a - offset.reshape(x.shape)
 
 
 CorrugatedContact = namedtuple("CorrugatedContact", [
@@ -748,9 +567,11 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     a0s = max(a0 - xi * big_r / mu, 0.0)
     if method == "exact":
         a, d, _, _ = solve_normal_exact(x, n_load * comp, big_r, k, za, zb)
-        offset = _stick_offset(x, a, d, xi / mu, big_r, k, za, zb)
+        xs, a, d = (np.ascontiguousarray(v.ravel()) for v in np.broadcast_arrays(x, a, d))
+        harmonics = _harmonics(k, za, zb)
+        offset = _kernels.stick_offset_array(xs, a, d, xi / mu, big_r, *harmonics, 1e-13, 60)
         ast = a - offset
-        t = _tangential_force_exact(x, a, d, offset, mu, comp, big_r, k, za, zb)
+        t = _kernels.tangential_force_array(xs, a, d, offset, mu, comp, big_r, *harmonics)
     else:
         ratio = a0 / lam
         r = a0s / a0
@@ -932,16 +753,15 @@ def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulu
     comp = 4.0 * (1.0 - nu * nu) / (math.pi * youngs_modulus)
     a0s = max(a0 - xi * big_r / mu, 0.0)
     if method == "exact":
-        solved = _solve_normal_scalar(x, n_load * comp, big_r, harm)
-        if solved is None:                    # bracketed fallback or no single-patch solution
+        a, d, ast, t, status = _kernels.contact_exact(
+            x, n_load * comp, big_r, np.array([k for k, _, _ in harm]),
+            np.array(amplitudes_cos, dtype=float), np.array(amplitudes_sin, dtype=float),
+            xi / mu, mu, comp)
+        if status != _kernels.OK:             # no single-patch solution: the public errors
             return _public_contact(rail_position, normal_load, radius, youngs_modulus,
                                    poisson_ratio, friction_coefficient, creepage,
                                    amplitudes_cos, amplitudes_sin, wavelengths, method,
                                    wear_coefficient, wear_model)
-        a, d = solved
-        offset = _stick_offset_scalar(x, a, d, xi / mu, big_r, harm)
-        ast = a - offset
-        t = _tangential_force_scalar(x, a, d, offset, mu, comp, big_r, harm)
     else:
         r = a0s / a0
         a, d, ast = a0, 0.0, a0s
@@ -993,130 +813,3 @@ def _public_contact(*args):
     return (float(res.half_width), float(res.patch_shift), float(res.stick_half_width),
             float(res.tangential_force),
             None if res.wear_depth is None else float(res.wear_depth))
-
-
-def _solve_normal_scalar(x, nc, big_r, harm, tol=1e-13, max_iter=60, _sin=math.sin,
-                         _cos=math.cos):
-    """solve_normal_exact's Newton iteration for one position: (a, Delta), or None where the
-    array path takes its bracketed fallback or raises (not converged, not finite, or the
-    single-patch check fails)."""
-    a = math.sqrt(2.0 * big_r * nc)
-    atol = tol * (a + big_r * sum(k * math.hypot(za, zb) for k, za, zb in harm))
-    d = 0.0
-    step = math.inf
-    for _ in range(max_iter):
-        y = x + d
-        f1 = f2 = j11 = j12 = j21 = j22 = 0.0
-        for k, za, zb in harm:
-            sn, cs = _sin(k * y), _cos(k * y)
-            s, c = za * sn - zb * cs, za * cs + zb * sn
-            ka = k * a
-            jz, jo = float(j0(ka)), float(j1(ka))
-            kjz, kkjo = k * jz, k * k * jo
-            f1 += kjz * s
-            f2 += k * a * jo * c
-            j11 += k * k * jz * c
-            j12 += kkjo * s
-            j21 += k * k * a * jo * s
-            j22 += k * k * a * jz * c
-        f1 = d + big_r * f1
-        f2 = a * a / (2 * big_r) + f2 - nc
-        j11 = 1.0 + big_r * j11
-        j12 = -big_r * j12
-        j21 = -j21
-        j22 = a / big_r + j22
-        det = j11 * j22 - j12 * j21
-        if det == 0.0:
-            return None
-        dd = (f1 * j22 - f2 * j12) / det
-        da = (j11 * f2 - j21 * f1) / det
-        d = d - dd
-        a = a - da
-        step = abs(dd) + abs(da)
-        if not math.isfinite(step):
-            return None
-        if step < atol:
-            break
-    if not step < atol:
-        return None
-    a = abs(a)
-    # the single-patch check of solve_normal_exact at the root
-    y = x + d
-    j11 = j12 = j21 = j22 = 0.0
-    for k, za, zb in harm:
-        sn, cs = _sin(k * y), _cos(k * y)
-        s, c = za * sn - zb * cs, za * cs + zb * sn
-        ka = k * a
-        jz, jo = float(j0(ka)), float(j1(ka))
-        j11 += k * k * jz * c
-        j12 += k * k * jo * s
-        j21 += k * k * a * jo * s
-        j22 += k * k * a * jz * c
-    j11 = 1.0 + big_r * j11
-    det = j11 * (a / big_r + j22) - big_r * j12 * j21
-    if not (a > 0 and det > 0 and j11 > 0):
-        return None
-    return a, d
-
-
-def _stick_offset_scalar(x, a, d, xi, big_r, harm, tol=1e-13, max_iter=60, _sin=math.sin,
-                         _cos=math.cos):
-    """_stick_offset for one position (the same Newton iteration, floats)."""
-    y = x + d
-    base = []
-    g1 = g2 = 0.0
-    for k, za, zb in harm:
-        sn, cs = _sin(k * y), _cos(k * y)
-        s0, c0 = za * sn - zb * cs, za * cs + zb * sn
-        z = k * a
-        jz, jo = float(j0(z)), float(j1(z))
-        j1oz = jo / z if z > 1e-8 else 0.5
-        g1 += k * k * (jo * s0 + jz * c0)
-        g2 += k ** 3 * (-(2 * jz - j1oz) * s0 + 2 * jo * c0)
-        base.append((k, za, zb, jz * s0))
-    delta = min(max(xi * big_r, 0.0), a)
-    for _ in range(max_iter):
-        small = max(0.0, max(k * delta for k, _, _, _ in base)) < _TAYLOR_LIMIT
-        direct = deriv = 0.0
-        yd = y + delta
-        for k, za, zb, jzs0 in base:
-            sn, cs = _sin(k * yd), _cos(k * yd)
-            s1, c1 = za * sn - zb * cs, za * cs + zb * sn
-            zs = k * (a - delta)
-            js0, js1 = float(j0(zs)), float(j1(zs))
-            direct += k * (js0 * s1 - jzs0)
-            deriv += k * k * (js1 * s1 + js0 * c1)
-        bracket = delta * g1 + 0.5 * delta * delta * g2 if small else direct
-        f = delta / big_r + bracket - xi
-        df = 1.0 / big_r + deriv
-        new = min(max(delta - f / df, 0.0), a)
-        done = abs(new - delta) <= tol * max(abs(new), 1e-300) + 1e-15 * tol * a
-        delta = new
-        if done:
-            break
-    return delta
-
-
-def _tangential_force_scalar(x, a, d, delta, mu, comp, big_r, harm, _sin=math.sin,
-                             _cos=math.cos):
-    """_tangential_force_exact for one position (floats)."""
-    y = x + d
-    small = max(0.0, max(k * delta for k, _, _ in harm)) < _TAYLOR_LIMIT
-    h1 = h2 = direct = 0.0
-    ast = a - delta
-    for k, za, zb in harm:
-        sn, cs = _sin(k * y), _cos(k * y)
-        s0, c0 = za * sn - zb * cs, za * cs + zb * sn
-        z = k * a
-        jz, jo = float(j0(z)), float(j1(z))
-        if small:
-            j1oz = jo / z if z > 1e-8 else 0.5
-            h1 += k * k * a * (jz * c0 + jo * s0)
-            h2 += (k * k * (jz * c0 + jo * s0)
-                   - k ** 3 * a * (2 * jo * c0 - (2 * jz - j1oz) * s0))
-        else:
-            sn, cs = _sin(k * (y + delta)), _cos(k * (y + delta))
-            c1 = za * cs + zb * sn
-            direct += k * (a * jo * c0 - ast * float(j1(k * ast)) * c1)
-    diff = -(delta * -h1 + 0.5 * delta * delta * h2) if small else direct
-    return mu / comp * (delta * (2 * a - delta) / (2 * big_r) + diff)

@@ -56,8 +56,11 @@ SERIES_NEEDED = 1          # 0 < |creepage| < 1e-4 critical: the Ch. 3 full-stic
 # residuals of brent()
 _NORMAL_LOAD, _CREEPAGE, _FORCE = 0, 1, 2
 
+# division by zero gives inf/NaN as in C and numpy (Brent's interpolation relies on it)
+_jit = njit(cache=True, error_model="numpy")
 
-@njit(cache=True)
+
+@_jit
 def surface_derivatives(kind, nodes, coefficients, params, x):
     """``(r, r', r'', r''', r'''')`` of the rail surface at rail position ``x``.
     [m, -, 1/m, 1/m^2, 1/m^3]"""
@@ -91,7 +94,7 @@ def surface_derivatives(kind, nodes, coefficients, params, x):
     return out[0], out[1], out[2], out[3], out[4]
 
 
-@njit(cache=True)
+@_jit
 def surface_derivatives_array(kind, nodes, coefficients, params, x):
     """:func:`surface_derivatives` at every element of the 1-D array ``x``: shape (5, n)."""
     out = np.empty((5, x.size))
@@ -101,7 +104,7 @@ def surface_derivatives_array(kind, nodes, coefficients, params, x):
     return out
 
 
-@njit(cache=True)
+@_jit
 def local_gap(kind, nodes, coefficients, params, x_axis, big_r, bound, max_iter):
     """Gap minimum and 4th-order gap there: ``(x_c, l2, l3, l4, r, converged)``.
 
@@ -136,7 +139,7 @@ def local_gap(kind, nodes, coefficients, params, x_axis, big_r, bound, max_iter)
     return x, 1.0 / big_r - d[2], -d[3], -d[4], d[0], converged
 
 
-@njit(cache=True)
+@_jit
 def local_gap_array(kind, nodes, coefficients, params, x_axis, big_r, bound, max_iter):
     """:func:`local_gap` at every element of the 1-D array ``x_axis``: shape (5, n) of
     ``x_c, l2, l3, l4, r`` and whether every element converged."""
@@ -150,7 +153,7 @@ def local_gap_array(kind, nodes, coefficients, params, x_axis, big_r, bound, max
     return out, ok
 
 
-@njit(cache=True)
+@_jit
 def _residual(which, x, p):
     if which == _NORMAL_LOAD:
         # N~(Delta)/N~ - 1 at Delta = scale x ((6.9) solved for a^2, then (6.10)); scaled so
@@ -165,7 +168,7 @@ def _residual(which, x, p):
     return force - p[8]
 
 
-@njit(cache=True)
+@_jit
 def brent(which, p, xa, xb, xtol, rtol, maxiter):
     """Root of residual ``which`` (parameters ``p``) in ``[xa, xb]`` by Brent's method:
     ``(root, ok)``.
@@ -225,7 +228,7 @@ def brent(which, p, xa, xb, xtol, rtol, maxiter):
     return xcur, False
 
 
-@njit(cache=True)
+@_jit
 def pressure_nonnegative(a, d, l2, l3, l4, kfac):
     """Whether the asperity pressure of the contact ``(a, Delta)`` is >= 0 across the patch:
     ``sum b_n s^n >= -1e-9 max|.|`` at :data:`PRESSURE_NODES`, ``b_n = B_n a^n / K`` with the
@@ -246,7 +249,7 @@ def pressure_nonnegative(a, d, l2, l3, l4, kfac):
     return low >= -1e-9 * top
 
 
-@njit(cache=True)
+@_jit
 def asperity_normal(nt, l2, l3, l4, kfac):
     """Half-width and shift of one asperity, (6.9)-(6.10), Table 6.1: ``(a, Delta, case)``.
 
@@ -335,7 +338,7 @@ def asperity_normal(nt, l2, l3, l4, kfac):
     return a, d, CASE_NUMERICAL
 
 
-@njit(cache=True)
+@_jit
 def tangential_state(a, d, load, l2, l3, l4, ref, mu, r):
     """Creepage and force at stick ratio ``r = a*/a``, (6.38)-(6.39) mirrored: ``(xi, T)``.
 
@@ -350,7 +353,7 @@ def tangential_state(a, d, load, l2, l3, l4, ref, mu, r):
     return xi, force
 
 
-@njit(cache=True)
+@_jit
 def tangential_state_array(a, d, load, l2, l3, l4, ref, mu, r):
     """:func:`tangential_state` at every element of the 1-D array ``r``."""
     xi = np.empty(r.size)
@@ -360,14 +363,14 @@ def tangential_state_array(a, d, load, l2, l3, l4, ref, mu, r):
     return xi, force
 
 
-@njit(cache=True)
+@_jit
 def critical_creepage(a, d, l2, l3, l4, mu):
     """Full-slip creepage magnitude, (6.40) with its factor mu: ``mu Z'(Delta + a)``. [-]"""
     e = d + a
     return mu * e * (l2 + 0.5 * l3 * e + l4 * e * e / 6.0)
 
 
-@njit(cache=True)
+@_jit
 def stick_ratio(a, d, load, l2, l3, l4, ref, mu, target, force_given):
     """Stick ratio at which the creepage magnitude (or the force, if ``force_given``) equals
     ``target > 0``: the largest root in [0, 1] (continuation from full stick: the first sign
@@ -385,7 +388,7 @@ def stick_ratio(a, d, load, l2, l3, l4, ref, mu, target, force_given):
     return 0.0, True
 
 
-@njit(cache=True)
+@_jit
 def asperity_tangential(a, d, load, l2, l3, l4, ref, mu, creepage, series_limit):
     """Steady rolling at a given creepage: ``(force, stick_ratio, critical_creepage, status)``.
 
@@ -410,7 +413,7 @@ def asperity_tangential(a, d, load, l2, l3, l4, ref, mu, creepage, series_limit)
     return force, r, critical, 0
 
 
-@njit(cache=True)
+@_jit
 def rough_rail_contact(kind, nodes, coefficients, params, x_axis, load, nt, big_r, bound,
                        kfac, ref, mu, creepage, series_limit):
     """One step of a wheel on a rough rail: :func:`local_gap`, :func:`asperity_normal`,
