@@ -19,6 +19,7 @@ Harmonics are passed as 1-D arrays ``k`` (wave numbers ``2 pi / L`` [1/m]), ``za
 
 from __future__ import annotations
 
+import cmath
 import math
 
 import llvmlite.binding as _llvm
@@ -319,4 +320,59 @@ def tangential_force_array(x, a, d, delta, mu, comp, big_r, k, za, zb):
     out = np.empty(x.size)
     for j in range(x.size):
         out[j] = tangential_force(x[j], a[j], d[j], delta[j], mu, comp, big_r, k, za, zb)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# the linearised theory: closed forms of one harmonic and their superposition
+# ---------------------------------------------------------------------------------------------
+@_jit
+def linear_response(beta, r):
+    """Normalised linear responses of one harmonic at ``beta = k a0`` and ``r = a0*/a0``:
+    ``(c_Delta/(k R), c_a/(k R), c_a*/(k R), c_T)``, (4.36)-(4.37), (4.58)-(4.64) and
+    (4.68)-(4.73) in the package orientation (see :mod:`railcontact.corrugation`)."""
+    jb0, jb1 = j0(beta), j1(beta)
+    kd = beta * (1.0 - r)
+    js = j0(beta * r)
+    cs = complex(-jb1 + js * math.sin(kd), -(jb0 - js * math.cos(kd)))
+    ct = -beta * r * (cs + j1(beta * r) * cmath.exp(-1j * kd))
+    return complex(0.0, -jb0), complex(-jb1, 0.0), cs, ct
+
+
+@_jit
+def linear_response_array(beta, r):
+    """:func:`linear_response` at every element of the 1-D arrays ``beta``, ``r``: shape
+    (4, n), complex."""
+    out = np.empty((4, beta.size), dtype=np.complex128)
+    for j in range(beta.size):
+        out[0, j], out[1, j], out[2, j], out[3, j] = linear_response(beta[j], r[j])
+    return out
+
+
+@_jit
+def contact_linear(x, a0, a0s, t0, big_r, force_scale, k, za, zb, beta):
+    """The linearised contact at one rail position, (4.36)-(4.37), (4.59)-(4.62),
+    (4.68)-(4.71): ``(a, Delta, a*, |T|)``, each ``Q0 + sum Re[c (Z_A + i Z_B) e^(-i k X)]``
+    (``k R c`` for the lengths, ``mu / C c_T`` for the force: ``force_scale = mu / C``), with
+    ``beta = k a0``, ``r = a0*/a0`` and ``t0 = mu N (1 - r^2)``."""
+    r = a0s / a0
+    a, d, ast, t = a0, 0.0, a0s, t0
+    for i in range(k.size):
+        cd, ca, cs, ct = linear_response(beta[i], r)
+        zc = complex(za[i], zb[i]) * cmath.exp(-1j * k[i] * x)
+        kr = k[i] * big_r
+        a += (kr * ca * zc).real
+        d += (kr * cd * zc).real
+        ast += (kr * cs * zc).real
+        t += (force_scale * ct * zc).real
+    return a, d, ast, t
+
+
+@_jit
+def contact_linear_array(x, a0, a0s, t0, big_r, force_scale, k, za, zb, beta):
+    """:func:`contact_linear` at every element of the 1-D array ``x``: shape (4, n)."""
+    out = np.empty((4, x.size))
+    for j in range(x.size):
+        out[0, j], out[1, j], out[2, j], out[3, j] = contact_linear(
+            x[j], a0, a0s, t0, big_r, force_scale, k, za, zb, beta)
     return out

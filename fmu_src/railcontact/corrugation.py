@@ -62,7 +62,7 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from scipy.special import j0, j1, jv
+from scipy.special import jv
 
 from . import _corrugation_kernels as _kernels
 from ._validation import check_range
@@ -143,8 +143,17 @@ def normal_response(a0_over_wavelength):
     (:func:`solve_normal_exact`) at small amplitude, and against the discretised half-space
     solver :func:`railcontact.reference.halfspace2d.solve_normal_2d`.
     """
-    beta = _TWO_PI * _ratio(a0_over_wavelength)
-    return -1j * j0(beta), -j1(beta) + 0j
+    cd, ca, _, _ = _linear_responses(a0_over_wavelength, 1.0)
+    return cd, ca
+
+
+def _linear_responses(a0_over_wavelength, stick_ratio):
+    """The kernel's ``(c_Delta, c_a, c_a*, c_T)`` (normalised) at checked ``a0/L`` and
+    ``r_a0``, broadcast (numpy scalars for scalar inputs)."""
+    beta, r = np.broadcast_arrays(_TWO_PI * _ratio(a0_over_wavelength), _stick(stick_ratio))
+    out = _kernels.linear_response_array(np.ascontiguousarray(beta.ravel()),
+                                         np.ascontiguousarray(r.ravel(), dtype=float))
+    return tuple(v.reshape(beta.shape)[()] for v in out)
 
 
 def contact_point_shift_coefficient():
@@ -186,11 +195,7 @@ def stick_zone_response(a0_over_wavelength, stick_ratio):
     ndarray of complex
         ``c_a* / (k R)``; amplitude is Fig. 4.6 (top), ``-arg`` its phase (bottom). [-]
     """
-    beta = _TWO_PI * _ratio(a0_over_wavelength)
-    r = _stick(stick_ratio)
-    kd = beta * (1.0 - r)
-    js = j0(beta * r)
-    return (-j1(beta) + js * np.sin(kd)) - 1j * (j0(beta) - js * np.cos(kd))
+    return _linear_responses(a0_over_wavelength, stick_ratio)[2]
 
 
 def tangential_force_response(a0_over_wavelength, stick_ratio):
@@ -212,11 +217,7 @@ def tangential_force_response(a0_over_wavelength, stick_ratio):
     ndarray of complex
         ``c_T / (mu pi E / (4 (1 - nu^2)))``. [-]
     """
-    beta = _TWO_PI * _ratio(a0_over_wavelength)
-    r = _stick(stick_ratio)
-    kd = beta * (1.0 - r)
-    return -beta * r * (stick_zone_response(a0_over_wavelength, r)
-                        + j1(beta * r) * np.exp(-1j * kd))
+    return _linear_responses(a0_over_wavelength, stick_ratio)[3]
 
 
 def half_width_load_term(rail_position, a0, mean_normal_load, load_amplitudes_cos,
@@ -573,19 +574,12 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
         ast = a - offset
         t = _kernels.tangential_force_array(xs, a, d, offset, mu, comp, big_r, *harmonics)
     else:
-        ratio = a0 / lam
-        r = a0s / a0
-        zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])     # Z_A + i Z_B rotated
-        cd, ca = normal_response(ratio)
-        cs = stick_zone_response(ratio, r)
-        ct = tangential_force_response(ratio, r)
-        # Q(X) = Re[conj(c) zeta e^{ikX}] = Re[c (Z_A + i Z_B) e^{-ikX}]
-        a = a0 + np.sum(np.real(k * big_r * ca * zc), -1)
-        d = np.sum(np.real(k * big_r * cd * zc), -1)
-        ast = a0s + np.sum(np.real(k * big_r * cs * zc), -1)
         one_minus_r = min(xi * big_r / (mu * a0), 1.0)          # 1 - r without cancellation
-        t = (mu * n_load * one_minus_r * (2.0 - one_minus_r)
-             + np.sum(np.real(mu / comp * ct * zc), -1))
+        # Q(X) = Re[conj(c) zeta e^{ikX}] = Re[c (Z_A + i Z_B) e^{-ikX}] per harmonic
+        a, d, ast, t = _kernels.contact_linear_array(
+            np.ascontiguousarray(np.ravel(x), dtype=float), a0, a0s,
+            mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
+            *_harmonics(k, za, zb), np.ascontiguousarray(_TWO_PI * (a0 / lam)))
     wear = None
     if wear_coefficient is not None:
         from .wear import wear_coefficients
@@ -763,24 +757,12 @@ def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulu
                                    amplitudes_cos, amplitudes_sin, wavelengths, method,
                                    wear_coefficient, wear_model)
     else:
-        r = a0s / a0
-        a, d, ast = a0, 0.0, a0s
         one_minus_r = min(xi * big_r / (mu * a0), 1.0)
-        t = mu * n_load * one_minus_r * (2.0 - one_minus_r)
-        scale_t = mu / comp
-        for (k, za, zb), lam in zip(harm, wavelengths):
-            beta = _TWO_PI * (a0 / lam)
-            zc = complex(za, zb) * cmath.exp(-1j * k * x)
-            jb0, jb1 = float(j0(beta)), float(j1(beta))
-            kd = beta * (1.0 - r)
-            js = float(j0(beta * r))
-            cs = (-jb1 + js * math.sin(kd)) - 1j * (jb0 - js * math.cos(kd))
-            ct = -beta * r * (cs + float(j1(beta * r)) * cmath.exp(-1j * kd))
-            kr = k * big_r
-            a += (kr * -jb1 * zc).real
-            d += (kr * (-1j * jb0) * zc).real
-            ast += (kr * cs * zc).real
-            t += (scale_t * ct * zc).real
+        a, d, ast, t = _kernels.contact_linear(
+            x, a0, a0s, mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
+            np.array([k for k, _, _ in harm]), np.array(amplitudes_cos, dtype=float),
+            np.array(amplitudes_sin, dtype=float),
+            np.array([_TWO_PI * (a0 / lam) for lam in wavelengths]))
     wear = None
     if wear_coefficient is not None:
         from .wear import _wear_coefficients_scalar
