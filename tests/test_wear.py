@@ -294,31 +294,3 @@ def test_scalar_mean_wear_equals_array_function():
         ref = float(wear.mean_wear(*args))
         assert isinstance(one, float)
         assert one == ref or abs(one - ref) <= 4 * eps * abs(ref), args
-
-
-def test_scalar_wear_coefficients_equal_array_function():
-    """wear._wear_coefficients_scalar against wear.wear_coefficients, every model, M = 1, 3,
-    10 harmonics with k a0 in [0.01, 3], r_a0 from 0 (and below the clip 1e-9) through 1 (and
-    just below). Bound: 8 eps relative to max |w| of the call (the same quadrature nodes,
-    series degree and operations; the degree loop vectorised, summed in the loop's order).
-    Measured: 0 (bit-identical) on this machine."""
-    eps = float(np.finfo(float).eps)
-    rng = np.random.default_rng(77)
-    worst = 0.0
-    for model in wear.WEAR_MODELS:
-        for m in (1, 3, 10):
-            for r in (0.0, 1e-12, 1e-9, 0.01, float(rng.uniform(0.05, 0.95)), 0.5, 0.99,
-                      1 - 1e-12, 1.0):
-                ratio = [float(v) for v in 10 ** rng.uniform(np.log10(0.01 / (2 * np.pi)),
-                                                             np.log10(3 / (2 * np.pi)), m)]
-                ref = np.atleast_1d(wear.wear_coefficients(ratio, r, model))
-                got = wear._wear_coefficients_scalar(ratio, r, model)
-                assert isinstance(got, list) and len(got) == m
-                assert all(isinstance(v, complex) for v in got)
-                if r >= 1.0:
-                    assert got == [0j] * m and np.all(ref == 0)
-                    continue
-                err = float(np.max(np.abs(np.asarray(got) - ref))) / float(np.max(np.abs(ref)))
-                worst = max(worst, err)
-                assert err <= 8 * eps, (model, m, r, err)
-    print("worst relative difference:", worst)

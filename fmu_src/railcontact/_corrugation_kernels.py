@@ -1,4 +1,4 @@
-"""Compiled kernels of the exact corrugated contact (Nielsen 1998, Sec. 4.2): one implementation.
+"""Compiled kernels of the corrugated contact and its wear (Nielsen 1998, Secs. 4.2-4.3).
 
 Internal module. :func:`railcontact.corrugation.solve_normal_exact`,
 :func:`~railcontact.corrugation.solve_stick_zone_exact` and
@@ -6,10 +6,11 @@ Internal module. :func:`railcontact.corrugation.solve_normal_exact`,
 kernels (one rail position per call of the scalar kernels, a loop over positions in the
 ``*_array`` ones); the FMU's corrugation effect calls the same kernels once per step. The
 kernels assume checked inputs and report failures by a status code; the Python callers raise
-the documented ``ValueError``.
+the documented ``ValueError``. :func:`railcontact.wear.wear_coefficients` calls
+:func:`wear_coefficients_array` (the linearised wear of the series models).
 
-The Bessel functions J0 and J1 are scipy's (``scipy.special.cython_special.j0/j1``, the same
-routines as the ufuncs ``scipy.special.j0/j1``), linked by symbol name so that numba's cache
+The Bessel functions J0, J1 and J_n are scipy's (``scipy.special.cython_special``: ``j0``,
+``j1`` are the ufuncs' routines bit for bit, ``jv`` agrees with the ufunc to 2 ulp), linked by symbol name so that numba's cache
 stays valid across processes. Division by zero gives inf/NaN as in numpy
 (``error_model="numpy"``): a singular Newton step is detected as a non-finite result.
 
@@ -26,14 +27,21 @@ import llvmlite.binding as _llvm
 import numpy as np
 from numba import njit, types
 from numba.extending import get_cython_function_address
+from scipy.special import jv as _scipy_jv
 
 from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 
-for _name in ("j0", "j1"):
+# the C functions of cython_special: double j0(double, int skip_dispatch), the same for j1,
+# and the real variant of the fused jv, double jv(double, double, int skip_dispatch)
+for _name, _symbol in (("j0", "j0"), ("j1", "j1"), ("jv", "__pyx_fuse_1jv")):
     _llvm.add_symbol(f"railcontact_scipy_{_name}",
-                     get_cython_function_address("scipy.special.cython_special", _name))
-j0 = types.ExternalFunction("railcontact_scipy_j0", types.float64(types.float64))
-j1 = types.ExternalFunction("railcontact_scipy_j1", types.float64(types.float64))
+                     get_cython_function_address("scipy.special.cython_special", _symbol))
+_j0 = types.ExternalFunction("railcontact_scipy_j0", types.float64(types.float64, types.intc))
+_j1 = types.ExternalFunction("railcontact_scipy_j1", types.float64(types.float64, types.intc))
+_jv = types.ExternalFunction("railcontact_scipy_jv",
+                             types.float64(types.float64, types.float64, types.intc))
+
+TWO_PI = 2.0 * np.pi
 
 #: k delta below which the Taylor forms of the stick-zone differences are used (so that
 #: neither delta nor T is the difference of two nearly equal O(1) numbers; xi -> 0 gives
@@ -46,15 +54,21 @@ _jit = njit(cache=True, error_model="numpy")
 
 
 @_jit
-def bessel_j0(z):
+def j0(z):
     """J0(z), scipy's."""
-    return j0(z)
+    return _j0(z, 0)
 
 
 @_jit
-def bessel_j1(z):
+def j1(z):
     """J1(z), scipy's."""
-    return j1(z)
+    return _j1(z, 0)
+
+
+@_jit
+def jv(n, z):
+    """J_n(z), scipy's (order ``n`` a float)."""
+    return _jv(n, z, 0)
 
 
 @_jit
@@ -376,3 +390,113 @@ def contact_linear_array(x, a0, a0s, t0, big_r, force_scale, k, za, zb, beta):
         out[0, j], out[1, j], out[2, j], out[3, j] = contact_linear(
             x[j], a0, a0s, t0, big_r, force_scale, k, za, zb, beta)
     return out
+
+
+# ---------------------------------------------------------------------------------------------
+# the linearised wear of one harmonic (Sec. 4.3): slip-zone integrals of the perturbations
+# ---------------------------------------------------------------------------------------------
+#: (1j) ** m for m = 0..3 (the Jacobi-Anger factors i^(n+1))
+_IPOW = (1.0 + 0.0j, 1.0j, -1.0 + 0.0j, -1.0j)
+
+
+@_jit
+def patch_integrals(beta, r, n_nodes, degree):
+    """``I = int h_P(x) e^(-i k x) dx`` and ``I0 = int P0(x) e^(-i k x) dx`` over the slip zone
+    ``[-1, 1 - 2 r]`` (normalised units a0 = R = C = mu = K = V = 1, so N = 1/2), for
+    ``beta = k a0`` and ``r = a0*/a0`` in (0, 1): the perturbation of the frictional power
+    ``h_P = h_p s0 + p0 h_s`` (pressure and slip perturbations as Chebyshev-Bessel series of
+    ``degree`` terms), Gauss-Chebyshev quadrature with ``n_nodes`` nodes."""
+    k = beta
+    e_kd = cmath.exp(1j * k * (1.0 - r))
+    h_d = 1j * k * j0(beta)
+    h_a = complex(-k * j1(beta), 0.0)
+    h_as = h_d + h_a - 1j * k * j0(beta * r) * e_kd
+    h_c1 = k * j1(k)
+    h_d1 = h_as + 2 * k * j1(k * r) * e_kd
+    cp = np.empty(max(degree - 1, 0), dtype=np.complex128)
+    cs = np.empty(max(degree - 1, 0), dtype=np.complex128)
+    for n in range(2, degree + 1):
+        two_ipow_k = 2 * _IPOW[(n + 1) % 4] * k
+        cp[n - 2] = two_ipow_k * jv(float(n), k)
+        cs[n - 2] = two_ipow_k * jv(float(n), k * r) * e_kd
+    half = 1.0 - r
+    integral = integral0 = 0.0j
+    for j in range(1, n_nodes + 1):
+        t = math.cos((2 * j - 1) * math.pi / (2 * n_nodes))
+        wq = math.pi / n_nodes * math.sqrt(1 - t * t)
+        x = -r + half * t                      # slip zone [-1, 1 - 2r]
+        u = x
+        sin_t = math.sqrt(1.0 - u * u)
+        theta = math.acos(u)
+        xm1 = x - 1.0
+        s0 = math.sqrt(xm1 * (xm1 + 2 * r))    # r sqrt(v^2 - 1)
+        v = xm1 / r + 1.0
+        root = math.sqrt(v * v - 1.0)
+        w = 1.0 / (v - root)                   # v + sqrt(v^2 - 1), computed stably
+        p0 = sin_t / math.pi
+        hp = u * u * h_a / sin_t + h_c1 * sin_t                 # pressure perturbation
+        hs = (h_d1 * w + (w / root) * (-h_a + (1.0 - v) * h_as)  # slip perturbation
+              - (h_d - 1j * k * cmath.exp(1j * k * x)))
+        wn = w
+        for n in range(2, degree + 1):
+            hp = hp - cp[n - 2] * math.sin(n * theta)
+            wn = wn * w
+            hs = hs - cs[n - 2] * wn
+        hp = hp / math.pi
+        phase = cmath.exp(-1j * k * x)
+        integral += (hp * s0 + p0 * hs) * phase * wq
+        integral0 += p0 * s0 * phase * wq
+    return integral * half, integral0 * half
+
+
+@_jit
+def wear_coefficients_array(beta, r, n_nodes, degree, material_point):
+    """Linearised wear coefficients ``w = 2 conj(I)`` (model "patch_coordinate") or
+    ``2 conj(I + beta^2 J0(beta) I0)`` ("material_point") at every element of the 1-D arrays
+    ``beta``, ``r`` (``r`` in [0, 1]; 0 at r = 1, r clipped to [1e-9, 1 - 1e-9])."""
+    out = np.empty(beta.size, dtype=np.complex128)
+    for j in range(beta.size):
+        if r[j] >= 1.0:
+            out[j] = 0.0
+            continue
+        rj = min(max(r[j], 1e-9), 1.0 - 1e-9)
+        integral, integral0 = patch_integrals(beta[j], rj, n_nodes, degree)
+        if material_point:
+            integral = integral + beta[j] * beta[j] * j0(beta[j]) * integral0
+        out[j] = 2.0 * integral.conjugate()
+    return out
+
+
+def wear_coefficients_list(a0_over_wavelengths, stick_ratio, wear_model):
+    """:func:`railcontact.wear.wear_coefficients` of the series models ("material_point",
+    "patch_coordinate") for a list of ``a0/L`` at one ``r_a0`` in [0, 1], unchecked (the FMU's
+    per-step call; the scene checked the inputs): a list of complex. The same kernel, nodes
+    (24) and default series degree ``ceil(e max k a0) + 12`` as the public function."""
+    beta = TWO_PI * np.array(a0_over_wavelengths, dtype=float)
+    degree = int(math.ceil(math.e * max(float(beta.max()), 0.0))) + 12
+    return wear_coefficients_array(beta, np.full(beta.size, float(stick_ratio)), 24, degree,
+                                   wear_model == "material_point").tolist()
+
+
+@_jit
+def wear_depth_array(x, w0, scale, k, za, zb, w):
+    """Linearised wear per passage at the material points ``x``, (4.94)-(4.96):
+    ``W0 + sum Re[scale w (Z_A + i Z_B) e^(-i k X)]`` with ``scale = K mu^2 N / a0``."""
+    out = np.empty(x.size)
+    for j in range(x.size):
+        depth = w0
+        for i in range(k.size):
+            depth += (scale * w[i] * (complex(za[i], zb[i]) * cmath.exp(-1j * k[i] * x[j]))).real
+        out[j] = depth
+    return out
+
+
+def series_relative_error(ka, degree):
+    """The ``relative_error`` of :func:`railcontact.corrugation.series_truncation_error` for
+    one float ``ka >= 0`` and int ``degree >= 1``: ``sum_{j > degree} |J_j(ka)| / max_j
+    |J_j(ka)|`` over ``j <= degree + 60 + 2 int(ka)``. [-]"""
+    j = np.arange(1, degree + 60 + int(ka) * 2 + 1)
+    terms = np.abs(_scipy_jv(j, ka))
+    biggest = max(float(terms.max()), 1e-300)
+    tail = float(np.where(j > degree, terms, 0.0).sum())
+    return tail / biggest if ka > 0 else 0.0

@@ -57,7 +57,6 @@ References
 
 from __future__ import annotations
 
-import cmath
 import math
 from collections import namedtuple
 
@@ -72,7 +71,7 @@ __all__ = [
     "contact_point_shift_coefficient", "series_truncation_error", "series_degree",
     "solve_normal_exact", "solve_stick_zone_exact", "corrugated_contact",
     "contact_distributions", "CorrugatedContact", "ContactDistributions",
-    "check_no_contact_loss", "half_width_load_term",
+    "check_no_contact_loss", "half_width_load_term", "CorrugatedContactSolver",
 ]
 
 _TWO_PI = 2.0 * np.pi
@@ -151,8 +150,7 @@ def _linear_responses(a0_over_wavelength, stick_ratio):
     """The kernel's ``(c_Delta, c_a, c_a*, c_T)`` (normalised) at checked ``a0/L`` and
     ``r_a0``, broadcast (numpy scalars for scalar inputs)."""
     beta, r = np.broadcast_arrays(_TWO_PI * _ratio(a0_over_wavelength), _stick(stick_ratio))
-    out = _kernels.linear_response_array(np.ascontiguousarray(beta.ravel()),
-                                         np.ascontiguousarray(r.ravel(), dtype=float))
+    out = _kernels.linear_response_array(_flat(beta), _flat(r))
     return tuple(v.reshape(beta.shape)[()] for v in out)
 
 
@@ -282,15 +280,10 @@ def series_truncation_error(ka, degree):
     """
     ka = check_range("ka", ka, "-", 0.0, None)
     n = check_range("degree", degree, "-", 1, None)
-    nmax = int(np.max(n)) + 60 + int(np.max(ka)) * 2
-    j = np.arange(1, nmax + 1)
-    shape = np.broadcast(ka, n).shape
-    kab = np.broadcast_to(ka, shape)[..., None]
-    nb = np.broadcast_to(n, shape)[..., None]
-    terms = np.abs(jv(j, kab))
-    biggest = np.maximum(terms.max(axis=-1), 1e-300)
-    tail = np.where(j > nb, terms, 0.0).sum(axis=-1)
-    return ka / (n + 1.0), np.where(np.squeeze(kab, -1) > 0, tail / biggest, 0.0)
+    kab, nb = np.broadcast_arrays(ka, n)
+    rel = [_kernels.series_relative_error(float(v), m) for v, m in zip(kab.ravel().tolist(),
+                                                                     nb.ravel().tolist())]
+    return ka / (n + 1.0), np.reshape(rel, kab.shape)
 
 
 def series_degree(ka, tolerance=1e-10, max_degree=400):
@@ -383,8 +376,7 @@ def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumber
     nc = float(normal_load_compliance)
     a_start = np.sqrt(2.0 * big_r * nc) if a_start is None else np.asarray(a_start, float)
     x, a_start = np.broadcast_arrays(x, a_start)
-    out, status = _kernels.solve_normal_array(np.ascontiguousarray(x.ravel()), nc, big_r, k,
-                                              za, zb, np.ascontiguousarray(a_start.ravel()),
+    out, status = _kernels.solve_normal_array(_flat(x), nc, big_r, k, za, zb, _flat(a_start),
                                               float(tol), int(max_iter))
     if np.any(status == _kernels.NOT_CONVERGED):
         raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) k^2 R |Z| < 1 "
@@ -400,10 +392,15 @@ def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumber
     return a, d, da_dx, dd_dx
 
 
+def _flat(values):
+    """``values`` as a new 1-D float array (the kernels' argument; a fresh, writeable copy,
+    also of a broadcast view)."""
+    return np.ravel(values).astype(float)
+
+
 def _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin):
     """The harmonics as the kernels' contiguous float arrays ``(k, Z_A, Z_B)``."""
-    return tuple(np.ascontiguousarray(np.atleast_1d(np.asarray(v, dtype=float)))
-                 for v in (wavenumbers, amplitudes_cos, amplitudes_sin))
+    return tuple(_flat(v) for v in (wavenumbers, amplitudes_cos, amplitudes_sin))
 
 
 def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radius, wavenumbers,
@@ -434,7 +431,7 @@ def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radi
                                   np.asarray(a, float), np.asarray(delta, float))
     k, za, zb = _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin)
     offset = _kernels.stick_offset_array(
-        *(np.ascontiguousarray(v.ravel()) for v in (x, a, d)), float(creepage_over_friction),
+        *(_flat(v) for v in (x, a, d)), float(creepage_over_friction),
         float(radius), k, za, zb, float(tol), int(max_iter))
     return a - offset.reshape(x.shape)
 
@@ -568,7 +565,7 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     a0s = max(a0 - xi * big_r / mu, 0.0)
     if method == "exact":
         a, d, _, _ = solve_normal_exact(x, n_load * comp, big_r, k, za, zb)
-        xs, a, d = (np.ascontiguousarray(v.ravel()) for v in np.broadcast_arrays(x, a, d))
+        xs, a, d = (_flat(v) for v in np.broadcast_arrays(x, a, d))
         harmonics = _harmonics(k, za, zb)
         offset = _kernels.stick_offset_array(xs, a, d, xi / mu, big_r, *harmonics, 1e-13, 60)
         ast = a - offset
@@ -577,18 +574,19 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
         one_minus_r = min(xi * big_r / (mu * a0), 1.0)          # 1 - r without cancellation
         # Q(X) = Re[conj(c) zeta e^{ikX}] = Re[c (Z_A + i Z_B) e^{-ikX}] per harmonic
         a, d, ast, t = _kernels.contact_linear_array(
-            np.ascontiguousarray(np.ravel(x), dtype=float), a0, a0s,
+            _flat(x), a0, a0s,
             mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
-            *_harmonics(k, za, zb), np.ascontiguousarray(_TWO_PI * (a0 / lam)))
+            *_harmonics(k, za, zb), _flat(_TWO_PI * (a0 / lam)))
     wear = None
     if wear_coefficient is not None:
         from .wear import wear_coefficients
         kw = float(check_range("wear_coefficient", wear_coefficient, "m^2/N", 0.0, None))
         r = a0s / a0
         w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-        cw = wear_coefficients(a0 / lam, r, wear_model=wear_model)
-        zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])
-        wear = w0 + np.sum(np.real(kw * mu * mu * n_load / a0 * cw * zc), -1)
+        cw = np.ravel(wear_coefficients(a0 / lam, r, wear_model=wear_model)).astype(complex)
+        wear = _kernels.wear_depth_array(_flat(x), w0,
+                                         kw * mu * mu * n_load / a0, *_harmonics(k, za, zb),
+                                         cw)
     shape = np.shape(x)
     return CorrugatedContact(np.reshape(a, shape), np.reshape(d, shape), np.reshape(ast, shape),
                              np.reshape(t, shape), np.full(shape, n_load),
@@ -708,90 +706,116 @@ def contact_distributions(x, rail_position, normal_load, radius, youngs_modulus,
 
 
 # ---------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
+# one rail position per call, as floats: the FMU's corrugation effect
 # ---------------------------------------------------------------------------------------------
-# corrugated_contact at one rail position costs ~1 ms, nearly all of it numpy's per-call
-# overhead on arrays of M harmonics (range checks, ~40 small operations per Newton step). The
-# functions below repeat its arithmetic on floats (math.sin/cos, scipy's j0/j1 on floats, the
-# same cephes routines the array path uses): the same Newton iterations from the same start,
-# the same convergence tests and tolerances, the same Taylor switch of the stick-zone
-# differences. They differ from the array path by rounding only (libm's sin/cos against
-# numpy's, the order of the sums over harmonics), so the iterates agree to a few ulp and the
-# converged roots to the solver tolerance 1e-13 (tests/test_corrugation.py asserts it on seeded
-# inputs over amplitudes, harmonics, k a0, r_a0, creepage, both methods and the wear models).
-# Every branch that is not the plain Newton solution -- condition (4.2) violated, Newton not
-# converged within max_iter or not finite (the bracketed fallback), a root failing the
-# single-patch check -- is handed to corrugated_contact itself, which raises or solves it.
-# It ASSUMES, and does not check: normal_load > 0, radius > 0, youngs_modulus > 0,
-# 0 <= poisson_ratio < 0.5, friction_coefficient > 0, every other input finite,
-# amplitudes_cos, amplitudes_sin, wavelengths sequences of equal length >= 1 with wavelengths
-# > 0, method "exact" or "linear", wear_coefficient None or >= 0, wear_model one of
-# railcontact.wear.WEAR_MODELS (the scene and the FMU slave check all of these first).
-def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulus,
-                               poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
-                               amplitudes_sin, wavelengths, method="exact", wear_coefficient=None,
-                               wear_model="material_point"):
-    """:func:`corrugated_contact` at one rail position for plain floats (inputs assumed in
-    range, see above): ``(a, Delta, a*, |T|, wear_depth or None)``. [m, m, m, N/m, m]"""
-    x, n_load, big_r, nu, mu = rail_position, normal_load, radius, poisson_ratio, \
-        friction_coefficient
-    xi = abs(creepage)
-    harm = [(_TWO_PI / lam, za, zb) for za, zb, lam in zip(amplitudes_cos, amplitudes_sin,
-                                                           wavelengths)]
-    if not (all(k * k * big_r * math.hypot(za, zb) < 1.0 for k, za, zb in harm)
-            and 8.0 * (1.0 - nu * nu) * n_load / (math.pi * youngs_modulus) >= _TINY):
-        return _public_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
-                               friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
-                               wavelengths, method, wear_coefficient, wear_model)
-    a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * youngs_modulus))
-    comp = 4.0 * (1.0 - nu * nu) / (math.pi * youngs_modulus)
-    a0s = max(a0 - xi * big_r / mu, 0.0)
-    if method == "exact":
-        a, d, ast, t, status = _kernels.contact_exact(
-            x, n_load * comp, big_r, np.array([k for k, _, _ in harm]),
-            np.array(amplitudes_cos, dtype=float), np.array(amplitudes_sin, dtype=float),
-            xi / mu, mu, comp)
-        if status != _kernels.OK:             # no single-patch solution: the public errors
-            return _public_contact(rail_position, normal_load, radius, youngs_modulus,
-                                   poisson_ratio, friction_coefficient, creepage,
-                                   amplitudes_cos, amplitudes_sin, wavelengths, method,
-                                   wear_coefficient, wear_model)
-    else:
-        one_minus_r = min(xi * big_r / (mu * a0), 1.0)
-        a, d, ast, t = _kernels.contact_linear(
-            x, a0, a0s, mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
-            np.array([k for k, _, _ in harm]), np.array(amplitudes_cos, dtype=float),
-            np.array(amplitudes_sin, dtype=float),
-            np.array([_TWO_PI * (a0 / lam) for lam in wavelengths]))
-    wear = None
-    if wear_coefficient is not None:
-        from .wear import _wear_coefficients_scalar
-        kw = wear_coefficient
-        r = a0s / a0
-        wear = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-        cw = _wear_coefficients_scalar([a0 / lam for lam in wavelengths], r, wear_model)
-        scale = kw * mu * mu * n_load / a0
-        for (k, za, zb), c in zip(harm, cw):
-            wear += (scale * c * (complex(za, zb) * cmath.exp(-1j * k * x))).real
-    return a, d, ast, t, wear
+class CorrugatedContactSolver:
+    r""":func:`corrugated_contact` at one rail position per call, as plain floats.
 
+    The FMU's corrugation effect calls it once per step (a call of
+    :func:`corrugated_contact` costs tens of microseconds of numpy overhead and range checks
+    at one position). Radius, material, method and wear model are checked once here;
+    :meth:`contact` evaluates the same compiled kernels as :func:`corrugated_contact` and
+    calls that function itself where it would raise (a load or friction coefficient <= 0, a
+    non-finite input, condition (4.2) violated, an underflowing normalised load, no
+    single-patch solution), so the errors are the public function's.
 
-def _series_truncation_error_scalar(ka, degree):
-    """The ``relative_error`` of :func:`series_truncation_error` for one float ``ka >= 0`` and
-    int ``degree >= 1`` (not checked): the same numpy operations on the same 1-D arrays, so the
-    same float, bit for bit (the public function's broadcasting and range checks dropped). [-]"""
-    j = np.arange(1, degree + 60 + int(ka) * 2 + 1)
-    terms = np.abs(jv(j, ka))
-    biggest = max(float(terms.max()), 1e-300)
-    tail = float(np.where(j > degree, terms, 0.0).sum())
-    return tail / biggest if ka > 0 else 0.0
+    Parameters
+    ----------
+    radius : float
+        Equivalent radius R, > 0. [m]
+    youngs_modulus : float
+        > 0. [Pa]
+    poisson_ratio : float
+        In [0, 0.5). [-]
+    method : {"exact", "linear"}
+        As in :func:`corrugated_contact`.
+    wear_model : str
+        As in :func:`corrugated_contact` (used when a wear coefficient is given).
+    """
 
+    def __init__(self, radius, youngs_modulus, poisson_ratio, method="exact",
+                 wear_model="material_point"):
+        from .wear import WEAR_MODELS, wear_coefficients
 
-def _public_contact(*args):
-    """corrugated_contact (the array path) for the scalar path's arguments, as floats."""
-    *args, method, wear_coefficient, wear_model = args
-    res = corrugated_contact(*args, method=method, wear_coefficient=wear_coefficient,
-                             wear_model=wear_model)
-    return (float(res.half_width), float(res.patch_shift), float(res.stick_half_width),
-            float(res.tangential_force),
-            None if res.wear_depth is None else float(res.wear_depth))
+        self.radius = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+        self.youngs_modulus = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0,
+                                                None, lower_closed=False))
+        self.poisson_ratio = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5,
+                                               upper_closed=False))
+        if method not in ("exact", "linear"):
+            raise ValueError(f"method must be one of ['exact', 'linear']; got {method!r}")
+        if wear_model not in WEAR_MODELS:
+            raise ValueError(f"wear_model must be one of {list(WEAR_MODELS)}; got "
+                             f"{wear_model!r}")
+        self.method, self.wear_model = method, wear_model
+        nu, e_mod = self.poisson_ratio, self.youngs_modulus
+        self._comp = 4.0 * (1.0 - nu * nu) / (math.pi * e_mod)       # C
+        self._wear_coefficients = (
+            _kernels.wear_coefficients_list if wear_model in ("material_point",
+                                                              "patch_coordinate")
+            else lambda ratio, r, model: wear_coefficients(ratio, r, model).tolist())
+
+    def load_underflows(self, normal_load):
+        """True if the normalised load ``8 (1 - nu^2) N / (pi E)`` is below the smallest
+        normal double (or not a number): no contact (:func:`corrugated_contact` raises)."""
+        return _load_underflows(normal_load, self.youngs_modulus, self.poisson_ratio)
+
+    def contact(self, rail_position, normal_load, friction_coefficient, creepage,
+                amplitudes_cos, amplitudes_sin, wavelengths, wear_coefficient=None):
+        """:func:`corrugated_contact` at one rail position: ``(a, Delta, a*, |T|,
+        wear_depth or None)``. [m, m, m, N/m, m]
+
+        ``amplitudes_cos``, ``amplitudes_sin``, ``wavelengths``: sequences of floats (the
+        harmonics may change between calls, e.g. by surface evolution)."""
+        x, n_load, big_r, mu = rail_position, normal_load, self.radius, friction_coefficient
+        za = np.array(amplitudes_cos, dtype=float)
+        zb = np.array(amplitudes_sin, dtype=float)
+        lam = np.array(wavelengths, dtype=float)
+        k = _TWO_PI / lam
+        if not (math.isfinite(x) and math.isfinite(creepage) and 0.0 < mu < math.inf
+                and not self.load_underflows(n_load) and n_load < math.inf
+                and za.shape == zb.shape == lam.shape and za.ndim == 1 and za.size
+                and np.all(np.isfinite(za)) and np.all(np.isfinite(zb))
+                and np.all(lam > 0.0) and np.all(k * k * big_r * np.hypot(za, zb) < 1.0)
+                and (wear_coefficient is None or 0.0 <= wear_coefficient < math.inf)):
+            return self._public(rail_position, normal_load, friction_coefficient, creepage,
+                                amplitudes_cos, amplitudes_sin, wavelengths, wear_coefficient)
+        xi = abs(creepage)
+        nu, e_mod = self.poisson_ratio, self.youngs_modulus
+        a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * e_mod))  # Hertz
+        comp = self._comp
+        a0s = max(a0 - xi * big_r / mu, 0.0)
+        if self.method == "exact":
+            a, d, ast, t, status = _kernels.contact_exact(x, n_load * comp, big_r, k, za, zb,
+                                                          xi / mu, mu, comp)
+            if status != _kernels.OK:             # no single-patch solution: the public error
+                return self._public(rail_position, normal_load, friction_coefficient, creepage,
+                                    amplitudes_cos, amplitudes_sin, wavelengths,
+                                    wear_coefficient)
+        else:
+            one_minus_r = min(xi * big_r / (mu * a0), 1.0)      # 1 - r without cancellation
+            a, d, ast, t = _kernels.contact_linear(
+                x, a0, a0s, mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
+                k, za, zb, _TWO_PI * (a0 / lam))
+        wear = None
+        if wear_coefficient is not None:
+            kw = wear_coefficient
+            r = a0s / a0
+            w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
+            cw = np.array(self._wear_coefficients((a0 / lam).tolist(), r, self.wear_model))
+            wear = float(_kernels.wear_depth_array(np.array([float(x)]), w0,
+                                                   kw * mu * mu * n_load / a0, k, za, zb,
+                                                   cw)[0])
+        return a, d, ast, t, wear
+
+    def _public(self, rail_position, normal_load, friction_coefficient, creepage,
+                amplitudes_cos, amplitudes_sin, wavelengths, wear_coefficient):
+        """:func:`corrugated_contact` (which raises or solves the case) as floats."""
+        res = corrugated_contact(rail_position, normal_load, self.radius, self.youngs_modulus,
+                                 self.poisson_ratio, friction_coefficient, creepage,
+                                 amplitudes_cos, amplitudes_sin, wavelengths,
+                                 method=self.method, wear_coefficient=wear_coefficient,
+                                 wear_model=self.wear_model)
+        return (float(res.half_width), float(res.patch_shift), float(res.stick_half_width),
+                float(res.tangential_force),
+                None if res.wear_depth is None else float(res.wear_depth))

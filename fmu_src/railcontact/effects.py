@@ -761,13 +761,16 @@ class Corrugation(_Effect):
         self.source = opts["source"]
         geo = scene.geometry
         self._solve = module.corrugated_contact
-        # corrugated_contact and series_truncation_error on floats (the same iterations and
-        # operations; inputs range-checked by the scene and the slave, N > 0 and mu > 0 here, as
-        # they assume; the non-Newton branches are handed to corrugated_contact itself)
-        self._solve_scalar = module._corrugated_contact_scalar
-        self._truncation_error_scalar = module._series_truncation_error_scalar
-        self._load_underflows = module._load_underflows
         self.method = opts["method"]
+        # corrugated_contact at one position as floats (the same compiled kernels; it calls
+        # corrugated_contact itself where that raises) and the series estimate's kernel
+        solver = module.CorrugatedContactSolver(
+            geo["radius"], scene.youngs_modulus, scene.poisson_ratio, self.method,
+            "material_point" if wear is None else wear.wear_model)
+        self._solve_scalar = solver.contact
+        self._load_underflows = solver.load_underflows
+        self._truncation_error_scalar = _import("_corrugation_kernels",
+                                                "corrugation").series_relative_error
         self.wavelengths = list(opts["wavelengths"])
         self.amplitudes_cos = list(opts["amplitudes_cos"])
         self.amplitudes_sin = list(opts["amplitudes_sin"])
@@ -852,7 +855,7 @@ class Corrugation(_Effect):
         c.corrugation_series_error_estimate = NOT_ESTIMATED
         self._pending_ka = None
         if (c.normal_force <= 0.0 or c.friction_coefficient <= 0.0
-                or self._load_underflows(c.normal_force / self._width, self._e, self._nu)):
+                or self._load_underflows(c.normal_force / self._width)):
             # no contact; also a load whose normalised value 8 (1 - nu^2) N / (pi E) underflows
             # (N below about 1e-295 N), which corrugated_contact rejects (a0 would underflow)
             c.wear_depth_per_passage = 0.0
@@ -864,11 +867,9 @@ class Corrugation(_Effect):
             return
         wear = self._wear
         a, d, _, t, depth = self._solve_scalar(
-            c.rail_position, c.normal_force / self._width, self._radius, self._e, self._nu,
-            c.friction_coefficient, c.creepage_longitudinal, self.amplitudes_cos,
-            self.amplitudes_sin, self.wavelengths, self.method,
-            None if wear is None else wear.wear_coefficient,
-            "material_point" if wear is None else wear.wear_model)
+            c.rail_position, c.normal_force / self._width, c.friction_coefficient,
+            c.creepage_longitudinal, self.amplitudes_cos, self.amplitudes_sin,
+            self.wavelengths, None if wear is None else wear.wear_coefficient)
         c.contact_half_width = a
         c.patch_shift = d
         xi = c.creepage_longitudinal
@@ -929,7 +930,11 @@ class Wear(_Effect):
         self._wear_number = self._evolution._wear_number_scalar
         # evolve_harmonics for one passage count on lists (cmath; checks W, falls back to it)
         self._evolve = self._evolution._evolve_harmonics_scalar
-        self._wear_coefficients = self._wear._wear_coefficients_scalar
+        # wear_coefficients on a list at one r: the series models' compiled kernel directly
+        self._wear_coefficients = (
+            _import("_corrugation_kernels", "wear").wear_coefficients_list
+            if scene.effects["wear"]["wear_model"] in ("material_point", "patch_coordinate")
+            else self._wear.wear_coefficients)
         opts = scene.effects["wear"]
         self.wear_coefficient = opts["wear_coefficient"]
         self.wear_model = opts["wear_model"]
@@ -958,8 +963,6 @@ class Wear(_Effect):
         if self._table is not None:        # table source: w from corrugation_response
             coefficients = self._table.coefficients
             return [number * coefficients(c.a0 / lam, r)[4] for lam in wavelengths]
-        # wear_coefficients on a list at one r (wear._wear_coefficients_scalar: the same
-        # quadrature and series, vectorised over the degree; a few ulp from the public one)
         w = self._wear_coefficients([c.a0 / lam for lam in wavelengths], r, self.wear_model)
         return [number * v for v in w]
 

@@ -24,7 +24,7 @@ def _surface_derivatives(roughness, rail_position):
     """``r .. r''''`` of a HarmonicRoughness or ProfileRoughness at ``rail_position``."""
     x = np.asarray(rail_position, dtype=float)
     out = _kernels.surface_derivatives_array(*roughness._kernel_surface,
-                                             np.ascontiguousarray(x.ravel()))
+                                             np.ravel(x).astype(float))
     return out.reshape((5,) + x.shape)
 
 
@@ -259,7 +259,7 @@ def local_gap(roughness, rail_position, radius, *, max_iter=60):
     x_axis = check_range("rail_position", rail_position, "m")
     bound = big_r * roughness.max_slope()
     out, converged = _kernels.local_gap_array(*roughness._kernel_surface,
-                                              np.ascontiguousarray(x_axis.ravel()), big_r,
+                                              np.ravel(x_axis).astype(float), big_r,
                                               bound, int(max_iter))
     if not converged:
         raise ValueError("rail_position: the gap minimum did not converge in max_iter = "
