@@ -143,8 +143,8 @@ def test_errors():
 
 # ------------------------------------------------------------------ scalar path (FMU per step)
 def test_scalar_wear_number_equals_array_function():
-    """evolution._wear_number_scalar against evolution.wear_number: bound 4 eps relative to the
-    value (zeros equal). Measured: 0 eps (bit-identical; same operations in the same order)."""
+    """evolution.wear_number_unchecked (the FMU's call; wear_number calls it after its checks)
+    on floats returns a float equal to wear_number (4 eps; measured: bit-identical)."""
     eps = float(np.finfo(float).eps)
     rng = np.random.default_rng(92)
     for i in range(200):
@@ -154,7 +154,7 @@ def test_scalar_wear_number_equals_array_function():
             args[1] = 0.0                                    # mu = 0
         elif i % 10 == 1:
             args[2] = 0.0                                    # N = 0
-        one = ev._wear_number_scalar(*args)
+        one = ev.wear_number_unchecked(*args)
         ref = float(ev.wear_number(*args))
         assert isinstance(one, float)
         assert one == ref or abs(one - ref) <= 4 * eps * abs(ref), args

@@ -10,9 +10,10 @@ the documented ``ValueError``. :func:`railcontact.wear.wear_coefficients` calls
 :func:`wear_coefficients_array` (the linearised wear of the series models).
 
 The Bessel functions J0, J1 and J_n are scipy's (``scipy.special.cython_special``: ``j0``,
-``j1`` are the ufuncs' routines bit for bit, ``jv`` agrees with the ufunc to 2 ulp), linked by symbol name so that numba's cache
-stays valid across processes. Division by zero gives inf/NaN as in numpy
-(``error_model="numpy"``): a singular Newton step is detected as a non-finite result.
+``j1`` are the ufuncs' routines bit for bit, ``jv`` agrees with the ufunc to 2 ulp), linked
+by symbol name so that numba's cache stays valid across processes. Division by zero gives
+inf/NaN as in numpy (``error_model="numpy"``): a singular Newton step is detected as a
+non-finite result.
 
 Harmonics are passed as 1-D arrays ``k`` (wave numbers ``2 pi / L`` [1/m]), ``za``, ``zb``
 (``Z_A``, ``Z_B`` of Eq. (4.1) [m]).

@@ -924,10 +924,10 @@ class Wear(_Effect):
         super().__init__()
         self._wear = _import("wear", "wear")
         self._evolution = _import("evolution", "wear (surface evolution)")
-        # plain-float paths of mean_wear and wear_number (the same operations; inputs
-        # range-checked by the scene and the slave, r_a0 clipped to [0, 1], as they assume)
-        self._mean_wear = self._wear._mean_wear_scalar
-        self._wear_number = self._evolution._wear_number_scalar
+        # the formulas of mean_wear and wear_number without their checks (inputs checked by
+        # the scene and the slave, r_a0 clipped to [0, 1])
+        self._mean_wear = self._wear.mean_wear_unchecked
+        self._wear_number = self._evolution.wear_number_unchecked
         # evolve_harmonics for one passage count on lists (cmath; checks W, falls back to it)
         self._evolve = self._evolution._evolve_harmonics_scalar
         # wear_coefficients on a list at one r: the series models' compiled kernel directly

@@ -62,7 +62,15 @@ def wear_number(wear_coefficient, friction_coefficient, normal_load, a0):
     mu = check_range("friction_coefficient", friction_coefficient, "-", 0.0, None)
     n = check_range("normal_load", normal_load, "N/m", 0.0, None)
     a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
-    return kw * mu * mu * n / a0
+    return wear_number_unchecked(kw, mu, n, a0)
+
+
+def wear_number_unchecked(wear_coefficient, friction_coefficient, normal_load, a0):
+    r""":func:`wear_number`'s formula ``K mu^2 N / a0`` without its range checks, for floats or
+    arrays (:func:`wear_number` checks and calls it; the FMU's wear effect calls it on checked
+    floats). [-]"""
+    mu = friction_coefficient
+    return wear_coefficient * mu * mu * normal_load / a0
 
 
 def growth_factor(a0_over_wavelength, stick_ratio, wear_number, wear_model=DEFAULT_WEAR_MODEL):
@@ -334,20 +342,9 @@ def phase_change_boundary(stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *, wavelen
 # ---------------------------------------------------------------------------------------------
 # Scalar path (plain Python floats): the FMU's per-step call
 # ---------------------------------------------------------------------------------------------
-# The FMU's wear effect computes the wear number at every section crossing and every read of
-# corrugation_growth_rate; numpy's per-call overhead (four range checks) is ~15 us for three
-# float products. The function below repeats wear_number's arithmetic operation for operation,
-# for callers that have already range-checked their inputs. It ASSUMES, and does not check:
-# every input a finite float (or int, not bool), wear_coefficient >= 0,
-# friction_coefficient >= 0, normal_load >= 0 and a0 > 0. Outside that the result is undefined;
-# use wear_number there. Agreement with wear_number to a few ulp is tested in
-# tests/test_evolution.py.
-
-
-def _wear_number_scalar(wear_coefficient, friction_coefficient, normal_load, a0):
-    """:func:`wear_number` for plain floats (inputs assumed in range, see above). [-]"""
-    mu = friction_coefficient
-    return wear_coefficient * mu * mu * normal_load / a0
+# evolve_harmonics for one passage count on lists of floats (the FMU's wear effect, at every
+# section crossing), with cmath in place of numpy: a twin of the vectorised function, kept for
+# speed (numpy's per-call overhead) and tested against it in tests/test_evolution.py.
 
 
 def _evolve_harmonics_scalar(amplitudes_cos, amplitudes_sin, w1, w2, n_passages,

@@ -124,7 +124,21 @@ def mean_wear(wear_coefficient, friction_coefficient, normal_load, radius, a0, s
     n = check_range("normal_load", normal_load, "N/m", 0.0, None)
     big_r = check_range("radius", radius, "m", 0.0, None, lower_closed=False)
     a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
-    return kw * mu * mu * n * a0 / big_r * wear_shape_function(stick_ratio)
+    r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
+    return mean_wear_unchecked(kw, mu, n, big_r, a0, r)
+
+
+def mean_wear_unchecked(wear_coefficient, friction_coefficient, normal_load, radius, a0,
+                        stick_ratio):
+    r""":func:`mean_wear`'s formula (4.96) without its range checks, for floats or arrays.
+
+    :func:`mean_wear` checks its inputs and calls this; the FMU's wear effect calls it per step
+    on floats whose ranges the scene and the slave have checked (a few float products instead
+    of six range checks). The inputs must satisfy :func:`mean_wear`'s ranges. [m]
+    """
+    mu, slip = friction_coefficient, 1.0 - stick_ratio
+    return (wear_coefficient * mu * mu * normal_load * a0 / radius
+            * (slip * slip * (1.0 + stick_ratio)))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -593,25 +607,3 @@ def linear_response(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MOD
     w = wear_coefficients(a0_over_wavelength, stick_ratio, wear_model)
     w1, w2 = eps * w.real, eps * w.imag
     return LinearResponse(cd, ca, cs, ct, tau, taus, w, w1, w2, 1.0 - 2.0 * w1)
-
-
-# ---------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
-# ---------------------------------------------------------------------------------------------
-# numpy's per-call overhead (six range checks, array creation) is ~20 us per call of mean_wear
-# on scalars, for a few float products. The function below repeats the array path's arithmetic
-# operation for operation on floats, for callers that have already range-checked their inputs
-# (the FMU's wear effect: the scene's checks, Hertz's a0 and the stick ratio clipped to
-# [0, 1]). It ASSUMES, and does not check: every input a finite float (or int, not bool),
-# wear_coefficient >= 0, friction_coefficient >= 0, normal_load >= 0, radius > 0, a0 > 0 and
-# 0 <= stick_ratio <= 1. Outside that the result is undefined; use mean_wear there. Agreement
-# with mean_wear to a few ulp is tested in tests/test_wear.py.
-
-
-def _mean_wear_scalar(wear_coefficient, friction_coefficient, normal_load, radius, a0,
-                      stick_ratio):
-    """:func:`mean_wear` for plain floats (inputs assumed in range, see above). [m]"""
-    mu, r = friction_coefficient, stick_ratio
-    slip = 1.0 - r
-    # wear_shape_function: (1 - r)**2 of a numpy scalar is (1 - r) * (1 - r)
-    return wear_coefficient * mu * mu * normal_load * a0 / radius * (slip * slip * (1.0 + r))

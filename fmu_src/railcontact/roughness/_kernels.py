@@ -1,7 +1,7 @@
 """Compiled kernels of the rough-rail contact (Nielsen 1998, Ch. 6): one implementation.
 
-Internal module. the modules of :mod:`railcontact.roughness` check the inputs in Python and calls these
-kernels; the FMU's Roughness effect calls the same kernels once per step through
+Internal module. The modules of :mod:`railcontact.roughness` check the inputs in Python and
+call these kernels; the FMU's Roughness effect calls the same kernels once per step through
 :class:`railcontact.roughness.RoughRailSolver` (the pattern of pvlib's ``spa.py``, one source
 for both speeds, and of scipy's ``_ndbspline``, validation in Python and evaluation in one
 compiled kernel). The kernels assume checked inputs and report failures by a status code
