@@ -915,9 +915,9 @@ def test_table_source_state_round_trip(source):
 # line-contact effects on their scalar paths: the public functions' results, step by step
 # --------------------------------------------------------------------------------------------
 def test_line_effects_scalar_paths_give_the_public_functions_results():
-    """Creep2D, VelocityFriction (step law) and Wear (smooth rail) use the private float paths
-    (carter._carter_scalar, friction._normalised_inputs_scalar and
-    _step_law_creep_force_normalised_scalar, wear.mean_wear_unchecked); their outputs must be
+    """Creep2D, VelocityFriction (step law) and Wear (smooth rail) use the float twins of
+    railcontact._scalar (carter_scalar, normalised_inputs_scalar,
+    step_law_creep_force_normalised_scalar) and wear.mean_wear_unchecked; their outputs must be
     the public vectorised functions' to 4 eps of mu N (forces), absolute for r_a0, of the value
     (wear), over seeded loads and creepages through zero, tiny, partial slip and full sliding
     of both signs, and N = 0."""

@@ -530,9 +530,8 @@ class Creep2D(_Effect):
         self._force = carter.carter_creep_force
         self._stick = carter.carter_stick_ratio
         # (force, stick ratio) of the two public functions above in one call on plain floats
-        # (carter._carter_scalar: the same operations; its inputs are range-checked by the
-        # scene and the slave, as it assumes)
-        self._scalar = carter._carter_scalar
+        # (their float twin; its inputs are range-checked by the scene and the slave)
+        self._scalar = _import("_scalar", "creep (Carter 2-D)").carter_scalar
         geo = scene.geometry
         self._radius, self._width = geo["radius"], geo["contact_width"]
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
@@ -601,9 +600,10 @@ class VelocityFriction(_Effect):
         # plain-float paths of normalised_inputs, step_law_creep_force_normalised and
         # carter_stick_ratio (the same operations; inputs range-checked by the scene and the
         # slave, as they assume)
-        self._normalised = self._friction._normalised_inputs_scalar
-        self._step_law = self._friction._step_law_creep_force_normalised_scalar
-        self._carter_scalar = self._carter._carter_scalar
+        scalar = _import("_scalar", "velocity_friction")
+        self._normalised = scalar.normalised_inputs_scalar
+        self._step_law = scalar.step_law_creep_force_normalised_scalar
+        self._carter_scalar = scalar.carter_scalar
         opts = scene.effects["velocity_friction"]
         self.law = opts["law"]
         self.mu_kinetic = opts["kinetic_friction_coefficient"]
@@ -929,7 +929,7 @@ class Wear(_Effect):
         self._mean_wear = self._wear.mean_wear_unchecked
         self._wear_number = self._evolution.wear_number_unchecked
         # evolve_harmonics for one passage count on lists (cmath; checks W, falls back to it)
-        self._evolve = self._evolution._evolve_harmonics_scalar
+        self._evolve = _import("_scalar", "wear (surface evolution)").evolve_harmonics_scalar
         # wear_coefficients on a list at one r: the series models' compiled kernel directly
         self._wear_coefficients = (
             _import("_corrugation_kernels", "wear").wear_coefficients_list

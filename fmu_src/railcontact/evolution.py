@@ -26,9 +26,6 @@ References
 
 from __future__ import annotations
 
-import cmath
-import math
-
 import numpy as np
 
 from ._validation import check_range
@@ -337,44 +334,3 @@ def phase_change_boundary(stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *, wavelen
         return np.imag(wear_coefficients(q, rr, wear_model))
 
     return _last_sign_change(w2, r, wavelength_ratio_min, wavelength_ratio_max, n_scan)
-
-
-# ---------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
-# ---------------------------------------------------------------------------------------------
-# evolve_harmonics for one passage count on lists of floats (the FMU's wear effect, at every
-# section crossing), with cmath in place of numpy: a twin of the vectorised function, kept for
-# speed (numpy's per-call overhead) and tested against it in tests/test_evolution.py.
-
-
-def _evolve_harmonics_scalar(amplitudes_cos, amplitudes_sin, w1, w2, n_passages,
-                             _log=cmath.log, _exp=cmath.exp, _isfinite=math.isfinite):
-    """:func:`evolve_harmonics` for one passage count and lists of floats, as lists of floats.
-
-    The same operations in the same order per harmonic, with :mod:`cmath`'s log and exp in
-    place of numpy's (they may round differently by an ulp; agreement to a few eps relative
-    to |Z^n|, times ``1 + |n log(1 - W)|``, is tested in tests/test_evolution.py). Unlike the
-    other scalar paths this one checks its inputs, since W1, W2 and the evolved amplitudes are
-    computed, not range-checked by the caller: ``n_passages`` is assumed an int >= 0; if an
-    amplitude is not finite, W1 or W2 is outside [-1, 1], or cmath fails (log of 0, overflow),
-    the result is that of :func:`evolve_harmonics` (its ValueError naming the input, or its
-    numpy result).
-
-    Returns
-    -------
-    amplitudes_cos, amplitudes_sin : list of float
-        Z_A^n, Z_B^n per harmonic. [m]
-    """
-    n = float(n_passages)
-    out_a, out_b = [], []
-    try:
-        for za, zb, wr, wi in zip(amplitudes_cos, amplitudes_sin, w1, w2):
-            if not (_isfinite(za + zb) and -1.0 <= wr <= 1.0 and -1.0 <= wi <= 1.0):
-                raise ValueError
-            zn = _exp(n * _log(1.0 - wr - 1j * wi + 0j)) * (za + 1j * zb)
-            out_a.append(zn.real)
-            out_b.append(zn.imag)
-    except (ValueError, OverflowError):
-        za_n, zb_n = evolve_harmonics(amplitudes_cos, amplitudes_sin, w1, w2, [n_passages])
-        return [float(v) for v in za_n[0]], [float(v) for v in zb_n[0]]
-    return out_a, out_b
