@@ -548,3 +548,14 @@ def test_each_position_is_solved_on_its_own():
             assert (arr.half_width[i], arr.patch_shift[i], arr.stick_half_width[i],
                     arr.tangential_force[i]) == (one.half_width, one.patch_shift,
                                                  one.stick_half_width, one.tangential_force)
+
+
+@pytest.mark.parametrize("method", ["linear", "exact"])
+def test_solver_raises_like_corrugated_contact_at_huge_loads(method):
+    """A load so large that a0/L needs a wear series beyond degree 100000: the solver (the
+    FMU's call) raises the public function's ValueError instead of summing it."""
+    args = (0.013, 1e17, R, E, NU, MU, 1e-3, [1e-5, 5e-6], [0.0, 2e-6], [0.05, 0.08])
+    with pytest.raises(ValueError, match=r"degree must be in \[1, 100000\]"):
+        cg.corrugated_contact(*args, method=method, wear_coefficient=1e-9)
+    with pytest.raises(ValueError, match=r"degree must be in \[1, 100000\]"):
+        _solver(*args, method, 1e-9)

@@ -31,6 +31,7 @@ from numba.extending import get_cython_function_address
 from scipy.special import jv as _scipy_jv
 
 from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
+from ._validation import check_range
 
 # the C functions of cython_special: double j0(double, int skip_dispatch), the same for j1,
 # and the real variant of the fused jv, double jv(double, double, int skip_dispatch)
@@ -472,9 +473,11 @@ def wear_coefficients_list(a0_over_wavelengths, stick_ratio, wear_model):
     """:func:`railcontact.wear.wear_coefficients` of the series models ("material_point",
     "patch_coordinate") for a list of ``a0/L`` at one ``r_a0`` in [0, 1], unchecked (the FMU's
     per-step call; the scene checked the inputs): a list of complex. The same kernel, nodes
-    (24) and default series degree ``ceil(e max k a0) + 12`` as the public function."""
+    (24), default series degree ``ceil(e max k a0) + 12`` and limit of that degree (100000,
+    the same ValueError) as the public function."""
     beta = TWO_PI * np.array(a0_over_wavelengths, dtype=float)
-    degree = int(math.ceil(math.e * max(float(beta.max()), 0.0))) + 12
+    degree = int(check_range("degree", math.ceil(math.e * max(float(beta.max()), 0.0)) + 12,
+                             "-", 1, 100000))
     return wear_coefficients_array(beta, np.full(beta.size, float(stick_ratio)), 24, degree,
                                    wear_model == "material_point").tolist()
 
