@@ -330,8 +330,18 @@ def test_zero_and_tiny_creepage_without_cancellation():
 
 
 # --------------------------------------------------------------------------------------------
-# scalar path (FMU per step): corrugation._corrugated_contact_scalar against corrugated_contact
+# the FMU's per-step call (CorrugatedContactSolver, the same kernels) against corrugated_contact
 # --------------------------------------------------------------------------------------------
+def _solver(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
+            friction_coefficient, creepage, amplitudes_cos, amplitudes_sin, wavelengths,
+            method="exact"):
+    """CorrugatedContactSolver.contact (the FMU's per-step call) with corrugated_contact's
+    arguments."""
+    solver = cg.CorrugatedContactSolver(radius, youngs_modulus, poisson_ratio, method)
+    return solver.contact(rail_position, normal_load, friction_coefficient, creepage,
+                          amplitudes_cos, amplitudes_sin, wavelengths)
+
+
 def _scalar_contact_cases():
     """Seeded surfaces and contact states over the regimes the FMU meets: zero, tiny and large
     amplitudes (sum k^2 R |Z| up to 0.95), M = 1, 3, 10 harmonics, k a0 in [0.01, 3], creepage
@@ -361,14 +371,15 @@ def _scalar_contact_cases():
 
 
 def test_scalar_corrugated_contact_equals_array_function():
-    """_corrugated_contact_scalar against corrugated_contact (both methods). Bounds: "linear"
-    8 eps (the same closed forms, operations in the same order up to the sums over harmonics;
-    relative to the size of the terms summed); "exact": a, Delta, a* within 1e-13 (a0 + R sum
-    k |Z|) -- the Newton step tolerance of both paths (the same iterations from the same start;
-    libm's sin/cos and the order of the sums over harmonics round differently, so the iterates
-    may differ by ulps and stop one step apart) -- and |T| within 1e-13 mu N. Measured: 0.81
-    eps ("exact"), 0.99 eps ("linear") of those scales. (The wear depth's pair:
-    tests/test_wear.py.)"""
+    """CorrugatedContactSolver.contact (the FMU's per-step call) against corrugated_contact
+    (both methods). Bounds: "linear" 8 eps (the same closed forms, operations in the same order
+    up to the sums over harmonics; relative to the size of the terms summed); "exact": a,
+    Delta, a* within 1e-13 (a0 + R sum k |Z|) -- the Newton step tolerance of both paths (the
+    same iterations from the same start; libm's sin/cos and the order of the sums over
+    harmonics round differently, so the iterates may differ by ulps and stop one step apart)
+    -- and |T| within 1e-13 mu N. Measured: 0.81 eps ("exact"), 0.99 eps ("linear") of those
+    scales. (The wear depth's pair, wear._corrugated_wear_depth_scalar against
+    wear.corrugated_wear_depth: tests/test_wear.py.)"""
     eps = float(np.finfo(float).eps)
     worst = {"exact": 0.0, "linear": 0.0}
     for args in _scalar_contact_cases():
@@ -378,7 +389,7 @@ def test_scalar_corrugated_contact_equals_array_function():
         length = a0 + radius * float(np.sum(k * np.hypot(za, zb)))
         for method in ("exact", "linear"):
             ref = cg.corrugated_contact(*args, method=method)
-            got = cg._corrugated_contact_scalar(*args, method)
+            got = _solver(*args, method)
             assert len(got) == 4 and all(isinstance(v, float) for v in got)
             tol = 1e-13 if method == "exact" else 8 * eps
             for i, scale in ((0, length), (1, length), (2, length), (3, mu * n_load)):
@@ -397,14 +408,13 @@ def test_scalar_corrugated_contact_hard_cases_match_array_function():
     for x in np.linspace(0.0, lam, 17):
         args = (float(x), N, R, E, NU, MU, 1e-4, [za], [0.0], [lam])
         ref = cg.corrugated_contact(*args)
-        got = cg._corrugated_contact_scalar(*args)
+        got = _solver(*args)
         length = A0 + R * 2 * np.pi / lam * za
         for i in range(4):
             scale = length if i < 3 else MU * N
             assert abs(got[i] - float(ref[i])) <= 1e-13 * scale, (x, i)
     with pytest.raises(ValueError, match="curvature_amplitude"):
-        cg._corrugated_contact_scalar(0.0, N, R, E, NU, MU, 0.0, [za / 0.99 * 1.01], [0.0],
-                                      [lam])
+        _solver(0.0, N, R, E, NU, MU, 0.0, [za / 0.99 * 1.01], [0.0], [lam])
     # sum k^2 R |Z| > 1 with each harmonic < 1: the public function solves or raises, and
     # so does the scalar path, with the same results
     z2 = 0.6 / ((2 * np.pi / lam) ** 2 * R)
@@ -414,19 +424,22 @@ def test_scalar_corrugated_contact_hard_cases_match_array_function():
             ref = [float(v) for v in cg.corrugated_contact(*args)[:4]]
         except ValueError as exc:
             with pytest.raises(ValueError, match=str(exc)[:30].replace("(", ".")):
-                cg._corrugated_contact_scalar(*args)
+                _solver(*args)
             continue
-        got = cg._corrugated_contact_scalar(*args)
+        got = _solver(*args)
         for i in range(4):
             scale = A0 + R * 4 * np.pi / lam * z2 if i < 3 else MU * N
             assert abs(got[i] - ref[i]) <= 1e-13 * scale, (x, i)
 
 
 def test_scalar_series_truncation_error_is_bit_identical():
+    """The FMU's series estimate (the kernel module's series_relative_error, which the public
+    series_truncation_error calls per element) equals the public function's."""
+    from railcontact import _corrugation_kernels as kernels
     rng = np.random.default_rng(7)
     for ka in list(rng.uniform(0, 20, 200)) + [0.0, 1e-300, 3.0]:
         degree = int(np.ceil(np.e * ka)) + 12 - int(rng.integers(0, 12))
-        got = cg._series_truncation_error_scalar(float(ka), max(degree, 1))
+        got = kernels.series_relative_error(float(ka), max(degree, 1))
         assert isinstance(got, float)
         assert got == float(cg.series_truncation_error(ka, max(degree, 1))[1])
 
@@ -443,7 +456,7 @@ def test_underflowing_load_is_rejected_like_the_rest_of_the_package(method, load
     with pytest.raises(ValueError, match=match):
         cg.corrugated_contact(*args, method=method)
     with pytest.raises(ValueError, match=match):
-        cg._corrugated_contact_scalar(*args, method=method)
+        _solver(*args, method=method)
 
 
 @pytest.mark.parametrize("method", ["linear", "exact"])
@@ -462,7 +475,44 @@ def test_smallest_accepted_load_is_the_zero_load_limit(method):
     assert 0.0 <= float(res.stick_half_width) < 0.05 * a0
     assert float(res.tangential_force) == pytest.approx(MU * n_min, rel=1e-6)
     assert float(res.patch_shift) == pytest.approx(float(ref.patch_shift), rel=1e-9)
-    a, d, ast, t = cg._corrugated_contact_scalar(*args, method=method)
+    a, d, ast, t = _solver(*args, method=method)
     assert (a, d, ast, t) == pytest.approx((float(res.half_width), float(res.patch_shift),
                                             float(res.stick_half_width),
                                             float(res.tangential_force)), rel=1e-12)
+
+
+# ---------------------------------------------------------------------------------------------
+# the compiled kernels behind solve_normal_exact, solve_stick_zone_exact and the exact method
+# ---------------------------------------------------------------------------------------------
+def test_kernel_bessel_functions_are_scipys():
+    """The kernels' J0, J1 (scipy.special.cython_special linked by symbol name) are the
+    ufuncs' values bit for bit, on seeded arguments over the range the contact uses."""
+    from railcontact import _corrugation_kernels as kernels
+    z = np.random.default_rng(8).uniform(0.0, 80.0, 2000)
+    assert np.array_equal([kernels.j0(v) for v in z], j0(z))
+    assert np.array_equal([kernels.j1(v) for v in z], j1(z))
+    # J_n (the wear series): scipy's cython jv against the ufunc, to 2 ulp of max(|J_n|, 1e-16)
+    from scipy.special import jv
+    n = np.random.default_rng(9).integers(2, 80, 2000)
+    got = np.array([kernels.jv(float(m), v) for m, v in zip(n, z)])
+    want = jv(n, z)
+    assert np.all(np.abs(got - want) <= 2 * np.finfo(float).eps
+                  * np.maximum(np.abs(want), 1e-16))
+
+
+def test_each_position_is_solved_on_its_own():
+    """corrugated_contact (exact) on an array of positions equals the calls at one position
+    each, bit for bit: the Newton iterations of one position do not depend on the others
+    (several harmonics, long and short waves, partial slip)."""
+    rng = np.random.default_rng(12)
+    lam = np.array([0.05, 0.013, 0.2])
+    k = 2 * np.pi / lam
+    za, zb = 0.3 / (k * k * R) * np.array([1.0, 0.5, -0.8]) / 3, 0.2 / (k * k * R) / 3
+    x = rng.uniform(-0.1, 0.1, 30)
+    for xi in (0.0, 1e-4, 2e-3):
+        arr = cg.corrugated_contact(x, N, R, E, NU, MU, xi, za, zb * np.ones(3), lam)
+        for i in range(0, 30, 3):
+            one = cg.corrugated_contact(x[i], N, R, E, NU, MU, xi, za, zb * np.ones(3), lam)
+            assert (arr.half_width[i], arr.patch_shift[i], arr.stick_half_width[i],
+                    arr.tangential_force[i]) == (one.half_width, one.patch_shift,
+                                                 one.stick_half_width, one.tangential_force)

@@ -913,9 +913,9 @@ def test_table_source_state_round_trip(source):
 # line-contact effects on their scalar paths: the public functions' results, step by step
 # --------------------------------------------------------------------------------------------
 def test_line_effects_scalar_paths_give_the_public_functions_results():
-    """Creep2D, VelocityFriction (step law) and Wear (smooth rail) use the private float paths
-    (carter._carter_scalar, friction._normalised_inputs_scalar and
-    _step_law_creep_force_normalised_scalar, wear._mean_wear_scalar); their outputs must be
+    """Creep2D, VelocityFriction (step law) and Wear (smooth rail) use the float twins of
+    railcontact._scalar (carter_scalar, normalised_inputs_scalar,
+    step_law_creep_force_normalised_scalar) and wear.mean_wear_unchecked; their outputs must be
     the public vectorised functions' to 4 eps of mu N (forces), absolute for r_a0, of the value
     (wear), over seeded loads and creepages through zero, tiny, partial slip and full sliding
     of both signs, and N = 0."""
@@ -1338,9 +1338,10 @@ def test_slave_state_carries_the_relaxed_creepage():
 @pytest.mark.parametrize("wear_model", ["material_point", "patch_coordinate", "nielsen1998",
                                         "time_domain_carter", None])
 def test_corrugation_wear_scalar_paths_give_the_public_functions_results(method, wear_model):
-    """Corrugation.step (corrugation._corrugated_contact_scalar and
-    wear._corrugated_wear_depth_scalar), Corrugation.auxiliary (_series_truncation_error_scalar)
-    and Wear.auxiliary (wear._wear_coefficients_scalar) against corrugated_contact,
+    """Corrugation.step (corrugation.CorrugatedContactSolver and
+    wear._corrugated_wear_depth_scalar), Corrugation.auxiliary (the kernels'
+    series_relative_error) and Wear.auxiliary (the kernels' wear_coefficients_list for the
+    series models) against corrugated_contact,
     corrugated_wear_depth, series_truncation_error and wear_number x wear_coefficients,
     over seeded loads, creepages (0, partial slip, full sliding, both signs), positions and
     N = 0. Bounds: a, Delta within 1e-13 (a0 + R sum k |Z|) (the Newton tolerance; "linear":
@@ -1442,15 +1443,15 @@ def test_roughness_effect_is_rough_rail_contact():
 
 @pytest.fixture
 def counted_roughness(monkeypatch):
-    # the effect's per-step solver: rough_rail_contact's float path (which calls
+    # the effect's per-step solver: RoughRailSolver.contact (which calls
     # rough_rail_contact itself only for errors and the full-stick series)
     counts = {"rough_rail_contact": 0}
-    original = roughness._rough_rail_contact_float
+    original = roughness.RoughRailSolver.contact
 
     def counter(*args, **kwargs):
         counts["rough_rail_contact"] += 1
         return original(*args, **kwargs)
-    monkeypatch.setattr(roughness, "_rough_rail_contact_float", counter)
+    monkeypatch.setattr(roughness.RoughRailSolver, "contact", counter)
     return counts
 
 

@@ -18,6 +18,8 @@ import pytest
 
 from railcontact import polynomial as P
 from railcontact import roughness as Rg
+from railcontact.roughness import _kernels as K
+from railcontact.roughness import two_patch
 from railcontact.reference.halfspace2d import solve_normal_2d, solve_rolling_2d
 
 pytestmark = pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
@@ -339,8 +341,8 @@ def test_gap_jump_antiderivative_by_finite_differences():
     b = np.array([1.0, 0.3, -0.7, 0.2, -0.3])
     for s in (1.3, 2.0, -1.7, -3.0):
         h = 1e-5
-        fd = (Rg._outside_field_antiderivative(b, s + h)
-              - Rg._outside_field_antiderivative(b, s - h)) / (2 * h)
+        fd = (two_patch._outside_field_antiderivative(b, s + h)
+              - two_patch._outside_field_antiderivative(b, s - h)) / (2 * h)
         assert fd == pytest.approx(float(P.principal_value_integral(b, s)), rel=1e-8)
 
 
@@ -749,9 +751,10 @@ def test_rough_rail_contact_rejects_underflowing_load():
 
 
 # ---------------------------------------------------------------------------------------------
-# the float path of the FMU step (roughness._rough_rail_contact_float) against the public one
+# RoughRailSolver (the FMU step) and the compiled kernels behind every function above
 # ---------------------------------------------------------------------------------------------
 EPS = np.finfo(float).eps
+SCENE_PROFILE = Path(__file__).resolve().parents[1] / "examples" / "scenes"
 
 
 def _public_tuple(surf, x, n_line, mu, xi):
@@ -762,23 +765,6 @@ def _public_tuple(surf, x, n_line, mu, xi):
             float(res.tangential_force), float(res.stick_ratio), float(res.critical_creepage))
 
 
-def _scales(surf, got, n_line, mu):
-    """Per output, the size the rounding of the float path is measured against: the largest
-    term of each sum (for harmonics sum k^n |Z|), a, mu N, 1 (stick ratio)."""
-    if isinstance(surf, Rg.HarmonicRoughness):
-        k, z = 2 * np.pi / surf.wavelengths, np.hypot(surf.amplitudes_cos, surf.amplitudes_sin)
-        dn = [float(np.sum(k**n * z)) for n in range(5)]
-    else:
-        x = np.linspace(surf.positions[0], surf.positions[-1], 2001)
-        dn = [float(np.abs(v).max()) for v in surf.derivatives(x)]
-    a = got[4]
-    return (RAIL_R * dn[1], 1 / RAIL_R + dn[2], dn[3], dn[4], a, a, mu * n_line + 1e-300, 1.0,
-            mu * a * (1 / RAIL_R + dn[2]) + 1e-300)
-
-
-SCENE_PROFILE = Path(__file__).resolve().parents[1] / "examples" / "scenes"
-
-
 def _scene_profile():
     from railcontact.scene import load_scene
     opts = load_scene(str(SCENE_PROFILE / "roughness.toml")).effects["roughness"]
@@ -786,35 +772,31 @@ def _scene_profile():
                                opts["profile_extension"])
 
 
-FLOAT_SURFACES = dict(SURFACES, scene_profile=_scene_profile,
-                      cosine=lambda: Rg.HarmonicRoughness([0.05], [3e-6], [0.0]))
+SOLVER_SURFACES = dict(SURFACES, scene_profile=_scene_profile,
+                       cosine=lambda: Rg.HarmonicRoughness([0.05], [3e-6], [0.0]))
 
 
-@pytest.mark.parametrize("kind", list(FLOAT_SURFACES))
-def test_float_path_equals_rough_rail_contact(kind):
-    """_rough_rail_contact_float (the Roughness effect's step) against rough_rail_contact on
-    seeded inputs over all regimes: positions on crests (l3 = 0, l4 < 0), troughs (l3 ~ 0,
-    l4 > 0: the pole of a^2(Delta) at -l3/l4), flanks and outside a held profile (Hertz);
-    loads from 1e-290 N/m (scaled Brent) to 1e7 N/m; mu = 0; creepage 0, tiny (full-stick
-    series: handed to the public function), partial slip, full sliding, both signs.
-
-    Bound: the profile path repeats the public operations in the same order (Horner on the
-    same spline coefficients, the same Newton and bracketing steps, scipy's brentq statement
-    for statement), so it agrees to 4 eps of each output's scale (measured: bit-identical).
-    Harmonics sum math.cos/sin per harmonic instead of numpy's complex exp and pairwise sum:
-    the lambdas differ by a few eps of the largest term sum k^n |Z| (measured <= 2 eps), which
-    the stick-ratio root carries through to the solver tolerance (rtol 1e-14): 1e-13 of the
-    scale for a, Delta, force, stick ratio and critical creepage (measured <= 1e-14)."""
-    surf = FLOAT_SURFACES[kind]()
-    consts = Rg._float_constants(surf, RAIL_R, RAIL_E, NU)
-    exact = kind.startswith("profile") or kind == "scene_profile"
+@pytest.mark.parametrize("kind", list(SOLVER_SURFACES))
+def test_rough_rail_solver_equals_rough_rail_contact(kind):
+    """RoughRailSolver.contact (the Roughness effect's step: one compiled kernel) against
+    rough_rail_contact (the checked functions calling the same kernels one by one) on seeded
+    inputs over all regimes: positions on crests (l3 = 0, l4 < 0), troughs (l3 ~ 0, l4 > 0:
+    the pole of a^2(Delta) at -l3/l4), flanks and outside a held profile (Hertz); loads from
+    1e-290 N/m (scaled Brent) to 1e7 N/m; mu = 0; creepage 0, tiny (full-stick series),
+    partial slip, full sliding, both signs. The same kernels: bit-identical results, the same
+    errors."""
+    surf = SOLVER_SURFACES[kind]()
+    solver = Rg.RoughRailSolver(surf, RAIL_R, RAIL_E, NU)
     rng = np.random.default_rng(11)
     lam = 0.05 if kind == "cosine" else 0.4
     positions = [0.0, lam / 2, lam / 4, -0.05, 0.45] + list(rng.uniform(-0.1, 0.5, 14))
     loads = [5e6, 1e7, 1e3, 1e-200, 1e-290] + list(10 ** rng.uniform(-290, 7, 4))
     xis = [0.0, 1e-9, -1e-9, 5e-4, -2e-3, 0.05, -0.05]
-    count = worst = failed = 0
+    count = failed = 0
     for x in positions:
+        gap = Rg.local_gap(surf, x, RAIL_R)
+        assert solver.local_gap(x) == (float(gap.contact_point_shift), float(gap.curvature),
+                                       float(gap.skewness), float(gap.flatness))
         for n_line in loads:
             for mu in (0.3, 0.0):
                 for xi in xis:
@@ -822,88 +804,77 @@ def test_float_path_equals_rough_rail_contact(kind):
                         want = _public_tuple(surf, x, n_line, mu, xi)
                     except ValueError as exc:     # Table 6.1 fails here: the same error
                         with pytest.raises(ValueError, match=re.escape(str(exc))):
-                            Rg._rough_rail_contact_float(surf, x, n_line, RAIL_R, RAIL_E, NU,
-                                                         mu, xi, consts)
+                            solver.contact(x, n_line, mu, xi)
                         failed += 1
                         continue
-                    got = Rg._rough_rail_contact_float(surf, x, n_line, RAIL_R, RAIL_E, NU, mu,
-                                                       xi, consts)
-                    scale = _scales(surf, want, n_line, mu)
-                    err = [abs(g - w) / s for g, w, s in zip(got, want, scale)]
-                    bound = [4 * EPS] * 9 if exact else [4 * EPS] * 4 + [1e-13] * 5
-                    assert all(e <= b for e, b in zip(err, bound)), (x, n_line, mu, xi, err)
-                    worst = max(worst, max(err))
+                    assert solver.contact(x, n_line, mu, xi) == want, (x, n_line, mu, xi)
                     count += 1
     assert count + failed == len(positions) * len(loads) * 2 * len(xis)
     assert failed < count / 10
 
 
-@pytest.mark.parametrize("load", [N, 1e-200, 1e-295])
-@pytest.mark.parametrize("name", list(CASES) + ["special", "trough", "crest"])
-def test_float_normal_contact_equals_table_6_1(name, load):
-    """_asperity_normal_float against asperity_normal_contact for every case of Table 6.1 (and
-    the symmetric double well l2 = l3^2/(3 l4), a trough's tiny skewness with positive
-    flatness, a crest's negative flatness), down to N~ ~ 1e-306: the same operations (libm's
-    acos/cos against numpy's in case (A)), 4 eps of a. Where the public function raises (l2 = 0
-    with l4 > 0 is handed over; the double well's bridging patch with negative pressure), the
-    float path hands the case to it."""
-    l2, l3, l4 = {"special": (2.0, 300.0, 300.0**2 / 6.0), "trough": (0.217, -1e-12, 7.7e5),
-                  "crest": (2.17, 0.0, -7.7e5)}.get(name, CASES.get(name, (0, 0, 0)))
-    kfac = float(P.kernel_factor(E, NU))
-    nt = float(Rg.normalised_load(load, E, NU))
-    try:
-        want = Rg.asperity_normal_contact(load, l2, l3, l4, E, NU)
-    except ValueError:
-        with pytest.raises(Rg._UseGeneralPath):
-            Rg._asperity_normal_float(nt, l2, l3, l4, kfac)
-        return
-    if l2 == 0.0:
-        with pytest.raises(Rg._UseGeneralPath):
-            Rg._asperity_normal_float(nt, l2, l3, l4, kfac)
-        return
-    a, d = Rg._asperity_normal_float(nt, l2, l3, l4, kfac)
-    assert abs(a - want.half_width) <= 4 * EPS * want.half_width
-    assert abs(d - want.shift) <= 4 * EPS * want.half_width
-
-
-def test_float_normal_contact_raises_like_the_public_one():
-    """Restriction failures reach the public function's errors through the float path."""
+def test_rough_rail_solver_raises_like_rough_rail_contact():
+    """Restriction failures, an underflowing load and a NaN position reach the public
+    function's errors through the solver."""
     lam = 0.01
     k = 2 * np.pi / lam
     surf = Rg.HarmonicRoughness([lam], [0.9 / (k * k * RAIL_R)], [0.0])
-    consts = Rg._float_constants(surf, RAIL_R, RAIL_E, NU)
+    solver = Rg.RoughRailSolver(surf, RAIL_R, RAIL_E, NU)
     with pytest.raises(ValueError, match=r"rail_position = 0 m: .*Table 6.1.*l4 N~ / \(2 l2\^2\)"):
-        Rg._rough_rail_contact_float(surf, 0.0, 5e6, RAIL_R, RAIL_E, NU, MU, 1e-3, consts)
+        solver.contact(0.0, 5e6, MU, 1e-3)
     with pytest.raises(ValueError, match="normal_load must be > 0 with a normalised load"):
-        Rg._rough_rail_contact_float(surf, 0.0, 5e-324, RAIL_R, RAIL_E, NU, MU, 1e-3, consts)
+        solver.contact(0.0, 5e-324, MU, 1e-3)
     with pytest.raises(ValueError, match="rail_position must be in"):
-        Rg._rough_rail_contact_float(surf, float("nan"), 5e6, RAIL_R, RAIL_E, NU, MU, 1e-3,
-                                     consts)
+        solver.contact(float("nan"), 5e6, MU, 1e-3)
+    with pytest.raises(ValueError, match="rail_position must be in"):
+        solver.local_gap(float("nan"))
+    with pytest.raises(ValueError, match="radius \\* max_height_curvature"):
+        Rg.RoughRailSolver(Rg.HarmonicRoughness([lam], [1.1 / (k * k * RAIL_R)], [0.0]),
+                           RAIL_R, RAIL_E, NU)
 
 
-def test_brentq_float_is_scipys_brentq():
-    """The port of brentq.c against scipy.optimize.brentq: the same iterates, so the same
-    root to the last bit, on seeded polynomials with a sign change."""
+def test_brent_kernel_equals_scipy_brentq():
+    """The compiled Brent root finder against scipy.optimize.brentq on the same function (the
+    creepage and force of (6.38)-(6.39) as functions of a*/a, and the scaled load residual of
+    the numerical case of Table 6.1): the same method and tolerances, so the same root."""
     from scipy.optimize import brentq
     rng = np.random.default_rng(5)
-    for _ in range(200):
-        c = rng.normal(size=4)
-        f = lambda x, c=c: ((c[3] * x + c[2]) * x + c[1]) * x + c[0]  # noqa: E731
-        lo, hi = sorted(rng.uniform(-3, 3, 2))
-        if f(lo) * f(hi) >= 0:
+    compared = 0
+    for _ in range(60):
+        l2, l3, l4 = 10 ** rng.uniform(-1, 1), rng.normal() * 300, rng.normal() * 3e4
+        try:
+            c = Rg.asperity_normal_contact(N, l2, l3, l4, E, NU)
+        except ValueError:
             continue
-        for xtol, rtol in ((1e-15, 1e-14), (1e-300, 1e-15), (1e-6, 1e-10)):
-            assert Rg._brentq_float(f, lo, hi, xtol, rtol) == brentq(f, lo, hi, xtol=xtol,
-                                                                     rtol=rtol)
+        ref = np.pi * E / (8.0 * (1.0 - NU**2))
+        args = (c.half_width, c.shift, N, l2, l3, l4, ref, MU)
+        crit = -K.tangential_state(*args, 0.0)[0]
+        for which, target in ((1, 0.4 * crit), (2, 0.6 * MU * N)):
+            p = args + (target,)
+
+            def f(r, which=which, target=target):
+                xi, force = K.tangential_state(*args, r)
+                return -xi - target if which == 1 else force - target
+            if f(0.0) * f(1.0) >= 0:
+                continue
+            for xtol, rtol in ((1e-15, 1e-14), (1e-300, 1e-15), (1e-6, 1e-10)):
+                root, ok = K.brent(which, p, 0.0, 1.0, xtol, rtol, 100)
+                assert ok and root == brentq(f, 0.0, 1.0, xtol=xtol, rtol=rtol)
+                compared += 1
+    assert compared > 100
+    root, ok = K.brent(1, args + (10 * crit,), 0.0, 1.0, 1e-15, 1e-14, 100)
+    assert not ok                                    # no sign change: reported, not raised
 
 
-def test_float_pressure_check_equals_the_sampled_check():
-    """_pressure_nonnegative_float (a sufficient-condition shortcut, else the same sampled
-    check) against _pressure_nonnegative on seeded contacts: coherent ones (Table 6.1's
-    solutions), and the same (a, Delta) with the flatness or the shift perturbed so that the
-    pressure goes negative near an edge or inside."""
+def test_pressure_check_kernel_against_the_polynomial_form():
+    """The kernel's pressure-sign check against the pressure polynomial of
+    railcontact.polynomial (AsperityContact.normal_contact, independent code) sampled at the
+    same Chebyshev points, on seeded contacts: coherent ones (Table 6.1's solutions) and the
+    same (a, Delta) with the flatness or the shift perturbed so that the pressure goes
+    negative near an edge or inside."""
     rng = np.random.default_rng(7)
     kfac = float(P.kernel_factor(E, NU))
+    s = np.cos(np.linspace(0.0, np.pi, 201))[1:-1]
     seen = set()
     for _ in range(300):
         l2 = 10 ** rng.uniform(-1, 1)
@@ -913,35 +884,26 @@ def test_float_pressure_check_equals_the_sampled_check():
             c = Rg.asperity_normal_contact(N, l2, l3, l4, E, NU)
         except ValueError:
             continue
-        for a, d, f4 in ((c.half_width, c.shift, l4), (c.half_width, c.shift + 0.3 * c.half_width,
-                                                        l4), (c.half_width, c.shift, -50 * l4)):
+        for a, d, f4 in ((c.half_width, c.shift, l4),
+                         (c.half_width, c.shift + 0.3 * c.half_width, l4),
+                         (c.half_width, c.shift, -50 * l4)):
             cc = Rg.AsperityContact(a, d, N, l2, l3, f4, E, NU, "test", "test")
-            want = bool(Rg._pressure_nonnegative(cc))
-            assert Rg._pressure_nonnegative_float(a, d, l2, l3, f4, kfac) == want
+            v = np.polynomial.polynomial.polyval(s, cc.normal_contact.normalised_coefficients)
+            want = bool(v.min() >= -1e-9 * np.abs(v).max())
+            assert K.pressure_nonnegative(a, d, l2, l3, f4, kfac) == want
             seen.add(want)
     assert seen == {True, False}
 
 
-@pytest.mark.parametrize("name", list(CASES) + ["crest"])
-def test_float_tangential_equals_asperity_tangential_contact(name):
-    """_asperity_tangential_float against asperity_tangential_contact and
-    asperity_critical_creepage for every case of Table 6.1 and a crest (l4 < 0, where the
-    creepage need not be monotone in a*/a and the full scan runs), creepage 0, partial slip
-    over the whole range of a*/a, full sliding, both signs, mu = 0: the same operations and the
-    same Brent bracket (by bisection where the creepage is provably monotone in a*/a), 4 eps
-    (measured: bit-identical)."""
-    l2, l3, l4 = CASES.get(name, (2.17, 0.0, -7.7e5))
-    c = Rg.asperity_normal_contact(N, l2, l3, l4, E, NU)
-    ref = np.pi * c.youngs_modulus / (8.0 * (1.0 - c.poisson_ratio**2))
-    for mu in (MU, 0.0):
-        crit = float(Rg.asperity_critical_creepage(c, MU))
-        for frac in [0.0, 1e-3, 0.05, 0.3, 0.5, 0.7, 0.95, 0.999, 1.0, 1.5]:
-            for sign in (1.0, -1.0):
-                xi = sign * frac * crit
-                want = Rg.asperity_tangential_contact(c, mu, creepage=xi)
-                force, r, critical = Rg._asperity_tangential_float(
-                    c.half_width, c.shift, N, l2, l3, l4, ref, mu, xi)
-                assert abs(force - want.tangential_force) <= 4 * EPS * MU * N
-                assert abs(r - want.stick_ratio) <= 4 * EPS
-                assert critical == pytest.approx(float(Rg.asperity_critical_creepage(c, mu)),
-                                                 rel=4 * EPS, abs=0)
+def test_harmonic_derivatives_against_complex_exponentials():
+    """HarmonicRoughness.derivatives (the kernel's cos/sin sum) against numpy's complex
+    exponentials, r^(n) = Re[sum (i k)^n (Z_A - i Z_B) e^(i k X)], to 4 eps of sum k^n |Z|."""
+    surf = SURFACES["harmonics"]()
+    x = np.random.default_rng(2).uniform(-1.0, 1.0, 50)
+    k = 2 * np.pi / surf.wavelengths
+    zeta = surf.amplitudes_cos - 1j * surf.amplitudes_sin
+    for n, got in enumerate(surf.derivatives(x)):
+        want = np.real(((1j * k) ** n * zeta * np.exp(1j * k * x[:, None])).sum(-1))
+        np.testing.assert_allclose(got, want, rtol=0, atol=4 * EPS * np.sum(k**n * np.abs(zeta)))
+    assert surf.derivatives(0.3).shape == (5,)
+    assert surf.derivatives(np.zeros((2, 3))).shape == (5, 2, 3)

@@ -36,7 +36,7 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
                   ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
     fmu_parameters   the FMU's parameters and the scene keys they set
     fmu_build     builds WheelRailContact.fmu from a checkout (``python build_fmu.py``)
-Submodules other than polynomial, roughness, friction and nonsteady are imported on first
+Submodules other than polynomial, friction and nonsteady are imported on first
 attribute access (``railcontact.wear``) or with ``import railcontact.wear``.
 
 Conventions (one set, used by every function, table and the FMU)
@@ -72,15 +72,14 @@ from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,
 from .creep3d import ExactCreepSolution3D
 from .errors import RollingConvergenceError
 from . import polynomial
-from . import roughness
 from . import friction, nonsteady
 
 __version__ = "0.1.0"
 
 #: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
 #: pays for at load time).
-_LAZY_SUBMODULES = ("corrugation", "wear", "evolution", "filters", "kalker", "tables",
-                    "strip_table", "exact_table", "creep_common",
+_LAZY_SUBMODULES = ("corrugation", "wear", "roughness", "evolution", "filters", "kalker",
+                    "tables", "strip_table", "exact_table", "creep_common",
                     "reference", "scene", "effects", "run", "fmu_parameters",
                     "fmu_build")
 

@@ -31,8 +31,6 @@ References
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ._floats import _finite_or_scaled, _overflow_error, _scaled, _value
@@ -272,39 +270,3 @@ def carter_slip(x, creepage, normal_load, radius, youngs_modulus, poisson_ratio,
     in_stick = (x_star > -a_star) & (x < a0)
     s = np.where(in_stick, 0.0, s)
     return s[()] if np.ndim(s) == 0 else s
-
-
-# --------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
-# --------------------------------------------------------------------------------------------
-# numpy's per-call overhead (array creation, ufunc dispatch, the input checks) is ~60 us per
-# call of carter_creep_force on scalars, for well under 1 us of arithmetic. The function below
-# repeats the array paths' arithmetic (hertz_2d's a0, carter_critical_creepage,
-# _sliding_fraction, carter_creep_force's f (2 - f) form, carter_stick_ratio's 1 - f) operation
-# for operation on floats with the math module, for callers that have already range-checked
-# their inputs (the FMU slave: railcontact.effects._inputs_plausible, the scene's checks). It
-# ASSUMES, and does not check: every input a finite float (or int, not bool), normal_load >= 0,
-# radius > 0, youngs_modulus > 0, 0 <= poisson_ratio < 0.5, friction_coefficient >= 0. Outside
-# that the result is undefined (possibly NaN or an exception); use the public functions there.
-# Agreement with carter_creep_force and carter_stick_ratio to a few ulp (the operations are the
-# same, in the same order; libm's sqrt and numpy's are both correctly rounded) is tested in
-# tests/test_carter.py.
-
-
-def _carter_scalar(creepage, normal_load, radius, youngs_modulus, poisson_ratio,
-                   friction_coefficient, _sqrt=math.sqrt, _pi=math.pi, _inf=math.inf):
-    """(:func:`carter_creep_force`, :func:`carter_stick_ratio`) for plain floats (inputs
-    assumed in range, see above). [N/m], [-]"""
-    xi, n_load, r, mu = creepage, normal_load, radius, friction_coefficient
-    nu = poisson_ratio
-    a0 = _sqrt(8.0 * (1.0 - nu * nu) * r * n_load / (_pi * youngs_modulus))
-    xi_c = mu * a0 / r
-    if xi_c > 0.0:
-        frac = abs(xi) / xi_c
-    else:                                  # no stick zone unless xi = 0 (see _sliding_fraction)
-        frac = 0.0 if xi == 0.0 else _inf
-    if not frac < 1.0:
-        frac = 1.0
-    sign = 1.0 if xi > 0.0 else (-1.0 if xi < 0.0 else 0.0)
-    # f (2 - f) with f = 1 - r computed directly (no cancellation at tiny creepage)
-    return -sign * mu * n_load * (frac * (2.0 - frac)), 1.0 - frac

@@ -57,13 +57,13 @@ References
 
 from __future__ import annotations
 
-import cmath
 import math
 from collections import namedtuple
 
 import numpy as np
-from scipy.special import j0, j1, jv
+from scipy.special import jv
 
+from . import _corrugation_kernels as _kernels
 from ._validation import (check_corrugated_contact_inputs, check_load_not_underflowing,
                           check_range, load_underflows)
 
@@ -72,7 +72,7 @@ __all__ = [
     "contact_point_shift_coefficient", "series_truncation_error", "series_degree",
     "solve_normal_exact", "solve_stick_zone_exact", "corrugated_contact",
     "contact_distributions", "CorrugatedContact", "ContactDistributions",
-    "check_no_contact_loss", "half_width_load_term",
+    "check_no_contact_loss", "half_width_load_term", "CorrugatedContactSolver",
 ]
 
 _TWO_PI = 2.0 * np.pi
@@ -143,8 +143,16 @@ def normal_response(a0_over_wavelength):
     (:func:`solve_normal_exact`) at small amplitude, and against the discretised half-space
     solver :func:`railcontact.reference.halfspace2d.solve_normal_2d`.
     """
-    beta = _TWO_PI * _ratio(a0_over_wavelength)
-    return -1j * j0(beta), -j1(beta) + 0j
+    cd, ca, _, _ = _linear_responses(a0_over_wavelength, 1.0)
+    return cd, ca
+
+
+def _linear_responses(a0_over_wavelength, stick_ratio):
+    """The kernel's ``(c_Delta, c_a, c_a*, c_T)`` (normalised) at checked ``a0/L`` and
+    ``r_a0``, broadcast (numpy scalars for scalar inputs)."""
+    beta, r = np.broadcast_arrays(_TWO_PI * _ratio(a0_over_wavelength), _stick(stick_ratio))
+    out = _kernels.linear_response_array(_flat(beta), _flat(r))
+    return tuple(v.reshape(beta.shape)[()] for v in out)
 
 
 def contact_point_shift_coefficient():
@@ -186,11 +194,7 @@ def stick_zone_response(a0_over_wavelength, stick_ratio):
     ndarray of complex
         ``c_a* / (k R)``; amplitude is Fig. 4.6 (top), ``-arg`` its phase (bottom). [-]
     """
-    beta = _TWO_PI * _ratio(a0_over_wavelength)
-    r = _stick(stick_ratio)
-    kd = beta * (1.0 - r)
-    js = j0(beta * r)
-    return (-j1(beta) + js * np.sin(kd)) - 1j * (j0(beta) - js * np.cos(kd))
+    return _linear_responses(a0_over_wavelength, stick_ratio)[2]
 
 
 def tangential_force_response(a0_over_wavelength, stick_ratio):
@@ -212,11 +216,7 @@ def tangential_force_response(a0_over_wavelength, stick_ratio):
     ndarray of complex
         ``c_T / (mu pi E / (4 (1 - nu^2)))``. [-]
     """
-    beta = _TWO_PI * _ratio(a0_over_wavelength)
-    r = _stick(stick_ratio)
-    kd = beta * (1.0 - r)
-    return -beta * r * (stick_zone_response(a0_over_wavelength, r)
-                        + j1(beta * r) * np.exp(-1j * kd))
+    return _linear_responses(a0_over_wavelength, stick_ratio)[3]
 
 
 def half_width_load_term(rail_position, a0, mean_normal_load, load_amplitudes_cos,
@@ -281,15 +281,10 @@ def series_truncation_error(ka, degree):
     """
     ka = check_range("ka", ka, "-", 0.0, None)
     n = check_range("degree", degree, "-", 1, None)
-    nmax = int(np.max(n)) + 60 + int(np.max(ka)) * 2
-    j = np.arange(1, nmax + 1)
-    shape = np.broadcast(ka, n).shape
-    kab = np.broadcast_to(ka, shape)[..., None]
-    nb = np.broadcast_to(n, shape)[..., None]
-    terms = np.abs(jv(j, kab))
-    biggest = np.maximum(terms.max(axis=-1), 1e-300)
-    tail = np.where(j > nb, terms, 0.0).sum(axis=-1)
-    return ka / (n + 1.0), np.where(np.squeeze(kab, -1) > 0, tail / biggest, 0.0)
+    kab, nb = np.broadcast_arrays(ka, n)
+    rel = [_kernels.series_relative_error(float(v), m) for v, m in zip(kab.ravel().tolist(),
+                                                                     nb.ravel().tolist())]
+    return ka / (n + 1.0), np.reshape(rel, kab.shape)
 
 
 def series_degree(ka, tolerance=1e-10, max_degree=400):
@@ -331,83 +326,6 @@ def series_degree(ka, tolerance=1e-10, max_degree=400):
 # ---------------------------------------------------------------------------------------------
 # exact nonlinear solution at given rail positions (any number of harmonics)
 # ---------------------------------------------------------------------------------------------
-def _surface_terms(y, k, za, zb):
-    """S = Z_A sin ky - Z_B cos ky and Zc = Z_A cos ky + Z_B sin ky (last axis = harmonics)."""
-    s, c = np.sin(k * y), np.cos(k * y)
-    return za * s - zb * c, za * c + zb * s
-
-
-def _shift_for_half_width(x, a, big_r, k, za, zb, atol, max_iter, d=None):
-    """Delta(a) from (4.31) at fixed half-width, bracketed (vectorised over positions).
-
-    ``h(Delta) = Delta + R sum k J0(k a) S(X + Delta)`` satisfies ``h(-B) <= 0 <= h(B)`` with
-    ``B = R sum k |J0(k a)| |Z|`` and ``h' = 1 + R sum k^2 J0(k a) Zc >= 1 - sum k^2 R |Z| > 0``
-    under (4.2): one root, found by Newton safeguarded by bisection."""
-    ka = k * a[:, None]
-    jz = j0(ka)
-    bound = big_r * np.sum(k * np.abs(jz) * np.hypot(za, zb), -1)
-    lo, hi = -bound, bound.copy()
-    d = np.zeros_like(a) if d is None else np.clip(d, lo, hi)
-    for _ in range(max_iter):
-        s, c = _surface_terms(x[:, None] + d[:, None], k, za, zb)
-        h = d + big_r * np.sum(k * jz * s, -1)
-        dh = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-        lo = np.where(h <= 0, d, lo)
-        hi = np.where(h >= 0, d, hi)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            new = d - h / dh
-        new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-        done = (np.abs(new - d) <= atol) | (hi - lo <= atol) | (h == 0)
-        d = np.where(h == 0, d, new)
-        if np.all(done):
-            break
-    return d
-
-
-def _solve_normal_bracketed(x, nc, big_r, k, za, zb, atol, max_iter):
-    """(4.31), (4.33) as a bracketed 1-D problem in a (globally convergent Newton fallback).
-
-    For each a, Delta(a) is the unique root of (4.31) (:func:`_shift_for_half_width`); then
-    ``P(a) = a^2/(2R) + sum k a J1(k a) Zc(X + Delta(a)) - N C`` has ``P(0) = -N C < 0`` and
-    ``P(a_hi) > 0`` for ``a_hi = R s + sqrt((R s)^2 + 2 R N C)``, ``s = 0.582 sum k |Z|``
-    (``max |J1| = 0.5819``). Under (4.2) (convex gap) the root is unique: every root gives the
-    bounded Muskhelishvili pressure ``p ~ sqrt(a^2 - x^2) int (g'(t) - g'(x))/(t - x) ...``,
-    positive for a convex gap, i.e. a solution of the (uniquely solvable) contact problem.
-    Newton on ``P`` with ``dP/da = det / j11`` (total derivative), safeguarded by bisection.
-    """
-    x = np.asarray(x, float)
-    s_j1 = 0.582 * np.sum(k * np.hypot(za, zb))
-    lo = np.zeros_like(x)
-    hi = np.full_like(x, big_r * s_j1 + np.sqrt((big_r * s_j1) ** 2 + 2.0 * big_r * nc))
-    a = np.minimum(np.sqrt(2.0 * big_r * nc), 0.5 * hi)
-    d = None
-    for _ in range(max_iter):
-        d = _shift_for_half_width(x, a, big_r, k, za, zb, atol, max_iter, d)
-        s, c = _surface_terms(x[:, None] + d[:, None], k, za, zb)
-        ka = k * a[:, None]
-        jz, jo = j0(ka), j1(ka)
-        p = a * a / (2 * big_r) + np.sum(k * a[:, None] * jo * c, -1) - nc
-        j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-        j12 = -big_r * np.sum(k * k * jo * s, -1)
-        j21 = -np.sum(k * k * a[:, None] * jo * s, -1)
-        j22 = a / big_r + np.sum(k * k * a[:, None] * jz * c, -1)
-        lo = np.where(p <= 0, a, lo)
-        hi = np.where(p >= 0, a, hi)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            new = a - p * j11 / (j11 * j22 - j12 * j21)
-        new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-        done = (np.abs(new - a) <= atol) | (hi - lo <= atol) | (p == 0)
-        a = np.where(p == 0, a, new)
-        if np.all(done):
-            break
-    else:
-        raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) k^2 R |Z| < 1 "
-                         "[m]: the bracketed normal problem (4.31), (4.33) did not converge "
-                         f"in {max_iter} steps at rail_position = {x[~done]} m")
-    d = _shift_for_half_width(x, a, big_r, k, za, zb, atol, max_iter, d)
-    return a, d
-
-
 def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumbers, amplitudes_cos,
                        amplitudes_sin, *, a_start=None, tol=1e-13, max_iter=60):
     r"""Solve the exact normal equations (4.31) and (4.33) for ``a`` and ``Delta``.
@@ -453,71 +371,37 @@ def solve_normal_exact(rail_position, normal_load_compliance, radius, wavenumber
     ``[5e-4, 1]``, ``k^2 R |Z| < 0.999``, 400 surfaces x 37 positions: no failure, Newton and
     the bracketed fallback agree within 1.5e-11 a0).
     """
-    x = np.asarray(rail_position, dtype=float)[..., None]
-    k = np.asarray(wavenumbers, float)
-    za = np.asarray(amplitudes_cos, float)
-    zb = np.asarray(amplitudes_sin, float)
+    x = np.asarray(rail_position, dtype=float)
+    k, za, zb = _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin)
     big_r = float(radius)
     nc = float(normal_load_compliance)
-    a0 = np.sqrt(2.0 * big_r * nc)
-    a = np.full(x.shape[:-1], a0 if a_start is None else 0.0) + (0.0 if a_start is None
-                                                                else np.asarray(a_start))
-    d = np.zeros(x.shape[:-1])
-    step = np.full(x.shape[:-1], np.inf)
-    # Steps are compared with tol * (a0 + R sum k |Z|): the residual of (4.31) is a sum of terms
-    # of size |Delta| <= R sum k |Z|, so its rounding (eps R k |Z| / j11) exceeds tol * a0 for long
-    # waves (a0/L = 1e-3, k^2 R |Z| = 0.858: |Delta| = 76 a0; with tol * a0 alone Newton had
-    # converged but never met the criterion and reported "did not converge").
-    atol = tol * (a0 + big_r * float(np.sum(k * np.hypot(za, zb))))
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for _ in range(max_iter):
-            s, c = _surface_terms(x + d[..., None], k, za, zb)
-            ka = k * a[..., None]
-            jz, jo = j0(ka), j1(ka)
-            f1 = d + big_r * np.sum(k * jz * s, -1)
-            f2 = a * a / (2 * big_r) + np.sum(k * a[..., None] * jo * c, -1) - nc
-            j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-            j12 = -big_r * np.sum(k * k * jo * s, -1)
-            j21 = -np.sum(k * k * a[..., None] * jo * s, -1)
-            j22 = a / big_r + np.sum(k * k * a[..., None] * jz * c, -1)
-            det = j11 * j22 - j12 * j21
-            dd = (f1 * j22 - f2 * j12) / det
-            da = (j11 * f2 - j21 * f1) / det
-            d = d - dd
-            a = a - da
-            step = np.abs(dd) + np.abs(da)
-            if np.all(step < atol):
-                break
-    # (4.31) and (4.33) are even in a (J0 even, a J1(k a) even): a Newton step through a = 0
-    # (tiny det far from the solution, e.g. long waves near the edge of (4.2) where the patch
-    # moves by ~L/7 from the axis) lands on the mirror root (-a, Delta), the same physical
-    # solution. Positions where plain Newton did not converge (it can cycle when the patch
-    # shift is a sizeable part of the wave length) are re-solved by the bracketed reduction.
-    a = np.abs(a)
-    bad = (~(step < atol) | ~np.isfinite(a) | ~np.isfinite(d)).reshape(-1)
-    if np.any(bad):
-        a_f, d_f = a.reshape(-1).copy(), d.reshape(-1).copy()
-        a_f[bad], d_f[bad] = _solve_normal_bracketed(x.reshape(-1)[bad], nc, big_r, k, za, zb,
-                                                     atol, max(4 * max_iter, 200))
-        a, d = a_f.reshape(a.shape), d_f.reshape(d.shape)
-    curv_sum = float(np.sum(k * k * big_r * np.hypot(za, zb)))
-    s, c = _surface_terms(x + d[..., None], k, za, zb)
-    ka = k * a[..., None]
-    jz, jo = j0(ka), j1(ka)
-    j11 = 1.0 + big_r * np.sum(k * k * jz * c, -1)
-    j12 = -big_r * np.sum(k * k * jo * s, -1)
-    j21 = -np.sum(k * k * a[..., None] * jo * s, -1)
-    j22 = a / big_r + np.sum(k * k * a[..., None] * jz * c, -1)
-    det = j11 * j22 - j12 * j21
-    if np.any(a <= 0) or np.any(~(det > 0)) or np.any(~(j11 > 0)):
+    a_start = np.sqrt(2.0 * big_r * nc) if a_start is None else np.asarray(a_start, float)
+    x, a_start = np.broadcast_arrays(x, a_start)
+    out, status = _kernels.solve_normal_array(_flat(x), nc, big_r, k, za, zb, _flat(a_start),
+                                              float(tol), int(max_iter))
+    if np.any(status == _kernels.NOT_CONVERGED):
+        raise ValueError("amplitudes_cos, amplitudes_sin must satisfy Eq. (4.2) k^2 R |Z| < 1 "
+                         "[m]: the bracketed normal problem (4.31), (4.33) did not converge "
+                         f"in {max(4 * int(max_iter), 200)} steps at rail_position = "
+                         f"{x.ravel()[status == _kernels.NOT_CONVERGED]} m")
+    if np.any(status != _kernels.OK):
+        curv_sum = float(np.sum(k * k * big_r * np.hypot(za, zb)))
         raise ValueError("amplitudes_cos, amplitudes_sin must satisfy sum k^2 R |Z| < 1 (Eq. "
                          f"(4.2) for the sum of the harmonics; got {curv_sum:g}) [m]: no "
                          "single-patch solution")
-    g1 = big_r * np.sum(k * k * jz * c, -1)              # dF1/dX
-    g2 = -np.sum(k * k * a[..., None] * jo * s, -1)      # dF2/dX
-    dd_dx = -(g1 * j22 - g2 * j12) / det
-    da_dx = -(j11 * g2 - j21 * g1) / det
+    a, d, da_dx, dd_dx = (v.reshape(x.shape) for v in out)
     return a, d, da_dx, dd_dx
+
+
+def _flat(values):
+    """``values`` as a new 1-D float array (the kernels' argument; a fresh, writeable copy,
+    also of a broadcast view)."""
+    return np.ravel(values).astype(float)
+
+
+def _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin):
+    """The harmonics as the kernels' contiguous float arrays ``(k, Z_A, Z_B)``."""
+    return tuple(_flat(v) for v in (wavenumbers, amplitudes_cos, amplitudes_sin))
 
 
 def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radius, wavenumbers,
@@ -544,80 +428,13 @@ def solve_stick_zone_exact(rail_position, a, delta, creepage_over_friction, radi
     ndarray
         ``a*``. [m]
     """
-    x = np.asarray(rail_position, dtype=float)
-    a = np.asarray(a, float)
-    d = np.asarray(delta, float)
-    offset = _stick_offset(x, a, d, float(creepage_over_friction), float(radius),
-                           np.asarray(wavenumbers, float), np.asarray(amplitudes_cos, float),
-                           np.asarray(amplitudes_sin, float), tol, max_iter)
-    return a - offset
-
-
-# Small offsets delta = a - a* (tiny creepage) are handled by second-order Taylor expansions in
-# delta of the *differences* below, so that neither delta nor T is the difference of two
-# nearly equal O(1) numbers (xi -> 0 gives delta = 0 and T = 0 exactly).
-_TAYLOR_LIMIT = 1e-4          # k delta below which the Taylor forms are used
-
-
-def _j1_over_z(z):
-    return np.where(z > 1e-8, j1(z) / np.where(z > 1e-8, z, 1.0), 0.5)
-
-
-def _stick_bracket(y, a, delta, k, za, zb):
-    """G(delta) - G(0), G = sum k J0(k (a - delta)) S(y + delta), and dG/d delta."""
-    kd = k * delta[..., None]
-    small = np.max(kd, -1, initial=0.0) < _TAYLOR_LIMIT
-    s0, c0 = _surface_terms(y[..., None], k, za, zb)
-    z = k * a[..., None]
-    jz, jo = j0(z), j1(z)
-    g1 = np.sum(k * k * (jo * s0 + jz * c0), -1)
-    g2 = np.sum(k ** 3 * (-(2 * jz - _j1_over_z(z)) * s0 + 2 * jo * c0), -1)
-    taylor = delta * g1 + 0.5 * delta * delta * g2
-    s1, c1 = _surface_terms(y[..., None] + delta[..., None], k, za, zb)
-    zs = k * (a - delta)[..., None]
-    direct = np.sum(k * (j0(zs) * s1 - jz * s0), -1)
-    deriv = np.sum(k * k * (j1(zs) * s1 + j0(zs) * c1), -1)
-    return np.where(small, taylor, direct), deriv
-
-
-def _stick_offset(x, a, d, xi, big_r, k, za, zb, tol=1e-13, max_iter=60):
-    """Solve delta = a - a* from delta/R + [G(delta) - G(0)] = xi/mu, delta in [0, a].
-
-    (The creepage condition minus the normal condition (4.31), which holds at delta = 0.)"""
-    y = x + d
-    delta = np.clip(np.full(np.shape(y), xi * big_r), 0.0, a)
-    for _ in range(max_iter):
-        bracket, deriv = _stick_bracket(y, a, delta, k, za, zb)
-        f = delta / big_r + bracket - xi
-        df = 1.0 / big_r + deriv
-        new = np.clip(delta - f / df, 0.0, a)
-        done = np.all(np.abs(new - delta) <= tol * np.maximum(np.abs(new), 1e-300)
-                      + 1e-15 * tol * a)
-        delta = new
-        if done:
-            break
-    return delta
-
-
-def _tangential_force_exact(x, a, d, delta, mu, comp, big_r, k, za, zb):
-    """|T| = (mu/C) [delta (2a - delta)/(2R) + H(0) - H(delta)] (4.67) minus (4.33),
-    H(delta) = sum k (a - delta) J1(k (a - delta)) Zc(y + delta), y = X + Delta."""
-    y = (x + d)[..., None]
-    kd = k * delta[..., None]
-    small = np.max(kd, -1, initial=0.0) < _TAYLOR_LIMIT
-    s0, c0 = _surface_terms(y, k, za, zb)
-    z = k * a[..., None]
-    jz, jo = j0(z), j1(z)
-    av = a[..., None]
-    h1 = -np.sum(k * k * av * (jz * c0 + jo * s0), -1)
-    h2 = np.sum(k * k * (jz * c0 + jo * s0)
-                - k ** 3 * av * (2 * jo * c0 - (2 * jz - _j1_over_z(z)) * s0), -1)
-    taylor = -(delta * h1 + 0.5 * delta * delta * h2)
-    s1, c1 = _surface_terms(y + delta[..., None], k, za, zb)
-    ast = (a - delta)[..., None]
-    direct = np.sum(k * (av * jo * c0 - ast * j1(k * ast) * c1), -1)
-    diff = np.where(small, taylor, direct)
-    return mu / comp * (delta * (2 * a - delta) / (2 * big_r) + diff)
+    x, a, d = np.broadcast_arrays(np.asarray(rail_position, dtype=float),
+                                  np.asarray(a, float), np.asarray(delta, float))
+    k, za, zb = _harmonics(wavenumbers, amplitudes_cos, amplitudes_sin)
+    offset = _kernels.stick_offset_array(
+        *(_flat(v) for v in (x, a, d)), float(creepage_over_friction),
+        float(radius), k, za, zb, float(tol), int(max_iter))
+    return a - offset.reshape(x.shape)
 
 
 CorrugatedContact = namedtuple("CorrugatedContact", [
@@ -639,10 +456,6 @@ The wear per passage on the corrugated rail is :func:`railcontact.wear.corrugate
 (same arguments plus the wear coefficient): wear depends on the contact, not the other way
 round.
 """
-
-
-_TINY = 2.2250738585072014e-308   # smallest normal double
-_load_underflows = load_underflows       # (the FMU's corrugation effect reads this name)
 
 
 def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
@@ -714,23 +527,18 @@ def corrugated_contact(rail_position, normal_load, radius, youngs_modulus, poiss
     a0s = max(a0 - xi * big_r / mu, 0.0)
     if method == "exact":
         a, d, _, _ = solve_normal_exact(x, n_load * comp, big_r, k, za, zb)
-        offset = _stick_offset(x, a, d, xi / mu, big_r, k, za, zb)
+        xs, a, d = (_flat(v) for v in np.broadcast_arrays(x, a, d))
+        harmonics = _harmonics(k, za, zb)
+        offset = _kernels.stick_offset_array(xs, a, d, xi / mu, big_r, *harmonics, 1e-13, 60)
         ast = a - offset
-        t = _tangential_force_exact(x, a, d, offset, mu, comp, big_r, k, za, zb)
+        t = _kernels.tangential_force_array(xs, a, d, offset, mu, comp, big_r, *harmonics)
     else:
-        ratio = a0 / lam
-        r = a0s / a0
-        zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])     # Z_A + i Z_B rotated
-        cd, ca = normal_response(ratio)
-        cs = stick_zone_response(ratio, r)
-        ct = tangential_force_response(ratio, r)
-        # Q(X) = Re[conj(c) zeta e^{ikX}] = Re[c (Z_A + i Z_B) e^{-ikX}]
-        a = a0 + np.sum(np.real(k * big_r * ca * zc), -1)
-        d = np.sum(np.real(k * big_r * cd * zc), -1)
-        ast = a0s + np.sum(np.real(k * big_r * cs * zc), -1)
         one_minus_r = min(xi * big_r / (mu * a0), 1.0)          # 1 - r without cancellation
-        t = (mu * n_load * one_minus_r * (2.0 - one_minus_r)
-             + np.sum(np.real(mu / comp * ct * zc), -1))
+        # Q(X) = Re[conj(c) zeta e^{ikX}] = Re[c (Z_A + i Z_B) e^{-ikX}] per harmonic
+        a, d, ast, t = _kernels.contact_linear_array(
+            _flat(x), a0, a0s,
+            mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
+            *_harmonics(k, za, zb), _flat(_TWO_PI * (a0 / lam)))
     shape = np.shape(x)
     return CorrugatedContact(np.reshape(a, shape), np.reshape(d, shape), np.reshape(ast, shape),
                              np.reshape(t, shape), np.full(shape, n_load))
@@ -849,215 +657,93 @@ def contact_distributions(x, rail_position, normal_load, radius, youngs_modulus,
 
 
 # ---------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
+# one rail position per call, as floats: the FMU's corrugation effect
 # ---------------------------------------------------------------------------------------------
-# corrugated_contact at one rail position costs ~1 ms, nearly all of it numpy's per-call
-# overhead on arrays of M harmonics (range checks, ~40 small operations per Newton step). The
-# functions below repeat its arithmetic on floats (math.sin/cos, scipy's j0/j1 on floats, the
-# same cephes routines the array path uses): the same Newton iterations from the same start,
-# the same convergence tests and tolerances, the same Taylor switch of the stick-zone
-# differences. They differ from the array path by rounding only (libm's sin/cos against
-# numpy's, the order of the sums over harmonics), so the iterates agree to a few ulp and the
-# converged roots to the solver tolerance 1e-13 (tests/test_corrugation.py asserts it on seeded
-# inputs over amplitudes, harmonics, k a0, r_a0, creepage and both methods).
-# Every branch that is not the plain Newton solution -- condition (4.2) violated, Newton not
-# converged within max_iter or not finite (the bracketed fallback), a root failing the
-# single-patch check -- is handed to corrugated_contact itself, which raises or solves it.
-# It ASSUMES, and does not check: normal_load > 0, radius > 0, youngs_modulus > 0,
-# 0 <= poisson_ratio < 0.5, friction_coefficient > 0, every other input finite,
-# amplitudes_cos, amplitudes_sin, wavelengths sequences of equal length >= 1 with wavelengths
-# > 0, method "exact" or "linear" (the scene and the FMU slave check all of these first).
-def _corrugated_contact_scalar(rail_position, normal_load, radius, youngs_modulus,
-                               poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
-                               amplitudes_sin, wavelengths, method="exact"):
-    """:func:`corrugated_contact` at one rail position for plain floats (inputs assumed in
-    range, see above): ``(a, Delta, a*, |T|)``. [m, m, m, N/m]"""
-    x, n_load, big_r, nu, mu = rail_position, normal_load, radius, poisson_ratio, \
-        friction_coefficient
-    xi = abs(creepage)
-    harm = [(_TWO_PI / lam, za, zb) for za, zb, lam in zip(amplitudes_cos, amplitudes_sin,
-                                                           wavelengths)]
-    if not (all(k * k * big_r * math.hypot(za, zb) < 1.0 for k, za, zb in harm)
-            and 8.0 * (1.0 - nu * nu) * n_load / (math.pi * youngs_modulus) >= _TINY):
-        return _public_contact(rail_position, normal_load, radius, youngs_modulus, poisson_ratio,
-                               friction_coefficient, creepage, amplitudes_cos, amplitudes_sin,
-                               wavelengths, method)
-    a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * youngs_modulus))
-    comp = 4.0 * (1.0 - nu * nu) / (math.pi * youngs_modulus)
-    a0s = max(a0 - xi * big_r / mu, 0.0)
-    if method == "exact":
-        solved = _solve_normal_scalar(x, n_load * comp, big_r, harm)
-        if solved is None:                    # bracketed fallback or no single-patch solution
-            return _public_contact(rail_position, normal_load, radius, youngs_modulus,
-                                   poisson_ratio, friction_coefficient, creepage,
-                                   amplitudes_cos, amplitudes_sin, wavelengths, method)
-        a, d = solved
-        offset = _stick_offset_scalar(x, a, d, xi / mu, big_r, harm)
-        ast = a - offset
-        t = _tangential_force_scalar(x, a, d, offset, mu, comp, big_r, harm)
-    else:
-        r = a0s / a0
-        a, d, ast = a0, 0.0, a0s
-        one_minus_r = min(xi * big_r / (mu * a0), 1.0)
-        t = mu * n_load * one_minus_r * (2.0 - one_minus_r)
-        scale_t = mu / comp
-        for (k, za, zb), lam in zip(harm, wavelengths):
-            beta = _TWO_PI * (a0 / lam)
-            zc = complex(za, zb) * cmath.exp(-1j * k * x)
-            jb0, jb1 = float(j0(beta)), float(j1(beta))
-            kd = beta * (1.0 - r)
-            js = float(j0(beta * r))
-            cs = (-jb1 + js * math.sin(kd)) - 1j * (jb0 - js * math.cos(kd))
-            ct = -beta * r * (cs + float(j1(beta * r)) * cmath.exp(-1j * kd))
-            kr = k * big_r
-            a += (kr * -jb1 * zc).real
-            d += (kr * (-1j * jb0) * zc).real
-            ast += (kr * cs * zc).real
-            t += (scale_t * ct * zc).real
-    return a, d, ast, t
+class CorrugatedContactSolver:
+    r""":func:`corrugated_contact` at one rail position per call, as plain floats.
 
+    The FMU's corrugation effect calls it once per step (a call of
+    :func:`corrugated_contact` costs tens of microseconds of numpy overhead and range checks
+    at one position). Radius, material and method are checked once here;
+    :meth:`contact` evaluates the same compiled kernels as :func:`corrugated_contact` and
+    calls that function itself where it would raise (a load or friction coefficient <= 0, a
+    non-finite input, condition (4.2) violated, an underflowing normalised load, no
+    single-patch solution), so the errors are the public function's. The wear per passage
+    is not computed here: :func:`railcontact.wear.corrugated_wear_depth` (the contact module
+    does not depend on the wear models).
 
-def _series_truncation_error_scalar(ka, degree):
-    """The ``relative_error`` of :func:`series_truncation_error` for one float ``ka >= 0`` and
-    int ``degree >= 1`` (not checked): the same numpy operations on the same 1-D arrays, so the
-    same float, bit for bit (the public function's broadcasting and range checks dropped). [-]"""
-    j = np.arange(1, degree + 60 + int(ka) * 2 + 1)
-    terms = np.abs(jv(j, ka))
-    biggest = max(float(terms.max()), 1e-300)
-    tail = float(np.where(j > degree, terms, 0.0).sum())
-    return tail / biggest if ka > 0 else 0.0
+    Parameters
+    ----------
+    radius : float
+        Equivalent radius R, > 0. [m]
+    youngs_modulus : float
+        > 0. [Pa]
+    poisson_ratio : float
+        In [0, 0.5). [-]
+    method : {"exact", "linear"}
+        As in :func:`corrugated_contact`.
+    """
 
+    def __init__(self, radius, youngs_modulus, poisson_ratio, method="exact"):
+        self.radius = float(check_range("radius", radius, "m", 0.0, None, lower_closed=False))
+        self.youngs_modulus = float(check_range("youngs_modulus", youngs_modulus, "Pa", 0.0,
+                                                None, lower_closed=False))
+        self.poisson_ratio = float(check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5,
+                                               upper_closed=False))
+        if method not in ("exact", "linear"):
+            raise ValueError(f"method must be one of ['exact', 'linear']; got {method!r}")
+        self.method = method
+        nu, e_mod = self.poisson_ratio, self.youngs_modulus
+        self._comp = 4.0 * (1.0 - nu * nu) / (math.pi * e_mod)       # C
 
-def _public_contact(*args):
-    """corrugated_contact (the array path) for the scalar path's arguments, as floats."""
-    *args, method = args
-    res = corrugated_contact(*args, method=method)
-    return (float(res.half_width), float(res.patch_shift), float(res.stick_half_width),
-            float(res.tangential_force))
+    def load_underflows(self, normal_load):
+        """True if the normalised load ``8 (1 - nu^2) N / (pi E)`` is below the smallest
+        normal double (or not a number): no contact (:func:`corrugated_contact` raises)."""
+        return load_underflows(normal_load, self.youngs_modulus, self.poisson_ratio)
 
+    def contact(self, rail_position, normal_load, friction_coefficient, creepage,
+                amplitudes_cos, amplitudes_sin, wavelengths):
+        """:func:`corrugated_contact` at one rail position: ``(a, Delta, a*, |T|)``.
+        [m, m, m, N/m]
 
-def _solve_normal_scalar(x, nc, big_r, harm, tol=1e-13, max_iter=60, _sin=math.sin,
-                         _cos=math.cos):
-    """solve_normal_exact's Newton iteration for one position: (a, Delta), or None where the
-    array path takes its bracketed fallback or raises (not converged, not finite, or the
-    single-patch check fails)."""
-    a = math.sqrt(2.0 * big_r * nc)
-    atol = tol * (a + big_r * sum(k * math.hypot(za, zb) for k, za, zb in harm))
-    d = 0.0
-    step = math.inf
-    for _ in range(max_iter):
-        y = x + d
-        f1 = f2 = j11 = j12 = j21 = j22 = 0.0
-        for k, za, zb in harm:
-            sn, cs = _sin(k * y), _cos(k * y)
-            s, c = za * sn - zb * cs, za * cs + zb * sn
-            ka = k * a
-            jz, jo = float(j0(ka)), float(j1(ka))
-            kjz, kkjo = k * jz, k * k * jo
-            f1 += kjz * s
-            f2 += k * a * jo * c
-            j11 += k * k * jz * c
-            j12 += kkjo * s
-            j21 += k * k * a * jo * s
-            j22 += k * k * a * jz * c
-        f1 = d + big_r * f1
-        f2 = a * a / (2 * big_r) + f2 - nc
-        j11 = 1.0 + big_r * j11
-        j12 = -big_r * j12
-        j21 = -j21
-        j22 = a / big_r + j22
-        det = j11 * j22 - j12 * j21
-        if det == 0.0:
-            return None
-        dd = (f1 * j22 - f2 * j12) / det
-        da = (j11 * f2 - j21 * f1) / det
-        d = d - dd
-        a = a - da
-        step = abs(dd) + abs(da)
-        if not math.isfinite(step):
-            return None
-        if step < atol:
-            break
-    if not step < atol:
-        return None
-    a = abs(a)
-    # the single-patch check of solve_normal_exact at the root
-    y = x + d
-    j11 = j12 = j21 = j22 = 0.0
-    for k, za, zb in harm:
-        sn, cs = _sin(k * y), _cos(k * y)
-        s, c = za * sn - zb * cs, za * cs + zb * sn
-        ka = k * a
-        jz, jo = float(j0(ka)), float(j1(ka))
-        j11 += k * k * jz * c
-        j12 += k * k * jo * s
-        j21 += k * k * a * jo * s
-        j22 += k * k * a * jz * c
-    j11 = 1.0 + big_r * j11
-    det = j11 * (a / big_r + j22) - big_r * j12 * j21
-    if not (a > 0 and det > 0 and j11 > 0):
-        return None
-    return a, d
-
-
-def _stick_offset_scalar(x, a, d, xi, big_r, harm, tol=1e-13, max_iter=60, _sin=math.sin,
-                         _cos=math.cos):
-    """_stick_offset for one position (the same Newton iteration, floats)."""
-    y = x + d
-    base = []
-    g1 = g2 = 0.0
-    for k, za, zb in harm:
-        sn, cs = _sin(k * y), _cos(k * y)
-        s0, c0 = za * sn - zb * cs, za * cs + zb * sn
-        z = k * a
-        jz, jo = float(j0(z)), float(j1(z))
-        j1oz = jo / z if z > 1e-8 else 0.5
-        g1 += k * k * (jo * s0 + jz * c0)
-        g2 += k ** 3 * (-(2 * jz - j1oz) * s0 + 2 * jo * c0)
-        base.append((k, za, zb, jz * s0))
-    delta = min(max(xi * big_r, 0.0), a)
-    for _ in range(max_iter):
-        small = max(0.0, max(k * delta for k, _, _, _ in base)) < _TAYLOR_LIMIT
-        direct = deriv = 0.0
-        yd = y + delta
-        for k, za, zb, jzs0 in base:
-            sn, cs = _sin(k * yd), _cos(k * yd)
-            s1, c1 = za * sn - zb * cs, za * cs + zb * sn
-            zs = k * (a - delta)
-            js0, js1 = float(j0(zs)), float(j1(zs))
-            direct += k * (js0 * s1 - jzs0)
-            deriv += k * k * (js1 * s1 + js0 * c1)
-        bracket = delta * g1 + 0.5 * delta * delta * g2 if small else direct
-        f = delta / big_r + bracket - xi
-        df = 1.0 / big_r + deriv
-        new = min(max(delta - f / df, 0.0), a)
-        done = abs(new - delta) <= tol * max(abs(new), 1e-300) + 1e-15 * tol * a
-        delta = new
-        if done:
-            break
-    return delta
-
-
-def _tangential_force_scalar(x, a, d, delta, mu, comp, big_r, harm, _sin=math.sin,
-                             _cos=math.cos):
-    """_tangential_force_exact for one position (floats)."""
-    y = x + d
-    small = max(0.0, max(k * delta for k, _, _ in harm)) < _TAYLOR_LIMIT
-    h1 = h2 = direct = 0.0
-    ast = a - delta
-    for k, za, zb in harm:
-        sn, cs = _sin(k * y), _cos(k * y)
-        s0, c0 = za * sn - zb * cs, za * cs + zb * sn
-        z = k * a
-        jz, jo = float(j0(z)), float(j1(z))
-        if small:
-            j1oz = jo / z if z > 1e-8 else 0.5
-            h1 += k * k * a * (jz * c0 + jo * s0)
-            h2 += (k * k * (jz * c0 + jo * s0)
-                   - k ** 3 * a * (2 * jo * c0 - (2 * jz - j1oz) * s0))
+        ``amplitudes_cos``, ``amplitudes_sin``, ``wavelengths``: sequences of floats (the
+        harmonics may change between calls, e.g. by surface evolution)."""
+        x, n_load, big_r, mu = rail_position, normal_load, self.radius, friction_coefficient
+        za = np.array(amplitudes_cos, dtype=float)
+        zb = np.array(amplitudes_sin, dtype=float)
+        lam = np.array(wavelengths, dtype=float)
+        k = _TWO_PI / lam
+        if not (math.isfinite(x) and math.isfinite(creepage) and 0.0 < mu < math.inf
+                and not self.load_underflows(n_load) and n_load < math.inf
+                and za.shape == zb.shape == lam.shape and za.ndim == 1 and za.size
+                and np.all(np.isfinite(za)) and np.all(np.isfinite(zb))
+                and np.all(lam > 0.0) and np.all(k * k * big_r * np.hypot(za, zb) < 1.0)):
+            return self._public(rail_position, normal_load, friction_coefficient, creepage,
+                                amplitudes_cos, amplitudes_sin, wavelengths)
+        xi = abs(creepage)
+        nu, e_mod = self.poisson_ratio, self.youngs_modulus
+        a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * e_mod))  # Hertz
+        comp = self._comp
+        a0s = max(a0 - xi * big_r / mu, 0.0)
+        if self.method == "exact":
+            a, d, ast, t, status = _kernels.contact_exact(x, n_load * comp, big_r, k, za, zb,
+                                                          xi / mu, mu, comp)
+            if status != _kernels.OK:             # no single-patch solution: the public error
+                return self._public(rail_position, normal_load, friction_coefficient, creepage,
+                                    amplitudes_cos, amplitudes_sin, wavelengths)
         else:
-            sn, cs = _sin(k * (y + delta)), _cos(k * (y + delta))
-            c1 = za * cs + zb * sn
-            direct += k * (a * jo * c0 - ast * float(j1(k * ast)) * c1)
-    diff = -(delta * -h1 + 0.5 * delta * delta * h2) if small else direct
-    return mu / comp * (delta * (2 * a - delta) / (2 * big_r) + diff)
+            one_minus_r = min(xi * big_r / (mu * a0), 1.0)      # 1 - r without cancellation
+            a, d, ast, t = _kernels.contact_linear(
+                x, a0, a0s, mu * n_load * one_minus_r * (2.0 - one_minus_r), big_r, mu / comp,
+                k, za, zb, _TWO_PI * (a0 / lam))
+        return a, d, ast, t
+
+    def _public(self, rail_position, normal_load, friction_coefficient, creepage,
+                amplitudes_cos, amplitudes_sin, wavelengths):
+        """:func:`corrugated_contact` (which raises or solves the case) as floats."""
+        res = corrugated_contact(rail_position, normal_load, self.radius, self.youngs_modulus,
+                                 self.poisson_ratio, friction_coefficient, creepage,
+                                 amplitudes_cos, amplitudes_sin, wavelengths,
+                                 method=self.method)
+        return (float(res.half_width), float(res.patch_shift), float(res.stick_half_width),
+                float(res.tangential_force))

@@ -519,7 +519,7 @@ class Creep2D(_Effect):
 
     def __init__(self, scene, **_):
         super().__init__()
-        from . import carter
+        from . import _scalar, carter
 
         if scene.effects["creep"]["source"] != "analytic":
             raise EffectUnavailable("effect creep (table) not available in this build for "
@@ -528,9 +528,8 @@ class Creep2D(_Effect):
         self._force = carter.carter_creep_force
         self._stick = carter.carter_stick_ratio
         # (force, stick ratio) of the two public functions above in one call on plain floats
-        # (carter._carter_scalar: the same operations; its inputs are range-checked by the
-        # scene and the slave, as it assumes)
-        self._scalar = carter._carter_scalar
+        # (their float twin; its inputs are range-checked by the scene and the slave)
+        self._scalar = _scalar.carter_scalar
         geo = scene.geometry
         self._radius, self._width = geo["radius"], geo["contact_width"]
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
@@ -594,16 +593,16 @@ class VelocityFriction(_Effect):
 
     def __init__(self, scene, tables_dir=None, warn=None, **_):
         super().__init__()
-        from . import carter, friction
+        from . import _scalar, carter, friction
 
         self._friction = friction
         self._carter = carter
         # plain-float paths of normalised_inputs, step_law_creep_force_normalised and
         # carter_stick_ratio (the same operations; inputs range-checked by the scene and the
         # slave, as they assume)
-        self._normalised = self._friction._normalised_inputs_scalar
-        self._step_law = self._friction._step_law_creep_force_normalised_scalar
-        self._carter_scalar = self._carter._carter_scalar
+        self._normalised = _scalar.normalised_inputs_scalar
+        self._step_law = _scalar.step_law_creep_force_normalised_scalar
+        self._carter_scalar = _scalar.carter_scalar
         opts = scene.effects["velocity_friction"]
         self.law = opts["law"]
         self.mu_kinetic = opts["kinetic_friction_coefficient"]
@@ -765,19 +764,21 @@ class Corrugation(_Effect):
 
     def __init__(self, scene, wear=None, tables_dir=None, warn=None, **_):
         super().__init__()
+        from . import _corrugation_kernels
         from . import corrugation as module
 
         opts = scene.effects["corrugation"]
         self.source = opts["source"]
         geo = scene.geometry
         self._solve = module.corrugated_contact
-        # corrugated_contact and series_truncation_error on floats (the same iterations and
-        # operations; inputs range-checked by the scene and the slave, N > 0 and mu > 0 here, as
-        # they assume; the non-Newton branches are handed to corrugated_contact itself)
-        self._solve_scalar = module._corrugated_contact_scalar
-        self._truncation_error_scalar = module._series_truncation_error_scalar
-        self._load_underflows = module._load_underflows
         self.method = opts["method"]
+        # corrugated_contact at one position as floats (the same compiled kernels; it calls
+        # corrugated_contact itself where that raises) and the series estimate's kernel
+        solver = module.CorrugatedContactSolver(geo["radius"], scene.youngs_modulus,
+                                                scene.poisson_ratio, self.method)
+        self._solve_scalar = solver.contact
+        self._load_underflows = solver.load_underflows
+        self._truncation_error_scalar = _corrugation_kernels.series_relative_error
         self.wavelengths = list(opts["wavelengths"])
         self.amplitudes_cos = list(opts["amplitudes_cos"])
         self.amplitudes_sin = list(opts["amplitudes_sin"])
@@ -870,7 +871,7 @@ class Corrugation(_Effect):
         c.corrugation_series_error_estimate = NOT_ESTIMATED
         self._pending_ka = None
         if (c.normal_force <= 0.0 or c.friction_coefficient <= 0.0
-                or self._load_underflows(c.normal_force / self._width, self._e, self._nu)):
+                or self._load_underflows(c.normal_force / self._width)):
             # no contact; also a load whose normalised value 8 (1 - nu^2) N / (pi E) underflows
             # (N below about 1e-295 N), which corrugated_contact rejects (a0 would underflow)
             c.wear_depth_per_passage = 0.0
@@ -881,17 +882,17 @@ class Corrugation(_Effect):
             self._step_table(c)
             return
         wear = self._wear
-        args = (c.rail_position, c.normal_force / self._width, self._radius, self._e, self._nu,
-                c.friction_coefficient, c.creepage_longitudinal, self.amplitudes_cos,
-                self.amplitudes_sin, self.wavelengths)
-        a, d, _, t = self._solve_scalar(*args, self.method)
+        x, n_line, mu, xi = (c.rail_position, c.normal_force / self._width,
+                             c.friction_coefficient, c.creepage_longitudinal)
+        za, zb, lam = self.amplitudes_cos, self.amplitudes_sin, self.wavelengths
+        a, d, _, t = self._solve_scalar(x, n_line, mu, xi, za, zb, lam)
         c.contact_half_width = a
         c.patch_shift = d
-        xi = c.creepage_longitudinal
         c.Fx = -math.copysign(t, xi) * self._width if xi else 0.0
         if wear is not None:
-            c.wear_depth_per_passage = self._wear_depth_scalar(*args, wear.wear_coefficient,
-                                                               wear.wear_model)
+            c.wear_depth_per_passage = self._wear_depth_scalar(
+                x, n_line, self._radius, self._e, self._nu, mu, xi, za, zb, lam,
+                wear.wear_coefficient, wear.wear_model)
 
     def auxiliary(self, c):
         """``corrugation_series_error_estimate`` of the last step (on demand)."""
@@ -938,17 +939,21 @@ class Wear(_Effect):
 
     def __init__(self, scene, tables_dir=None, warn=None, **_):
         super().__init__()
-        from . import evolution, wear
+        from . import _corrugation_kernels, _scalar, evolution, wear
 
         self._wear = wear
         self._evolution = evolution
-        # plain-float paths of mean_wear and wear_number (the same operations; inputs
-        # range-checked by the scene and the slave, r_a0 clipped to [0, 1], as they assume)
-        self._mean_wear = self._wear._mean_wear_scalar
-        self._wear_number = self._evolution._wear_number_scalar
+        # the formulas of mean_wear and wear_number without their checks (inputs checked by
+        # the scene and the slave, r_a0 clipped to [0, 1])
+        self._mean_wear = self._wear.mean_wear_unchecked
+        self._wear_number = self._evolution.wear_number_unchecked
         # evolve_harmonics for one passage count on lists (cmath; checks W, falls back to it)
-        self._evolve = self._evolution._evolve_harmonics_scalar
-        self._wear_coefficients = self._wear._wear_coefficients_scalar
+        self._evolve = _scalar.evolve_harmonics_scalar
+        # wear_coefficients on a list at one r: the series models' compiled kernel directly
+        self._wear_coefficients = (
+            _corrugation_kernels.wear_coefficients_list
+            if scene.effects["wear"]["wear_model"] in ("material_point", "patch_coordinate")
+            else self._wear.wear_coefficients)
         opts = scene.effects["wear"]
         self.wear_coefficient = opts["wear_coefficient"]
         self.wear_model = opts["wear_model"]
@@ -977,8 +982,6 @@ class Wear(_Effect):
         if self._table is not None:        # table source: w from corrugation_response
             coefficients = self._table.coefficients
             return [number * coefficients(c.a0 / lam, r)[4] for lam in wavelengths]
-        # wear_coefficients on a list at one r (wear._wear_coefficients_scalar: the same
-        # quadrature and series, vectorised over the degree; a few ulp from the public one)
         w = self._wear_coefficients([c.a0 / lam for lam in wavelengths], r, self.wear_model)
         return [number * v for v in w]
 
@@ -1252,13 +1255,10 @@ class Roughness(_Effect):
                              f"than the wheel gives multiple contact / impact, out of scope); "
                              f"got R max r'' = {curvature * self._radius:.6g} with "
                              f"geometry.radius = {self._radius:g} m")
-        # the float path (railcontact.roughness._rough_rail_contact_float: the same arithmetic
-        # as rough_rail_contact without its per-call checks, which the build-time checks above
-        # and the slave's input check cover; it calls rough_rail_contact itself for errors)
-        self._solve = module._rough_rail_contact_float
-        self._local_gap = module._local_gap_only_float
-        self._constants = module._float_constants(self.surface, self._radius, self._e,
-                                                  self._nu)
+        # rough_rail_contact as floats from one compiled kernel (it calls rough_rail_contact
+        # itself for errors and the full-stick series)
+        solver = module.RoughRailSolver(self.surface, self._radius, self._e, self._nu)
+        self._solve, self._local_gap = solver.contact, solver.local_gap
         # N~ per unit of normal_force (text after Nielsen (6.10))
         self._nt_per_newton = float(module.normalised_load(1.0, self._e, self._nu)) / self._width
 
@@ -1269,8 +1269,7 @@ class Roughness(_Effect):
         c.creep_within_validity = c.creepage_lateral == 0.0 and c.spin == 0.0
         if not c.normal_force * self._nt_per_newton >= 2.2250738585072014e-308:
             (c.patch_shift, c.gap_curvature, c.gap_skewness,
-             c.gap_flatness) = self._local_gap(self.surface, c.rail_position, self._radius,
-                                               self._constants)
+             c.gap_flatness) = self._local_gap(c.rail_position)
             c.Fx = 0.0
             c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
             c.contact_half_width = 0.0
@@ -1278,8 +1277,8 @@ class Roughness(_Effect):
             return
         (shift, c.gap_curvature, c.gap_skewness, c.gap_flatness, c.contact_half_width, delta,
          force, ratio, c.critical_creepage) = self._solve(
-            self.surface, c.rail_position, c.normal_force / self._width, self._radius, self._e,
-            self._nu, c.friction_coefficient, c.creepage_longitudinal, self._constants)
+            c.rail_position, c.normal_force / self._width, c.friction_coefficient,
+            c.creepage_longitudinal)
         c.patch_shift = shift + delta
         c.Fx = force * self._width
         c.r_a0 = c.stick_area_fraction = ratio

@@ -26,9 +26,6 @@ References
 
 from __future__ import annotations
 
-import cmath
-import math
-
 import numpy as np
 
 from ._validation import check_range
@@ -62,7 +59,15 @@ def wear_number(wear_coefficient, friction_coefficient, normal_load, a0):
     mu = check_range("friction_coefficient", friction_coefficient, "-", 0.0, None)
     n = check_range("normal_load", normal_load, "N/m", 0.0, None)
     a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
-    return kw * mu * mu * n / a0
+    return wear_number_unchecked(kw, mu, n, a0)
+
+
+def wear_number_unchecked(wear_coefficient, friction_coefficient, normal_load, a0):
+    r""":func:`wear_number`'s formula ``K mu^2 N / a0`` without its range checks, for floats or
+    arrays (:func:`wear_number` checks and calls it; the FMU's wear effect calls it on checked
+    floats). [-]"""
+    mu = friction_coefficient
+    return wear_coefficient * mu * mu * normal_load / a0
 
 
 def growth_factor(a0_over_wavelength, stick_ratio, wear_number, wear_model=DEFAULT_WEAR_MODEL):
@@ -329,55 +334,3 @@ def phase_change_boundary(stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *, wavelen
         return np.imag(wear_coefficients(q, rr, wear_model))
 
     return _last_sign_change(w2, r, wavelength_ratio_min, wavelength_ratio_max, n_scan)
-
-
-# ---------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
-# ---------------------------------------------------------------------------------------------
-# The FMU's wear effect computes the wear number at every section crossing and every read of
-# corrugation_growth_rate; numpy's per-call overhead (four range checks) is ~15 us for three
-# float products. The function below repeats wear_number's arithmetic operation for operation,
-# for callers that have already range-checked their inputs. It ASSUMES, and does not check:
-# every input a finite float (or int, not bool), wear_coefficient >= 0,
-# friction_coefficient >= 0, normal_load >= 0 and a0 > 0. Outside that the result is undefined;
-# use wear_number there. Agreement with wear_number to a few ulp is tested in
-# tests/test_evolution.py.
-
-
-def _wear_number_scalar(wear_coefficient, friction_coefficient, normal_load, a0):
-    """:func:`wear_number` for plain floats (inputs assumed in range, see above). [-]"""
-    mu = friction_coefficient
-    return wear_coefficient * mu * mu * normal_load / a0
-
-
-def _evolve_harmonics_scalar(amplitudes_cos, amplitudes_sin, w1, w2, n_passages,
-                             _log=cmath.log, _exp=cmath.exp, _isfinite=math.isfinite):
-    """:func:`evolve_harmonics` for one passage count and lists of floats, as lists of floats.
-
-    The same operations in the same order per harmonic, with :mod:`cmath`'s log and exp in
-    place of numpy's (they may round differently by an ulp; agreement to a few eps relative
-    to |Z^n|, times ``1 + |n log(1 - W)|``, is tested in tests/test_evolution.py). Unlike the
-    other scalar paths this one checks its inputs, since W1, W2 and the evolved amplitudes are
-    computed, not range-checked by the caller: ``n_passages`` is assumed an int >= 0; if an
-    amplitude is not finite, W1 or W2 is outside [-1, 1], or cmath fails (log of 0, overflow),
-    the result is that of :func:`evolve_harmonics` (its ValueError naming the input, or its
-    numpy result).
-
-    Returns
-    -------
-    amplitudes_cos, amplitudes_sin : list of float
-        Z_A^n, Z_B^n per harmonic. [m]
-    """
-    n = float(n_passages)
-    out_a, out_b = [], []
-    try:
-        for za, zb, wr, wi in zip(amplitudes_cos, amplitudes_sin, w1, w2):
-            if not (_isfinite(za + zb) and -1.0 <= wr <= 1.0 and -1.0 <= wi <= 1.0):
-                raise ValueError
-            zn = _exp(n * _log(1.0 - wr - 1j * wi + 0j)) * (za + 1j * zb)
-            out_a.append(zn.real)
-            out_b.append(zn.imag)
-    except (ValueError, OverflowError):
-        za_n, zb_n = evolve_harmonics(amplitudes_cos, amplitudes_sin, w1, w2, [n_passages])
-        return [float(v) for v in za_n[0]], [float(v) for v in zb_n[0]]
-    return out_a, out_b

@@ -69,7 +69,6 @@ References
 
 from __future__ import annotations
 
-import math
 from collections import namedtuple
 from dataclasses import dataclass
 
@@ -1148,53 +1147,3 @@ def velocity_friction_peak_creepage(normal_load, radius, youngs_modulus, poisson
     solver = _law_solver(friction_law, xi_c, deg, tol, max_iter, f"friction_law = {friction_law!r}")
     top = solver.peak()
     return top.chi * xi_c, top.force * mu0 * float(n_load)
-
-
-# ---------------------------------------------------------------------------------------------
-# Scalar paths (plain Python floats): the FMU's per-step calls
-# ---------------------------------------------------------------------------------------------
-# numpy's per-call overhead (array creation, ufunc dispatch, the input checks) is tens of us per
-# call of normalised_inputs or step_law_creep_force_normalised on scalars, for well under 1 us
-# of arithmetic. The functions below repeat the array paths' arithmetic operation for operation
-# on floats with the math module, for callers that have already range-checked their inputs (the
-# FMU slave: railcontact.effects._inputs_plausible, the scene's checks). They ASSUME, and do not
-# check: every input a finite float (or int, not bool), normal_load > 0, radius > 0,
-# youngs_modulus > 0, 0 <= poisson_ratio < 0.5, mu_static > 0, mu_kinetic >= 0, kappa >= 0
-# (normalised_inputs), friction_ratio >= 0 (the step law). Outside that the result is undefined
-# (possibly NaN or an exception); use the public functions there. Agreement with the array paths
-# to a few ulp (same operations, same order; libm's sqrt and numpy's are both correctly
-# rounded) is tested in tests/test_friction.py.
-
-
-def _normalised_inputs_scalar(creepage, normal_load, radius, youngs_modulus, poisson_ratio,
-                              mu_static, mu_kinetic, kappa, _sqrt=math.sqrt, _pi=math.pi):
-    """:func:`normalised_inputs` with ``mu_kinetic`` and ``kappa`` given, for plain floats
-    (inputs assumed in range, see above).
-
-    Returns
-    -------
-    tuple of float
-        ``(creepage_ratio, critical_creepage, force_scale, friction_ratio, kappa_normalised)``.
-    """
-    nu = poisson_ratio
-    # hertz_2d's a0 (nu**2 of a numpy scalar is nu * nu)
-    a0 = _sqrt(8.0 * (1.0 - nu * nu) * radius * normal_load / (_pi * youngs_modulus))
-    xi_c = mu_static * a0 / radius
-    return (creepage / xi_c, xi_c, mu_static * normal_load, mu_kinetic / mu_static,
-            kappa * xi_c)
-
-
-def _step_law_creep_force_normalised_scalar(creepage_ratio, friction_ratio, _inf=math.inf):
-    """:func:`step_law_creep_force_normalised` for plain floats (inputs assumed in range, see
-    above). [-]"""
-    chi, m = creepage_ratio, friction_ratio
-    c = abs(chi)
-    # _carter_force_ratio(|chi|, m)
-    if c == 0.0:
-        frac = 0.0
-    else:
-        frac = c / m if m > 0.0 else _inf
-        if not frac < 1.0:
-            frac = 1.0
-    sign = 1.0 if chi > 0.0 else (-1.0 if chi < 0.0 else 0.0)
-    return -sign * (m * (frac * (2.0 - frac)))

@@ -59,13 +59,13 @@ References
 
 from __future__ import annotations
 
-import cmath
 import math
 from collections import namedtuple
 
 import numpy as np
 from scipy.special import itj0y0, j0, j1, jv
 
+from . import _corrugation_kernels as _kernels
 from ._validation import (check_choice, check_corrugated_contact_inputs,
                           check_load_not_underflowing, check_range)
 from .corrugation import (_TWO_PI, check_no_contact_loss, normal_response, solve_normal_exact,
@@ -127,7 +127,21 @@ def mean_wear(wear_coefficient, friction_coefficient, normal_load, radius, a0, s
     n = check_range("normal_load", normal_load, "N/m", 0.0, None)
     big_r = check_range("radius", radius, "m", 0.0, None, lower_closed=False)
     a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
-    return kw * mu * mu * n * a0 / big_r * wear_shape_function(stick_ratio)
+    r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
+    return mean_wear_unchecked(kw, mu, n, big_r, a0, r)
+
+
+def mean_wear_unchecked(wear_coefficient, friction_coefficient, normal_load, radius, a0,
+                        stick_ratio):
+    r""":func:`mean_wear`'s formula (4.96) without its range checks, for floats or arrays.
+
+    :func:`mean_wear` checks its inputs and calls this; the FMU's wear effect calls it per step
+    on floats whose ranges the scene and the slave have checked (a few float products instead
+    of six range checks). The inputs must satisfy :func:`mean_wear`'s ranges. [m]
+    """
+    mu, slip = friction_coefficient, 1.0 - stick_ratio
+    return (wear_coefficient * mu * mu * normal_load * a0 / radius
+            * (slip * slip * (1.0 + stick_ratio)))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -204,45 +218,6 @@ def passage_time_response(a0_over_wavelength, stick_ratio, *, convention="consis
     return -np.conj(tau) / k, -np.conj(taus) / k
 
 
-def _linear_patch_integrals(beta, r, n_nodes, degree):
-    """I = int h_P(x) e^{-ikx} dx and I0 = int P0(x) e^{-ikx} dx over the slip zone (a0=1)."""
-    k = beta[..., None]
-    rr = r[..., None]
-    h_d, h_a, h_as, e_kd = (np.asarray(q)[..., None] for q in _h_basic(beta, r))
-    j = np.arange(1, n_nodes + 1)
-    t = np.cos((2 * j - 1) * np.pi / (2 * n_nodes))
-    wq = np.pi / n_nodes * np.sqrt(1 - t * t)
-    half = 1.0 - rr
-    x = -rr + half * t                                 # slip zone [-1, 1 - 2r]
-    u = x
-    sin_t = np.sqrt(1.0 - u * u)
-    theta = np.arccos(u)
-    xm1 = x - 1.0
-    s0 = np.sqrt(xm1 * (xm1 + 2 * rr))                 # r sqrt(v^2 - 1)
-    v = xm1 / rr + 1.0
-    root = np.sqrt(v * v - 1.0)
-    w = 1.0 / (v - root)                               # v + sqrt(v^2-1), computed stably
-    p0 = sin_t / np.pi
-    # pressure perturbation
-    h_c1 = k * j1(k)
-    hp = u * u * h_a / sin_t + h_c1 * sin_t
-    # slip perturbation
-    h_d1 = h_as + 2 * k * j1(k * rr) * e_kd
-    hs = h_d1 * w + (w / root) * (-h_a + (1.0 - v) * h_as) - (h_d - 1j * k * np.exp(1j * k * x))
-    wn = w.copy()
-    for n in range(2, degree + 1):
-        ipow = (1j) ** ((n + 1) % 4)
-        hp = hp - 2 * ipow * k * jv(n, k) * np.sin(n * theta)
-        wn = wn * w
-        hs = hs - 2 * ipow * k * jv(n, k * rr) * e_kd * wn
-    hp = hp / np.pi
-    h_pp = hp * s0 + p0 * hs
-    phase = np.exp(-1j * k * x)
-    integral = np.sum(h_pp * phase * wq, -1) * half[..., 0]
-    integral0 = np.sum(p0 * s0 * phase * wq, -1) * half[..., 0]
-    return integral, integral0
-
-
 def wear_coefficients(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MODEL, *,
                       n_nodes=24, degree=None):
     r"""Linearised wear coefficients ``w = (W1 + i W2) a0 / (K mu^2 N)`` of one harmonic.
@@ -286,11 +261,10 @@ def wear_coefficients(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_M
         if degree is None:
             degree = int(np.ceil(np.e * np.max(beta, initial=0.0))) + 12
         deg = int(check_range("degree", degree, "-", 1, 100000))
-        integral, integral0 = _linear_patch_integrals(beta, r, nq, deg)
-        if wear_model == "material_point":
-            integral = integral + beta * beta * j0(beta) * integral0
         # normalised units: K mu^2 N / a0 = 1/2
-        w = 2.0 * np.conj(integral)
+        w = _kernels.wear_coefficients_array(
+            np.ravel(beta).astype(float), np.ravel(r_in).astype(float), nq, deg,
+            wear_model == "material_point").reshape(beta.shape)
     else:
         conv = "nielsen1998" if wear_model == "nielsen1998" else "consistent"
         c_tau, c_taus = passage_time_response(ratio, r, convention=conv)
@@ -525,166 +499,41 @@ def corrugated_wear_depth(rail_position, normal_load, radius, youngs_modulus, po
     a0 = float(hertz_2d(n_load, big_r, e_mod, nu).a0)
     r = max(a0 - xi * big_r / mu, 0.0) / a0
     w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-    cw = wear_coefficients(a0 / lam, r, wear_model=wear_model)
-    zc = (za + 1j * zb)[None, :] * np.exp(-1j * k * x[..., None])
-    wear = w0 + np.sum(np.real(kw * mu * mu * n_load / a0 * cw * zc), -1)
+    cw = np.ravel(wear_coefficients(a0 / lam, r, wear_model=wear_model)).astype(complex)
+    wear = _kernels.wear_depth_array(_floats(x), w0, kw * mu * mu * n_load / a0, _floats(k),
+                                     _floats(za), _floats(zb), cw)
     return np.reshape(wear, np.shape(x))
 
 
+def _floats(values):
+    """``values`` as a new 1-D float array (the compiled kernel's argument)."""
+    return np.ravel(values).astype(float)
+
+
 # ---------------------------------------------------------------------------------------------
-# Scalar path (plain Python floats): the FMU's per-step call
+# one rail position per call, as floats: the FMU's corrugation effect
 # ---------------------------------------------------------------------------------------------
-# numpy's per-call overhead (six range checks, array creation) is ~20 us per call of mean_wear
-# on scalars, for a few float products. The function below repeats the array path's arithmetic
-# operation for operation on floats, for callers that have already range-checked their inputs
-# (the FMU's wear effect: the scene's checks, Hertz's a0 and the stick ratio clipped to
-# [0, 1]). It ASSUMES, and does not check: every input a finite float (or int, not bool),
-# wear_coefficient >= 0, friction_coefficient >= 0, normal_load >= 0, radius > 0, a0 > 0 and
-# 0 <= stick_ratio <= 1. Outside that the result is undefined; use mean_wear there. Agreement
-# with mean_wear to a few ulp is tested in tests/test_wear.py.
-
-
-def _mean_wear_scalar(wear_coefficient, friction_coefficient, normal_load, radius, a0,
-                      stick_ratio):
-    """:func:`mean_wear` for plain floats (inputs assumed in range, see above). [m]"""
-    mu, r = friction_coefficient, stick_ratio
-    slip = 1.0 - r
-    # wear_shape_function: (1 - r)**2 of a numpy scalar is (1 - r) * (1 - r)
-    return wear_coefficient * mu * mu * normal_load * a0 / radius * (slip * slip * (1.0 + r))
-
-
-# wear_coefficients for a list of harmonics at one stick ratio (the FMU's per-step call). The
-# public function costs ~0.4 ms per call, almost all of it in _linear_patch_integrals' Python
-# loop over the series degree (~15 small numpy operations per degree). The function below
-# evaluates the same expressions with the loop vectorised: the slip-zone nodes, which depend on
-# r only, are computed once for all harmonics; the Bessel values J_n(k), J_n(k r) of all degrees
-# come from one call each; w^n is a cumulative product (the loop's repeated product); the series
-# is summed over the degree axis by one add.reduce in the loop's order. Same quadrature nodes,
-# same degree ``ceil(e max k a0) + 12``, so agreement with wear_coefficients is to a few ulp
-# (rounding only; tests/test_wear.py asserts it on seeded inputs over a0/L, r_a0, models).
-# It ASSUMES, and does not check: a0_over_wavelength a non-empty sequence of finite floats
-# > 0, stick_ratio a finite float in [0, 1], wear_model one of WEAR_MODELS (the scene checks
-# it). The time-domain models ("nielsen1998", "time_domain_carter": closed forms, no series)
-# are passed to wear_coefficients itself.
-_IPOW = [(1j) ** m for m in range(4)]           # the loop's (1j) ** ((n + 1) % 4), exactly
-_CHEB_NODES = {}
-_DEGREE_ARRAYS = {}
-_NODE_CACHE = {}
-
-
-def _chebyshev_nodes(n_nodes):
-    """Gauss-Chebyshev nodes and weights of _linear_patch_integrals (cached per n_nodes)."""
-    nodes = _CHEB_NODES.get(n_nodes)
-    if nodes is None:
-        j = np.arange(1, n_nodes + 1)
-        t = np.cos((2 * j - 1) * np.pi / (2 * n_nodes))
-        nodes = _CHEB_NODES[n_nodes] = (t, np.pi / n_nodes * np.sqrt(1 - t * t))
-    return nodes
-
-
-def _degree_arrays(degree):
-    """n = 2..degree, as a column, and the loop's 2 (1j)^((n + 1) % 4) (cached per degree)."""
-    arrays = _DEGREE_ARRAYS.get(degree)
-    if arrays is None:
-        n = np.arange(2, degree + 1)
-        two_ipow = np.array([2 * _IPOW[(m + 1) % 4] for m in range(2, degree + 1)])[:, None]
-        arrays = _DEGREE_ARRAYS[degree] = (n, n[:, None], two_ipow)
-    return arrays
-
-
-def _slip_zone_nodes(r, n_nodes, degree):
-    """The node functions of _linear_patch_integrals that depend on r only (the same for every
-    harmonic; cached per (r, n_nodes, degree): the wear effect evaluates the coefficients at
-    one r up to three times per step)."""
-    key = (r, n_nodes, degree)
-    nodes = _NODE_CACHE.get(key)
-    if nodes is None:
-        t, wq = _chebyshev_nodes(n_nodes)
-        half = 1.0 - r
-        x = -r + half * t
-        u = x
-        sin_t = np.sqrt(1.0 - u * u)
-        theta = np.arccos(u)
-        xm1 = x - 1.0
-        s0 = np.sqrt(xm1 * (xm1 + 2 * r))
-        v = xm1 / r + 1.0
-        root = np.sqrt(v * v - 1.0)
-        w = 1.0 / (v - root)
-        p0 = sin_t / np.pi
-        sin_n = wn = None
-        if degree >= 2:
-            n = _degree_arrays(degree)[0]
-            sin_n = np.sin(n[:, None] * theta)[:, None, :]
-            wn = np.cumprod(np.repeat(w[None, :], degree, axis=0), axis=0)[1:, None, :]
-        if len(_NODE_CACHE) >= 16:
-            _NODE_CACHE.clear()
-        nodes = _NODE_CACHE[key] = (wq, half, x, u * u, sin_t, s0, w, w / root, 1.0 - v, p0,
-                                    p0 * s0, sin_n, wn)
-    return nodes
-
-
-def _linear_patch_integrals_scalar(beta, r, n_nodes, degree):
-    """:func:`_linear_patch_integrals` for beta of shape (M,) and one float r (the same
-    expressions; the slip-zone node functions from :func:`_slip_zone_nodes`)."""
-    k = beta[:, None]
-    h_d, h_a, h_as, e_kd = (q[:, None] for q in _h_basic(beta, r))
-    wq, half, x, uu, sin_t, s0, w, w_root, one_v, p0, p0s0, sin_n, wn = _slip_zone_nodes(
-        r, n_nodes, degree)
-    h_c1 = k * j1(k)
-    hp = uu * h_a / sin_t + h_c1 * sin_t
-    h_d1 = h_as + 2 * k * j1(k * r) * e_kd
-    e_kx = np.exp(1j * k * x)
-    hs = h_d1 * w + w_root * (-h_a + one_v * h_as) - (h_d - 1j * k * e_kx)
-    if degree >= 2:
-        _, n_col, two_ipow = _degree_arrays(degree)
-        kk = k.T                                                         # (1, M)
-        cp = two_ipow * kk * jv(n_col, kk)                               # (deg - 1, M)
-        cs = two_ipow * kk * jv(n_col, kk * r) * e_kd.T
-        hp = np.subtract.reduce(np.concatenate((hp[None], cp[:, :, None] * sin_n)), axis=0)
-        hs = np.subtract.reduce(np.concatenate((hs[None], cs[:, :, None] * wn)), axis=0)
-    hp = hp / np.pi
-    h_pp = hp * s0 + p0 * hs
-    # exp(-i k x) = conj(exp(i k x)) exactly (exp(+-0) = 1, cos even, sin odd)
-    phase = np.conj(e_kx)
-    integral = np.sum(h_pp * phase * wq, -1) * half
-    integral0 = np.sum(p0s0 * phase * wq, -1) * half
-    return integral, integral0
-
-
-def _wear_coefficients_scalar(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_MODEL,
-                              n_nodes=24):
-    """:func:`wear_coefficients` for a list of a0/L at one float r_a0 (inputs assumed in
-    range, see above): list of complex ``w``. [-]"""
-    if wear_model not in ("material_point", "patch_coordinate"):
-        return [complex(v) for v in np.atleast_1d(
-            wear_coefficients(a0_over_wavelength, stick_ratio, wear_model, n_nodes=n_nodes))]
-    if stick_ratio >= 1.0:
-        return [0j] * len(a0_over_wavelength)
-    beta = _TWO_PI * np.array(a0_over_wavelength, dtype=float)
-    r = min(max(stick_ratio, 1e-9), 1.0 - 1e-9)
-    degree = int(math.ceil(math.e * max(beta.max(), 0.0))) + 12
-    integral, integral0 = _linear_patch_integrals_scalar(beta, r, n_nodes, degree)
-    if wear_model == "material_point":
-        integral = integral + beta * beta * j0(beta) * integral0
-    return (2.0 * np.conj(integral)).tolist()
-
-
 def _corrugated_wear_depth_scalar(rail_position, normal_load, radius, youngs_modulus,
                                   poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
                                   amplitudes_sin, wavelengths, wear_coefficient,
                                   wear_model=DEFAULT_WEAR_MODEL):
-    """:func:`corrugated_wear_depth` at one rail position for plain floats and lists (inputs
-    assumed in range as for :func:`_wear_coefficients_scalar`, with N, mu > 0 and condition
-    (4.2) holding; the FMU's corrugation effect checks them): the same operations on floats,
-    with the coefficients of :func:`_wear_coefficients_scalar`. [m]"""
+    """:func:`corrugated_wear_depth` at one rail position for plain floats and lists, with its
+    range checks dropped (the FMU's corrugation effect; the scene and the slave checked the
+    inputs, N, mu > 0, condition (4.2) holds and the normalised load does not underflow): the
+    same compiled kernels (the series models' coefficients from
+    ``_corrugation_kernels.wear_coefficients_list``, the time-domain models' from
+    :func:`wear_coefficients`; the superposition from ``wear_depth_array``). [m]"""
     x, n_load, big_r, nu, mu = (rail_position, normal_load, radius, poisson_ratio,
                                 friction_coefficient)
     a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * youngs_modulus))
     r = max(a0 - abs(creepage) * big_r / mu, 0.0) / a0
     kw = wear_coefficient
-    wear = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-    cw = _wear_coefficients_scalar([a0 / lam for lam in wavelengths], r, wear_model)
-    scale = kw * mu * mu * n_load / a0
-    for za, zb, lam, c in zip(amplitudes_cos, amplitudes_sin, wavelengths, cw):
-        wear += (scale * c * (complex(za, zb) * cmath.exp(-1j * (_TWO_PI / lam) * x))).real
-    return wear
+    w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
+    lam = np.array(wavelengths, dtype=float)
+    if wear_model in ("material_point", "patch_coordinate"):
+        cw = np.array(_kernels.wear_coefficients_list((a0 / lam).tolist(), r, wear_model))
+    else:
+        cw = np.ravel(wear_coefficients(a0 / lam, r, wear_model)).astype(complex)
+    return float(_kernels.wear_depth_array(
+        np.array([float(x)]), w0, kw * mu * mu * n_load / a0, _TWO_PI / lam,
+        np.array(amplitudes_cos, dtype=float), np.array(amplitudes_sin, dtype=float), cw)[0])
