@@ -673,8 +673,8 @@ class Table:
         # large tables the corners and a fixed sample of 20,000: a load stays fast)
         n_nodes = int(np.prod(shape))
         flat = np.arange(n_nodes) if n_nodes <= _INTEGRITY_NODES else np.unique(np.r_[
-            np.ravel_multi_index(tuple(np.array(c) * (np.array(shape) - 1) for c in zip(
-                *np.ndindex(*(2,) * len(shape)))), shape),
+            np.ravel_multi_index(tuple(np.array(c) * (shape[d] - 1) for d, c in enumerate(
+                zip(*np.ndindex(*(2,) * len(shape))))), shape),
             np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
         idx = np.unravel_index(flat, shape)
         pts = np.stack([a["nodes"][i] for a, i in zip(axes, idx)], axis=1)
