@@ -195,12 +195,8 @@ def _exact_axes(resolution):
              "phi) / w_sat, w_sat = pi^2 (1 + nu) mu p0 / E, p0 = 3 N / (2 pi a0 b0), C_ij "
              "Kalker's coefficients; signed: (-s, theta + pi) is the point (s, theta)",
              comment="s = 1 is rho = infinity (full sliding, spin negligible); nodes crowd "
-                     "near 0 and near rho = 1 (onset of full sliding without spin); the "
-                     "negative half mirrors the positive (double cover); a double knot at "
-                     "s = 0: the force is C1 but not C2 at zero creepage (its curvature "
-                     "changes sign with the creepage, as Carter's 2 rho - rho |rho|), and a "
-                     "single knot there put the slope at zero 4 % below Kalker's",
-             double_knots=(0.0,)),
+                     "near rho = 1 (onset of full sliding without spin); the negative half "
+                     "mirrors the positive (double cover, smooth through v = 0)"),
         Axis("creepage_angle", full_theta, "rad",
              "theta = atan2(v_y, v_x), the direction of the combined creepage v",
              periodic=True, comment="periodic over [-pi, pi]"),
