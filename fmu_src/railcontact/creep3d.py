@@ -87,6 +87,7 @@ __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
 
 METHODS = ("linear", "she", "strip", "modified_strip")
 EXACT_DEFAULT_GRID = (40, 20)  # method="exact": elements (rolling, lateral); see creep_force_3d
+EXACT_DEFAULT_TRANSPORT_ORDER = 1  # method="exact": difference of the rolling term; ditto
 # Methods users compare against, each in its own module (railcontact.fastsim, railcontact.polach);
 # creep_force_3d and creep_solution_3d dispatch to them by name.
 COMPARISON_METHODS = ("fastsim", "polach", "fastrip")
@@ -419,7 +420,7 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
                    *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-4,
-                   **method_options):
+                   transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -507,7 +508,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                            extrapolate, tolerance)
+                            extrapolate, tolerance, transport_order)
     tx, ty = _solve(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, method)[:2]
     return CreepForce3D(tx[()], ty[()])
@@ -682,7 +683,8 @@ def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
                       method="modified_strip", *, grid=EXACT_DEFAULT_GRID, extrapolate=False,
-                      tolerance=1e-4, sensitivities=False, fields=False, **method_options):
+                      tolerance=1e-4, sensitivities=False, fields=False,
+                      transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -739,7 +741,7 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     if method == "exact":
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                               extrapolate, sensitivities, fields, tolerance)
+                               extrapolate, sensitivities, fields, tolerance, transport_order)
     if sensitivities or fields:
         raise ValueError(f"sensitivities and fields need method='exact'; got method={method!r}")
     (tx, ty, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0) = _solve(
@@ -947,7 +949,7 @@ def _check_exact_grid(grid):
 
 def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
            poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-           tolerance):
+           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER):
     """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`."""
     from .reference.rolling3d import solve_rolling_3d
 
@@ -956,6 +958,9 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         poisson_ratio, friction_coefficient, creepage_bound=1.0)
     mx, my = _check_exact_grid(grid)
     tolerance = float(check_range("tolerance", tolerance, "-", 0.0, 0.1, lower_closed=False))
+    if transport_order not in (1, 2) or isinstance(transport_order, bool):
+        raise ValueError(f"transport_order must be 1 or 2 [-] (first- or second-order upwind "
+                         f"difference of the rolling term); got {transport_order!r}")
     sim = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, "exact")
     args = np.broadcast_arrays(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
     shape = args[0].shape
@@ -969,7 +974,8 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
-        kw = dict(tolerance=tolerance, sensitivities=sensitivities)
+        kw = dict(tolerance=tolerance, sensitivities=sensitivities,
+                  transport_order=int(transport_order))
         one = solve_rolling_3d(*similar, mx=mx, my=my, **kw)
         fine = one
         if extrapolate:  # one Richardson step in the rolling-direction element size
@@ -1007,20 +1013,20 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
 
 def _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                 tolerance):
+                 tolerance, transport_order):
     out = _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate, False,
-                 False, tolerance)
+                 False, tolerance, transport_order)
     return CreepForce3D(out[0][()], out[1][()])
 
 
 def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                    sensitivities, fields, tolerance):
+                    sensitivities, fields, tolerance, transport_order):
     tx, ty, mz, stick, width, sens, res, iters, checked = _exact(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-        tolerance)
+        tolerance, transport_order)
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = checked
     z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu),
                         tx.shape)

@@ -268,21 +268,25 @@ def influence_coefficients_3d(x, y, dx, dy, shear_modulus, poisson_ratio):
 
 
 @lru_cache(maxsize=16)
-def _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio):
+def _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio, transport_order=1):
     """Toeplitz kernels on offsets. Index [i + mx - 1, j + my - 1] for offsets i = -mx+1..mx-1.
 
     Returns azz (normal) and the steady-state slip kernels bxx, bxy, byy where
-    ``s_I = w_I + sum_J b(I - J) p_J``, ``b(d) = (a(d) - a(d + dx)) / dx``.
+    ``s_I = w_I + sum_J b(I - J) p_J``: first order ``b(d) = (a(d) - a(d + dx)) / dx``;
+    second order (``transport_order=2``, three-point upwind difference)
+    ``b(d) = (3 a(d) - 4 a(d + dx) + a(d + 2 dx)) / (2 dx)``.
     """
-    ix = np.arange(-mx + 1, mx + 1)  # one more offset for the shift
+    ix = np.arange(-mx + 1, mx + 2)  # two more offsets for the upwind differences
     iy = np.arange(-my + 1, my)
     xx, yy = np.meshgrid(ix * dx, iy * dy, indexing="ij")
     axx, axy, ayy, azz = influence_coefficients_3d(xx, yy, dx, dy, shear_modulus, poisson_ratio)
 
     def shift(a):
-        return np.ascontiguousarray((a[:-1] - a[1:]) / dx)
+        if transport_order == 1:
+            return np.ascontiguousarray((a[:-2] - a[1:-1]) / dx)
+        return np.ascontiguousarray((3.0 * a[:-2] - 4.0 * a[1:-1] + a[2:]) / (2.0 * dx))
 
-    out = (np.ascontiguousarray(azz[:-1]), shift(axx), shift(axy), shift(ayy))
+    out = (np.ascontiguousarray(azz[:-2]), shift(axx), shift(axy), shift(ayy))
     for arr in out:
         arr.setflags(write=False)
     return out
@@ -307,7 +311,8 @@ class _Convolver:
         return out[: self.mx, : self.my]
 
 
-def solve_normal_3d(h, azz, normal_load, element_area, tolerance=1e-13, max_iterations=2000):
+def solve_normal_3d(h, azz, normal_load, element_area, tolerance=1e-13, max_iterations=2000,
+                    initial_pressure=None):
     """Discrete frictionless normal contact with prescribed load (Polonsky & Keer 1999).
 
     Parameters
@@ -320,6 +325,10 @@ def solve_normal_3d(h, azz, normal_load, element_area, tolerance=1e-13, max_iter
         Prescribed normal load. [N]
     element_area : float
         dx dy. [m^2]
+    initial_pressure : ndarray, shape (mx, my), optional
+        Start of the iteration (e.g. the Hertz pressure at the element centres); only the
+        number of iterations changes (the problem is convex). Default: a uniform pressure
+        where ``h`` is in the lower half of its range. [Pa]
 
     Returns
     -------
@@ -328,7 +337,10 @@ def solve_normal_3d(h, azz, normal_load, element_area, tolerance=1e-13, max_iter
     """
     mx, my = h.shape
     conv = _Convolver(azz, mx, my)
-    p = np.where(h <= np.min(h) + 0.5 * (np.max(h) - np.min(h)), 1.0, 0.0)
+    if initial_pressure is None:
+        p = np.where(h <= np.min(h) + 0.5 * (np.max(h) - np.min(h)), 1.0, 0.0)
+    else:
+        p = np.array(initial_pressure, dtype=float)
     p *= normal_load / (p.sum() * element_area)
     t = np.zeros_like(p)
     g_old = 1.0
@@ -525,85 +537,91 @@ def _row_newton(e_x, e_y, rbx, rby, pn, px, py, tab_s, tab_mu, tol_p, max_newton
 
 
 @njit(cache=True)
-def _sweep_solver(cix, ciy, row_start, sx, sy, pn, bxx, bxy, byy, mx, my, tab_s, tab_mu,
-                  px, py, tolerance, max_iterations, max_newton, forcing, history):
-    """Block Gauss-Seidel over lines along the rolling direction (one block per y-row).
+def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab_mu, px, py,
+           tol_p, newton, forcing):
+    """One block Gauss-Seidel sweep over the lines along the rolling direction (one block per
+    y-row), in place; returns ``|dp|_2^2`` of the sweep.
 
     Contact elements are stored row by row (``row_start``), each row leading edge first.
-    ``sx, sy`` hold the slip of the start tractions and are kept up to date in place: after a
-    row's tractions change, the slip of every element is corrected by the row's influence
-    (the caller recomputes the final slip by FFT, which removes the accumulated round-off).
-    Returns (iterations, residual).
+    ``sx, sy`` must hold the slip of the current tractions on entry (the driver recomputes it
+    by FFT before every sweep). After a row's tractions change, the slip of the rows visited
+    later in this sweep is corrected by the row's influence (the rows visited before get
+    theirs from the next FFT): exact block Gauss-Seidel at half the work of correcting every
+    row. ``tbxx, tbxy, tbyy`` are the transposed slip kernels (contiguous in x).
     """
-    nc = cix.shape[0]
     nrow = row_start.shape[0] - 1
-    tbxx = np.ascontiguousarray(bxx.T)
-    tbxy = np.ascontiguousarray(bxy.T)
-    tbyy = np.ascontiguousarray(byy.T)
-    gmax = 0.0
-    for k in range(nc):
-        gmax = max(gmax, pn[k] * tab_mu[0])
+    nc = cix.shape[0]
+    num = 0.0
+    dpx = np.empty(nc)
+    dpy = np.empty(nc)
+    for r in range(nrow):
+        a = row_start[r]
+        b = row_start[r + 1]
+        n = b - a
+        rbx = np.empty((n, n))
+        rby = np.empty((n, n))
+        for k in range(n):
+            for m in range(n):
+                rbx[k, m] = tbxx[my - 1, m - k + mx - 1]
+                rby[k, m] = tbyy[my - 1, m - k + mx - 1]
+        e_x = np.empty(n)
+        e_y = np.empty(n)
+        qx = np.empty(n)
+        qy = np.empty(n)
+        for k in range(n):
+            ax = sx[a + k]
+            ay = sy[a + k]
+            for m in range(n):
+                ax -= rbx[k, m] * px[a + m]
+                ay -= rby[k, m] * py[a + m]
+            e_x[k] = ax
+            e_y[k] = ay
+            qx[k] = px[a + k]
+            qy[k] = py[a + k]
+        _row_newton(e_x, e_y, rbx, rby, pn[a:b], qx, qy, tab_s, tab_mu, tol_p, newton, forcing)
+        for k in range(n):
+            nx = qx[k]
+            ny = qy[k]
+            dpx[k] = nx - px[a + k]
+            dpy[k] = ny - py[a + k]
+            px[a + k] = nx
+            py[a + k] = ny
+            num += dpx[k] * dpx[k] + dpy[k] * dpy[k]
+        # slip of the rows still to be visited: per target row a 1-D correlation along x with
+        # the kernel row of the row offset
+        for r2 in range(r + 1, nrow):
+            a2 = row_start[r2]
+            j = ciy[a2] - ciy[a] + my - 1
+            for l in range(a2, row_start[r2 + 1]):
+                i0 = cix[l] - cix[a] + mx - 1
+                ax = 0.0
+                ay = 0.0
+                for k in range(n):
+                    i = i0 + k
+                    ax += tbxx[j, i] * dpx[k] + tbxy[j, i] * dpy[k]
+                    ay += tbxy[j, i] * dpx[k] + tbyy[j, i] * dpy[k]
+                sx[l] += ax
+                sy[l] += ay
+    return num
+
+
+def _sweep_solver(cix, ciy, row_start, pn, kern_t, mx, my, tab_s, tab_mu, px, py, tolerance,
+                  max_iterations, max_newton, forcing, history, slip):
+    """Block Gauss-Seidel sweeps (:func:`_sweep`) until the relative traction change of a sweep
+    is below ``tolerance``. ``slip()`` returns the slip of the current tractions (FFT
+    products). Returns (iterations, residual)."""
+    tbxx, tbxy, tbyy = kern_t
+    gmax = float(np.max(pn)) * float(tab_mu[0])
+    tol_p = 1e-3 * tolerance * gmax
     residual = np.inf
     prev = np.inf
     newton = 1
     it = 0
-    dpx = np.empty(nc)
-    dpy = np.empty(nc)
     for it in range(1, max_iterations + 1):
-        num = 0.0
-        for rr in range(nrow):
-            r = rr
-            a = row_start[r]
-            b = row_start[r + 1]
-            n = b - a
-            rbx = np.empty((n, n))
-            rby = np.empty((n, n))
-            for k in range(n):
-                for m in range(n):
-                    rbx[k, m] = tbxx[my - 1, m - k + mx - 1]
-                    rby[k, m] = tbyy[my - 1, m - k + mx - 1]
-            e_x = np.empty(n)
-            e_y = np.empty(n)
-            qx = np.empty(n)
-            qy = np.empty(n)
-            for k in range(n):
-                ax = sx[a + k]
-                ay = sy[a + k]
-                for m in range(n):
-                    ax -= rbx[k, m] * px[a + m]
-                    ay -= rby[k, m] * py[a + m]
-                e_x[k] = ax
-                e_y[k] = ay
-                qx[k] = px[a + k]
-                qy[k] = py[a + k]
-            _row_newton(e_x, e_y, rbx, rby, pn[a:b], qx, qy, tab_s, tab_mu,
-                        1e-3 * tolerance * gmax, newton, forcing)
-            for k in range(n):
-                nx = qx[k]
-                ny = qy[k]
-                dpx[k] = nx - px[a + k]
-                dpy[k] = ny - py[a + k]
-                px[a + k] = nx
-                py[a + k] = ny
-                num += dpx[k] * dpx[k] + dpy[k] * dpy[k]
-            # update the slip of all elements: per target row a 1-D correlation along x with
-            # the kernel row of the row offset (transposed kernels: contiguous in x)
-            for r2 in range(nrow):
-                a2 = row_start[r2]
-                j = ciy[a2] - ciy[a] + my - 1
-                for l in range(a2, row_start[r2 + 1]):
-                    i0 = cix[l] - cix[a] + mx - 1
-                    ax = 0.0
-                    ay = 0.0
-                    for k in range(n):
-                        i = i0 + k
-                        ax += tbxx[j, i] * dpx[k] + tbxy[j, i] * dpy[k]
-                        ay += tbxy[j, i] * dpx[k] + tbyy[j, i] * dpy[k]
-                    sx[l] += ax
-                    sy[l] += ay
-        den = 0.0
-        for k in range(nc):
-            den += px[k] * px[k] + py[k] * py[k]
+        sx, sy = slip()
+        num = _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab_mu,
+                     px, py, tol_p, newton, forcing)
+        den = float(px @ px + py @ py)
         residual = math.sqrt(num / max(den, 1e-24 * gmax * gmax + 1e-300))
         if it <= history.shape[0]:
             history[it - 1] = residual
@@ -642,32 +660,62 @@ def _friction_table(friction_coefficient):
 
 
 @lru_cache(maxsize=8)
-def _normal_solution(mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio):
+def _normal_solution(mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio,
+                     transport_order=1):
     shear_modulus = youngs_modulus / (2.0 * (1.0 + poisson_ratio))
     dx = 2.0 * scale * a0 / mx
     dy = 2.0 * scale * b0 / my
     x = -scale * a0 + (np.arange(mx) + 0.5) * dx
     y = -scale * b0 + (np.arange(my) + 0.5) * dy
-    kern = _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio)
+    kern = _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio, transport_order)
     a_curv, b_curv, _ = hertz_curvatures(a0, b0, normal_load, youngs_modulus, poisson_ratio)
     h = a_curv * x[:, None] ** 2 + b_curv * y[None, :] ** 2
-    pn, approach = solve_normal_3d(h, kern[0], normal_load, dx * dy)
+    # started from the Hertz pressure at the element centres: 25-35 % fewer iterations than
+    # from a flat start (measured 40x20 and 60x20, a0/b0 = 0.2, 1, 5), same solution to 1e-12
+    hertz = np.sqrt(np.maximum(1.0 - (x[:, None] / a0) ** 2 - (y[None, :] / b0) ** 2, 0.0))
+    if not hertz.any():  # no element centre inside the ellipse: the flat start
+        hertz = None
+    pn, approach = solve_normal_3d(h, kern[0], normal_load, dx * dy, initial_pressure=hertz)
     for arr in (x, y, pn):
         arr.setflags(write=False)
     # FFT products for the slip of given tractions (steady-state kernels bxx, bxy, byy)
-    conv = tuple(_Convolver(k, mx, my) for k in kern[1:])
+    conv = _SlipProduct(kern[1], kern[2], kern[3], mx, my)
     return x, y, dx, dy, pn, approach, kern, conv
+
+
+class _SlipProduct:
+    """``(u_x, u_y) = B p`` on the whole grid by FFT (circulant embedding of the Toeplitz
+    kernels bxx, bxy, byy): two forward and two inverse real FFTs of size (2 mx, 2 my). Also
+    holds the transposed kernels (contiguous in x) for the sweeps."""
+
+    def __init__(self, bxx, bxy, byy, mx, my):
+        self.shape = (2 * mx, 2 * my)
+        ix = np.arange(-mx + 1, mx) % (2 * mx)
+        iy = np.arange(-my + 1, my) % (2 * my)
+        hats = []
+        for kernel in (bxx, bxy, byy):
+            emb = np.zeros(self.shape)
+            emb[np.ix_(ix, iy)] = kernel
+            hats.append(np.fft.rfft2(emb))
+        self.hxx, self.hxy, self.hyy = hats
+        self.mx, self.my = mx, my
+        self.transposed = tuple(np.ascontiguousarray(k.T) for k in (bxx, bxy, byy))
+
+    def __call__(self, pxa, pya):
+        fx = np.fft.rfft2(pxa, s=self.shape)
+        fy = np.fft.rfft2(pya, s=self.shape)
+        ux = np.fft.irfft2(fx * self.hxx + fy * self.hxy, s=self.shape)
+        uy = np.fft.irfft2(fx * self.hxy + fy * self.hyy, s=self.shape)
+        return ux[: self.mx, : self.my], uy[: self.mx, : self.my]
 
 
 def _slip(conv, px, py, cix, ciy, mx, my, wx, wy):
     """Slip ``w + B p`` of the contact elements by FFT products (O(n log n), not O(nc^2))."""
-    cxx, cxy, cyy = conv
     pxa = np.zeros((mx, my))
     pya = np.zeros((mx, my))
     pxa[cix, ciy] = px
     pya[cix, ciy] = py
-    ux = cxx(pxa) + cxy(pya)
-    uy = cxy(pxa) + cyy(pya)
+    ux, uy = conv(pxa, pya)
     return wx + ux[cix, ciy], wy + uy[cix, ciy]
 
 
@@ -728,9 +776,9 @@ def _linearised_sensitivity(cix, ciy, xc, yc, px, py, sx, sy, gbound, stick, bxx
 
 def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, table,
                 mx, my, scale, tolerance, max_iterations, spin_offset, initial=None,
-                sensitivities=False):
+                sensitivities=False, transport_order=1):
     x, y, dx, dy, pn, approach, kern, conv = _normal_solution(
-        mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio)
+        mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio, transport_order)
     _, bxx, bxy, byy = kern
     contact = pn > 0
     if contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any() or contact[:, -1].any():
@@ -786,13 +834,10 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
     else:
         px = np.zeros(cix.shape[0])
         py = np.zeros(cix.shape[0])
-    if initial is not None:
-        sx, sy = _slip(conv, px, py, cix, ciy, mx, my, wx, wy)
-    else:  # zero start tractions: the slip is the rigid slip
-        sx, sy = wx.copy(), wy.copy()
-    iters, residual = _sweep_solver(cix, ciy, row_start, sx, sy, pnc, bxx, bxy, byy,
-                                            mx, my, tab_s, tab_mu, px, py, tolerance,
-                                            max_iterations, _MAX_NEWTON, _NEWTON_FORCING, _HISTORY)
+    iters, residual = _sweep_solver(
+        cix, ciy, row_start, pnc, conv.transposed, mx, my, tab_s, tab_mu, px, py, tolerance,
+        max_iterations, _MAX_NEWTON, _NEWTON_FORCING, _HISTORY,
+        lambda: _slip(conv, px, py, cix, ciy, mx, my, wx, wy))
     sx, sy = _slip(conv, px, py, cix, ciy, mx, my, wx, wy)  # from scratch: no round-off
     if not (residual < tolerance):
         raise RollingConvergenceError(
@@ -838,7 +883,8 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
 def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                      youngs_modulus, poisson_ratio, friction_coefficient, mx=40, my=20,
                      scale=1.08, tolerance=1e-6, max_iterations=500, richardson=False,
-                     spin_offset=1.0 / 6.0, initial_guess=None, sensitivities=False):
+                     spin_offset=None, initial_guess=None, sensitivities=False,
+                     transport_order=1):
     r"""Steady rolling of two quasi-identical elastic bodies: Kalker's exact theory, discretised.
 
     Solves the Hertzian normal problem numerically on the grid, then the frictional steady
@@ -877,13 +923,16 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     richardson : bool
         If True, also solve on ``(2 mx, 2 my)`` and return ``2 F_fine - F_coarse`` for the
         forces and moment (the arrays are those of the fine grid).
-    spin_offset : float
+    spin_offset : float, optional
         The rigid slip of the spin, ``w = (xi - phi y, eta + phi (x + spin_offset dx))``, is
         evaluated this fraction of an element upstream (towards the leading edge) of the
-        element centre. ``1/6`` (default) reproduces CONTACT's published values to 5e-6 of mu N on
-        every spin case of ``hertz3d_grid_convergence`` (found by fitting; ``0``, the element
-        centre, differs from CONTACT by up to 1e-2 of mu N at 30x30, halving with each grid
-        refinement: an O(dx) difference that vanishes in the continuum limit). [-]
+        element centre. Default: ``1/6`` with ``transport_order=1``, which reproduces CONTACT's
+        published values to 5e-6 of mu N on every spin case of ``hertz3d_grid_convergence``
+        (found by fitting; ``0``, the element centre, differs from CONTACT by up to 1e-2 of
+        mu N at 30x30, halving with each grid refinement: an O(dx) difference that vanishes in
+        the continuum limit); ``0`` with ``transport_order=2`` (its difference is centred on
+        the element centre; measured: +-0.5 moves the pure-spin force by about 2 % of mu N at
+        40x20, away from the converged value). [-]
     initial_guess : Rolling3DResult, optional
         Solution of a neighbouring case (e.g. the previous point of a creep curve or table)
         or of the same case on another grid over the same area (a coarse solve as the fine
@@ -891,6 +940,18 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         scaled by the pressure ratio); its tractions, clipped to the friction bound, start
         the iteration.
         Only the number of sweeps changes, not the converged solution (to the tolerance).
+    transport_order : {1, 2}
+        Difference of the rolling (transport) term ``du/dx`` in the slip. 1 (default):
+        Kalker's and CONTACT's first-order upwind difference ``(u(x) - u(x + dx)) / dx``,
+        which reproduces CONTACT's published values. 2: the three-point upwind (BDF2-type)
+        difference ``(3 u(x) - 4 u(x + dx) + u(x + 2 dx)) / (2 dx)``, centred on the element
+        centre (so ``spin_offset`` defaults to 0), second order for smooth fields: the idea of
+        Vollebregt and Wilders' FASTSIM2 (second-order integration along the rolling
+        direction) applied to the exact theory. It converges to the same continuum (checked
+        against CONTACT's converged values in the tests) with a much smaller error on the same
+        grid; the rest is dominated by where the contact edge falls inside its element, which
+        is not a smooth function of the grid. Measured over the 21 grid-convergence cases,
+        see the module docstring and ``benchmarks/bench_rolling3d.py``.
     sensitivities : bool
         Also compute ``d(tx, ty, mz)/d(xi, eta, phi)`` (``Rolling3DResult.sensitivity``) by
         solving the problem linearised at the converged slip/stick partition: one dense
@@ -945,13 +1006,19 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                          f"(rigid slip |phi| max(a0, b0) <= 1); got {phi:g}")
     table = _friction_table(friction_coefficient)
     args = (xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, table)
+    if transport_order not in (1, 2) or isinstance(transport_order, bool):
+        raise ValueError(f"transport_order must be 1 or 2 [-]; got {transport_order!r}")
+    transport_order = int(transport_order)
+    if spin_offset is None:
+        spin_offset = 1.0 / 6.0 if transport_order == 1 else 0.0
+    spin_offset = float(check_range("spin_offset", spin_offset, "-", -1.0, 1.0))
     coarse = _solve_grid(*args, mx, my, scale, tolerance, max_iterations, spin_offset,
-                         initial_guess, sensitivities)
+                         initial_guess, sensitivities, transport_order)
     if not richardson:
         return coarse
     # the coarse solution, prolongated, starts the fine grid
     fine = _solve_grid(*args, 2 * mx, 2 * my, scale, tolerance, max_iterations, spin_offset,
-                       coarse, sensitivities)
+                       coarse, sensitivities, transport_order)
     return Rolling3DResult(
         tx=2 * fine.tx - coarse.tx, ty=2 * fine.ty - coarse.ty, mz=2 * fine.mz - coarse.mz,
         normal_load=fine.normal_load, px=fine.px, py=fine.py, pn=fine.pn,
