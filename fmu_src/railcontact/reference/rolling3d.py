@@ -427,28 +427,39 @@ def _row_residual(e_x, e_y, rbx, rby, rho, g, qx, qy, out):
 
 
 @njit(cache=True)
-def _row_newton(e_x, e_y, rbx, rby, pn, px, py, tab_s, tab_mu, tol_p, max_newton, forcing):
+def _row_newton(e_x, e_y, rbx, rby, ibx, iby, pn, px, py, tab_s, tab_mu, tol_p, max_newton,
+                forcing):
     """Frictional problem of one line of elements along the rolling direction, in place.
 
     s_x = e_x + rbx p_x, s_y = e_y + rby p_y (no x-y coupling within a line); complementarity
     written as p = Proj_{|p| <= g}(p - rho s) and solved by a semismooth Newton method with a
     backtracking line search on |F|. g = mu(|s|) pn is lagged for a slip-dependent friction law.
+    ``ibx, iby`` are the inverses of ``rbx, rby``: the Newton system is solved for
+    ``v = R dp`` (known directly on the sticking elements), so only the slipping elements'
+    unknowns enter a dense solve (see the comment at the solve).
     """
     n = e_x.shape[0]
     nn = 2 * n
     rho = np.empty(n)
     for k in range(n):
         rho[k] = 2.0 / (rbx[k, k] + rby[k, k])
-    jac = np.zeros((nn, nn))
     f = np.zeros(nn)
+    vx = np.empty(n)
+    vy = np.empty(n)
+    isl = np.empty(n, dtype=np.int64)
+    slk = np.empty(n, dtype=np.int64)
+    dxx = np.empty(n)
+    dxy = np.empty(n)
+    dyy = np.empty(n)
+    exx = np.empty(n)
+    exy = np.empty(n)
+    eyy = np.empty(n)
     sx = np.empty(n)
     sy = np.empty(n)
     g = np.empty(n)
     trial_x = np.empty(n)
     trial_y = np.empty(n)
     step = np.empty(nn)
-    fx_ = np.empty(n)
-    fy_ = np.empty(n)
 
     ftmp = np.zeros(nn)
     dmax0 = 0.0
@@ -474,49 +485,82 @@ def _row_newton(e_x, e_y, rbx, rby, pn, px, py, tab_s, tab_mu, tol_p, max_newton
                 break
         if allstick:
             for k in range(n):
-                fx_[k] = -sx[k]
-                fy_[k] = -sy[k]
-            stx = np.linalg.solve(rbx, fx_)
-            sty = np.linalg.solve(rby, fy_)
-            for k in range(n):
-                step[2 * k] = stx[k]
-                step[2 * k + 1] = sty[k]
+                ax = 0.0
+                ay = 0.0
+                for m in range(n):
+                    ax -= ibx[k, m] * sx[m]
+                    ay -= iby[k, m] * sy[m]
+                step[2 * k] = ax
+                step[2 * k + 1] = ay
         else:
-            # Jacobian
-            for i in range(nn):
-                for j in range(nn):
-                    jac[i, j] = 0.0
+            # J dp = -F with J = D + E R per element (R = diag(rbx, rby) in x and y): sticking
+            # elements D = 0, E = rho I; slipping ones D = I - P, E = rho P, P = c (I - n n^T)
+            # the derivative of the projection. With v = R dp the sticking rows give
+            # v_k = -F_k / rho_k at once, and the slipping rows
+            #   D_k (R^-1 v)_k + E_k v_k = -F_k
+            # a dense system in the slipping elements' v only (2 n_slip unknowns instead of
+            # 2 n); then dp = R^-1 v.
+            nsl = 0
             for k in range(n):
                 zx = px[k] - rho[k] * sx[k]
                 zy = py[k] - rho[k] * sy[k]
                 zn = math.sqrt(zx * zx + zy * zy)
                 if zn <= g[k]:
-                    # F = rho s
-                    for m in range(n):
-                        jac[2 * k, 2 * m] = rho[k] * rbx[k, m]
-                        jac[2 * k + 1, 2 * m + 1] = rho[k] * rby[k, m]
+                    isl[k] = -1
+                    vx[k] = -f[2 * k] / rho[k]
+                    vy[k] = -f[2 * k + 1] / rho[k]
                 else:
                     nx = zx / zn
                     ny = zy / zn
                     c = g[k] / zn
-                    # P = c (I - n n^T); dz/dp = I_k - rho ds/dp
-                    pxx = c * (1.0 - nx * nx)
-                    pxy = -c * nx * ny
-                    pyy = c * (1.0 - ny * ny)
-                    for m in range(n):
-                        # -P (delta_km I - rho ds_k/dp_m)
-                        dxx = -rho[k] * rbx[k, m]
-                        dyy = -rho[k] * rby[k, m]
-                        if m == k:
-                            dxx += 1.0
-                            dyy += 1.0
-                        jac[2 * k, 2 * m] -= pxx * dxx
-                        jac[2 * k, 2 * m + 1] -= pxy * dyy
-                        jac[2 * k + 1, 2 * m] -= pxy * dxx
-                        jac[2 * k + 1, 2 * m + 1] -= pyy * dyy
-                    jac[2 * k, 2 * k] += 1.0
-                    jac[2 * k + 1, 2 * k + 1] += 1.0
-            step[:] = np.linalg.solve(jac, -f)
+                    dxx[nsl] = 1.0 - c + c * nx * nx
+                    dxy[nsl] = c * nx * ny
+                    dyy[nsl] = 1.0 - c + c * ny * ny
+                    exx[nsl] = rho[k] * c * (1.0 - nx * nx)
+                    exy[nsl] = -rho[k] * c * nx * ny
+                    eyy[nsl] = rho[k] * c * (1.0 - ny * ny)
+                    isl[k] = nsl
+                    slk[nsl] = k
+                    vx[k] = 0.0
+                    vy[k] = 0.0
+                    nsl += 1
+            ns2 = 2 * nsl
+            mat = np.empty((ns2, ns2))
+            rhs = np.empty(ns2)
+            for a in range(nsl):
+                k = slk[a]
+                # known part: D_k (R^-1 v_stick)_k
+                wx_ = 0.0
+                wy_ = 0.0
+                for m in range(n):
+                    wx_ += ibx[k, m] * vx[m]
+                    wy_ += iby[k, m] * vy[m]
+                rhs[2 * a] = -f[2 * k] - dxx[a] * wx_ - dxy[a] * wy_
+                rhs[2 * a + 1] = -f[2 * k + 1] - dxy[a] * wx_ - dyy[a] * wy_
+                for bb in range(nsl):
+                    m = slk[bb]
+                    ix_ = ibx[k, m]
+                    iy_ = iby[k, m]
+                    mat[2 * a, 2 * bb] = dxx[a] * ix_
+                    mat[2 * a, 2 * bb + 1] = dxy[a] * iy_
+                    mat[2 * a + 1, 2 * bb] = dxy[a] * ix_
+                    mat[2 * a + 1, 2 * bb + 1] = dyy[a] * iy_
+                mat[2 * a, 2 * a] += exx[a]
+                mat[2 * a, 2 * a + 1] += exy[a]
+                mat[2 * a + 1, 2 * a] += exy[a]
+                mat[2 * a + 1, 2 * a + 1] += eyy[a]
+            sol = np.linalg.solve(mat, rhs)
+            for a in range(nsl):
+                vx[slk[a]] = sol[2 * a]
+                vy[slk[a]] = sol[2 * a + 1]
+            for k in range(n):
+                ax = 0.0
+                ay = 0.0
+                for m in range(n):
+                    ax += ibx[k, m] * vx[m]
+                    ay += iby[k, m] * vy[m]
+                step[2 * k] = ax
+                step[2 * k + 1] = ay
         t = 1.0
         for _ls in range(_LINE_SEARCH):
             for k in range(n):
@@ -537,8 +581,8 @@ def _row_newton(e_x, e_y, rbx, rby, pn, px, py, tab_s, tab_mu, tol_p, max_newton
 
 
 @njit(cache=True)
-def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab_mu, px, py,
-           tol_p, newton, forcing):
+def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, inv_x, inv_y, row_inv, mx, my,
+           tab_s, tab_mu, px, py, tol_p, newton, forcing):
     """One block Gauss-Seidel sweep over the lines along the rolling direction (one block per
     y-row), in place; returns ``|dp|_2^2`` of the sweep.
 
@@ -547,7 +591,8 @@ def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab
     by FFT before every sweep). After a row's tractions change, the slip of the rows visited
     later in this sweep is corrected by the row's influence (the rows visited before get
     theirs from the next FFT): exact block Gauss-Seidel at half the work of correcting every
-    row. ``tbxx, tbxy, tbyy`` are the transposed slip kernels (contiguous in x).
+    row. ``tbxx, tbxy, tbyy`` are the transposed slip kernels (contiguous in x);
+    ``inv_x[row_inv[r], :n, :n]`` (and ``inv_y``) the inverse of row r's line matrix.
     """
     nrow = row_start.shape[0] - 1
     nc = cix.shape[0]
@@ -578,7 +623,8 @@ def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab
             e_y[k] = ay
             qx[k] = px[a + k]
             qy[k] = py[a + k]
-        _row_newton(e_x, e_y, rbx, rby, pn[a:b], qx, qy, tab_s, tab_mu, tol_p, newton, forcing)
+        _row_newton(e_x, e_y, rbx, rby, inv_x[row_inv[r], :n, :n], inv_y[row_inv[r], :n, :n],
+                    pn[a:b], qx, qy, tab_s, tab_mu, tol_p, newton, forcing)
         for k in range(n):
             nx = qx[k]
             ny = qy[k]
@@ -605,12 +651,13 @@ def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab
     return num
 
 
-def _sweep_solver(cix, ciy, row_start, pn, kern_t, mx, my, tab_s, tab_mu, px, py, tolerance,
-                  max_iterations, max_newton, forcing, history, slip):
+def _sweep_solver(cix, ciy, row_start, pn, kern_t, line_inverses, mx, my, tab_s, tab_mu, px, py,
+                  tolerance, max_iterations, max_newton, forcing, history, slip):
     """Block Gauss-Seidel sweeps (:func:`_sweep`) until the relative traction change of a sweep
     is below ``tolerance``. ``slip()`` returns the slip of the current tractions (FFT
     products). Returns (iterations, residual)."""
     tbxx, tbxy, tbyy = kern_t
+    inv_x, inv_y, row_inv = line_inverses
     gmax = float(np.max(pn)) * float(tab_mu[0])
     tol_p = 1e-3 * tolerance * gmax
     residual = np.inf
@@ -619,8 +666,8 @@ def _sweep_solver(cix, ciy, row_start, pn, kern_t, mx, my, tab_s, tab_mu, px, py
     it = 0
     for it in range(1, max_iterations + 1):
         sx, sy = slip()
-        num = _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, mx, my, tab_s, tab_mu,
-                     px, py, tol_p, newton, forcing)
+        num = _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, inv_x, inv_y, row_inv,
+                     mx, my, tab_s, tab_mu, px, py, tol_p, newton, forcing)
         den = float(px @ px + py @ py)
         residual = math.sqrt(num / max(den, 1e-24 * gmax * gmax + 1e-300))
         if it <= history.shape[0]:
@@ -700,6 +747,26 @@ class _SlipProduct:
         self.hxx, self.hxy, self.hyy = hats
         self.mx, self.my = mx, my
         self.transposed = tuple(np.ascontiguousarray(k.T) for k in (bxx, bxy, byy))
+        self._inverses = {}
+
+    def line_inverses(self, lengths):
+        """Inverses of the line matrices (the Toeplitz kernel of offsets along x in the same
+        row, leading ``n x n`` block) for rows of the given lengths: ``(inv_x, inv_y,
+        row_index)`` with ``inv_x[row_index[r], :n, :n]`` for row r (cached per length)."""
+        tbxx, _, tbyy = self.transposed
+        for n in set(int(v) for v in lengths) - set(self._inverses):
+            idx = np.arange(n)
+            off = idx[None, :] - idx[:, None] + self.mx - 1
+            self._inverses[n] = (np.linalg.inv(tbxx[self.my - 1][off]),
+                                 np.linalg.inv(tbyy[self.my - 1][off]))
+        unique = sorted(set(int(v) for v in lengths))
+        nmax = max(unique)
+        inv_x = np.zeros((len(unique), nmax, nmax))
+        inv_y = np.zeros((len(unique), nmax, nmax))
+        for i, n in enumerate(unique):
+            inv_x[i, :n, :n], inv_y[i, :n, :n] = self._inverses[n]
+        row_index = np.searchsorted(unique, lengths).astype(np.int64)
+        return inv_x, inv_y, row_index
 
     def __call__(self, pxa, pya):
         fx = np.fft.rfft2(pxa, s=self.shape)
@@ -835,7 +902,8 @@ def _solve_grid(xi, eta, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio
         px = np.zeros(cix.shape[0])
         py = np.zeros(cix.shape[0])
     iters, residual = _sweep_solver(
-        cix, ciy, row_start, pnc, conv.transposed, mx, my, tab_s, tab_mu, px, py, tolerance,
+        cix, ciy, row_start, pnc, conv.transposed, conv.line_inverses(np.diff(row_start)), mx,
+        my, tab_s, tab_mu, px, py, tolerance,
         max_iterations, _MAX_NEWTON, _NEWTON_FORCING, _HISTORY,
         lambda: _slip(conv, px, py, cix, ciy, mx, my, wx, wy))
     sx, sy = _slip(conv, px, py, cix, ciy, mx, my, wx, wy)  # from scratch: no round-off
