@@ -1,21 +1,35 @@
 """Speed and accuracy of the 3-D exact steady rolling solver (railcontact.reference.rolling3d).
 
-Default: the accuracy-per-cost frontier. For each setting (a grid, or one Richardson step
+Default: the accuracy-per-cost frontier. For each setting (a grid, ``o2`` for the
+second-order difference of the rolling term ``transport_order=2``, or one Richardson step
 ``2 F(2 mx, my) - F(mx, my)`` whose fine grid starts from the prolongated coarse solution) the
 CPU time per case (``time.process_time``, one core) with the set-up (influence coefficients,
 normal problem: caches cleared) and with it cached for the contact, and the max and RMS error
 of (Fx, Fy) in % of mu N over the 21 cases of tests/data/contact_hertz3d_grid_convergence.csv
-against the converged exact theory, estimated by one Richardson step from CONTACT's 120x60 and
-240x60 rows (the error is first order in the rolling-direction element size; the solver
-reproduces CONTACT to 1e-7 of mu N on the same grid). CONTACT's points from the issue are
-printed beside (note: those are one case, a/b = 0.5, against CONTACT's finest grid, not over
-these 21 cases against the continuum).
+against two estimates of the converged exact theory: C, one Richardson step from CONTACT's
+120x60 and 240x60 rows (the solver reproduces CONTACT to 1e-7 of mu N on the same grid), and
+O, this solver with transport_order=2 on 160x80 and 240x80 (benchmarks/data/
+rolling3d_fine_reference.csv, ``--make-reference``). They agree to 0.04 % (a/b <= 1) and
+0.1 % (a/b = 5) without spin and differ by up to 0.33 % with spin, where neither is better
+than about 0.15 % (see the module docstring of reference.rolling3d). CONTACT's points from
+the issue are printed beside (those are one case, a/b = 0.5, against CONTACT's finest grid,
+timed on another machine, not over these 21 cases).
 
-Measured (shared 2-core machine, one core; ms cold / warm, max / RMS % mu N):
-20x10 15 / 1.8, 2.2 / 1.5; 40x20 27 / 17, 0.86 / 0.61; 80x40 334 / 298, 0.57 / 0.37;
-R 30x20->60x20 62 / 38, 0.45 / 0.19; R 40x20->80x20 95 / 63, 0.33 / 0.19.
+Measured (tolerance 1e-4; 2-core machine shared with a load of 6-7; ms cold / warm,
+max / rms % of mu N against C; against O):
+20x10 16 / 2.0, 2.19 / 1.55; 2.29 / 1.61
+40x20 17 / 8.6, 0.86 / 0.61; 0.93 / 0.66
+80x40 140 / 108, 0.57 / 0.37; 0.67 / 0.44
+R 30x20->60x20 37 / 16, 0.45 / 0.19; 0.22 / 0.13
+R 40x20->80x20 54 / 25, 0.33 / 0.19; 0.44 / 0.26
+o2 30x10 8.5 / 2.7, 1.08 / 0.41; 1.09 / 0.34
+o2 40x20 19 / 9.5, 1.46 / 0.55; 1.13 / 0.44
+o2 60x20 32 / 17, 0.71 / 0.23; 0.38 / 0.13
+o2 80x20 48 / 28, 0.63 / 0.21; 0.30 / 0.10
+o2 80x40 149 / 119, 0.52 / 0.20; 0.19 / 0.10
 
-Run:  python benchmarks/bench_rolling3d.py [--tolerance 1e-6]
+Run:  python benchmarks/bench_rolling3d.py [--tolerance 1e-4]
+      python benchmarks/bench_rolling3d.py --make-reference   (about 10 min CPU)
       python benchmarks/bench_rolling3d.py --detail [--repeat 3] [--cases all]
 (``--detail``: per case and grid, errors against CONTACT's 240x60 row.)
 """

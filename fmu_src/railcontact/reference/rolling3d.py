@@ -36,6 +36,30 @@ Method
   ``w = (xi - phi y, eta + phi (x + dx/6))`` (Nielsen (2.23)-(2.24); the spin term is taken
   ``dx/6`` upstream of the element centre because that reproduces CONTACT's published values to
   5e-6 of mu N, see ``spin_offset``; the offset is O(dx) and vanishes with grid refinement).
+  Option ``transport_order=2``: the three-point upwind difference
+  ``s_I = w_I + (3 u(x_I) - 4 u(x_I + dx) + u(x_I + 2 dx)) / (2 dx)``, centred on the element
+  centre (rigid slip at the centre, ``spin_offset = 0``), second order where the fields are
+  smooth -- the idea of Vollebregt and Wilders' FASTSIM2 (second-order integration along the
+  rolling direction) applied to the exact theory. Only the kernels change (one more offset);
+  the solver is the same. Measured over the 21 grid-convergence cases of CONTACT
+  (``benchmarks/bench_rolling3d.py``), max / RMS error in % of mu N against the converged
+  values estimated as this solver's ``transport_order=2`` on 160x80 and 240x80 (O; against the
+  Richardson value of CONTACT's rows in brackets): first order 40x20 0.93 / 0.66
+  (0.86 / 0.61), 80x40 0.67 / 0.44 (0.57 / 0.37); second order 40x20 1.13 / 0.44
+  (1.46 / 0.55), 60x20 0.38 / 0.13 (0.71 / 0.23), 70x20 0.72 / 0.38, 80x20 0.30 / 0.10
+  (0.63 / 0.21), 80x40 0.19 / 0.10 (0.52 / 0.20). So the same grid gives a smaller error on
+  average, but the error is not a clean power of the element size: at 40-80 elements along x
+  it is dominated by where the contact edge of the central rows falls inside its element
+  (+-0.1-0.4 % of mu N, changing sign from one grid to the next), which a Richardson step
+  amplifies instead of removing. Not the default: one Richardson step of the first-order
+  scheme, 30x20 -> 60x20, costs the same as second order at 60x20 and has the smaller
+  maximum (0.22 / 0.13 %, (0.45 / 0.19 %)).
+  Found on the way: the converged values of the spin cases are uncertain by about 0.15 % of
+  mu N. For a0 = b0, lateral creepage with Phi = 1, Fy / (mu N) at 120x40, 240x40, 480x40,
+  960x40 is -0.8811, -0.8804, -0.8796, -0.8795 (first order) and -0.8782 (240x40), -0.8784,
+  -0.8789 (second order): the two approach each other near -0.879, while the Richardson value
+  of CONTACT's 120x60 and 240x60 rows is -0.8803 (those rows are not yet in the asymptotic
+  range for spin) and the second-order 160x80 / 240x80 mean is -0.8776.
 * **Friction**: ``|p| <= g = mu pn``; ``s = 0`` where ``|p| < g`` (adhesion), else
   ``p = -g s/|s|`` (slip, traction opposes slip). ``mu`` is a constant (Coulomb) or a function of
   the slip magnitude ``|s|`` [-] (slip velocity over rolling speed).
@@ -48,9 +72,12 @@ Method
   line of elements along the rolling direction as one block it is 0.16 (0.26 at 30x28, 0.19 at
   64x20). So the blocks here are the lines along x (one per y-row), visited in turn; each line's
   frictional problem (all its elements, both traction components) is solved by a semismooth
-  Newton method on ``p = Proj_{|p| <= g}(p - rho s)`` with backtracking; after each line, the
-  slip of every element is corrected by the line's traction change (exact block
-  Gauss-Seidel). The sweeps start with one Newton step per line and sweep (cheap, and enough
+  Newton method on ``p = Proj_{|p| <= g}(p - rho s)`` with backtracking; each Newton system is
+  solved for ``v = R dp`` (R the line matrix, whose inverses are computed once per row length
+  and grid): the sticking elements' ``v`` is known at once, so only the slipping elements
+  enter a dense solve. The slip of all elements is computed by FFT before each sweep, and after
+  each line the slip of the lines still to be visited in the sweep is corrected by the line's
+  traction change (exact block Gauss-Seidel). The sweeps start with one Newton step per line and sweep (cheap, and enough
   while the sweeps contract); from the first sweep (after the third) that reduces the
   residual by less than a factor 0.8, every line is solved to convergence (Newton until the
   step is below a tenth of the line's first step or the absolute traction tolerance; at
@@ -599,16 +626,23 @@ def _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, inv_x, inv_y, row_
     num = 0.0
     dpx = np.empty(nc)
     dpy = np.empty(nc)
+    # the line matrices are leading blocks of one Toeplitz matrix (the kernel along x in the
+    # same row)
+    nmax = 0
+    for r in range(nrow):
+        nmax = max(nmax, row_start[r + 1] - row_start[r])
+    lin_x = np.empty((nmax, nmax))
+    lin_y = np.empty((nmax, nmax))
+    for k in range(nmax):
+        for m in range(nmax):
+            lin_x[k, m] = tbxx[my - 1, m - k + mx - 1]
+            lin_y[k, m] = tbyy[my - 1, m - k + mx - 1]
     for r in range(nrow):
         a = row_start[r]
         b = row_start[r + 1]
         n = b - a
-        rbx = np.empty((n, n))
-        rby = np.empty((n, n))
-        for k in range(n):
-            for m in range(n):
-                rbx[k, m] = tbxx[my - 1, m - k + mx - 1]
-                rby[k, m] = tbyy[my - 1, m - k + mx - 1]
+        rbx = lin_x[:n, :n]
+        rby = lin_y[:n, :n]
         e_x = np.empty(n)
         e_y = np.empty(n)
         qx = np.empty(n)
@@ -1017,9 +1051,11 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         Vollebregt and Wilders' FASTSIM2 (second-order integration along the rolling
         direction) applied to the exact theory. It converges to the same continuum (checked
         against CONTACT's converged values in the tests) with a much smaller error on the same
-        grid; the rest is dominated by where the contact edge falls inside its element, which
-        is not a smooth function of the grid. Measured over the 21 grid-convergence cases,
-        see the module docstring and ``benchmarks/bench_rolling3d.py``.
+        grid on average; the rest is dominated by where the contact edge falls inside its
+        element, which is not a smooth function of the grid (measured over the 21
+        grid-convergence cases: module docstring, ``benchmarks/bench_rolling3d.py``; e.g.
+        60x20 0.38 %, 70x20 0.72 %, 80x20 0.30 % of mu N max, against 0.93 % at 40x20 and
+        0.67 % at 80x40 with order 1). The cost per sweep is the same as order 1.
     sensitivities : bool
         Also compute ``d(tx, ty, mz)/d(xi, eta, phi)`` (``Rolling3DResult.sensitivity``) by
         solving the problem linearised at the converged slip/stick partition: one dense
