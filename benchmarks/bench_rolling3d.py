@@ -198,10 +198,12 @@ def frontier(tolerance=1e-4, settings=SETTINGS, cold=True):
                 fx = fy = 0.0
                 r = None
                 for (mx, my), w in zip(grids, weights):
-                    # the coarse grid's solution, prolongated, starts the fine grid
+                    # the first grid starts from a half-size solve (coarse_start), the
+                    # Richardson fine grid from the first grid's solution, prolongated: as
+                    # creep_force_3d(method="exact") does
                     r = solve_rolling_3d(**args, mx=mx, my=my, tolerance=tolerance,
                                          max_iterations=1000, initial_guess=r,
-                                         transport_order=order)
+                                         transport_order=order, coarse_start=r is None)
                     fx += w * r.tx / mu_n
                     fy += w * r.ty / mu_n
                     if _ == 1:

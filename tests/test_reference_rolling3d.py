@@ -568,3 +568,16 @@ def test_transport_order_is_checked():
     for bad in (0, 3, 1.5, "2", True):
         with pytest.raises(ValueError, match="transport_order must be 1 or 2"):
             solve_rolling_3d(1e-3, 0, 0, **case, transport_order=bad)
+
+
+def test_coarse_start_gives_the_same_solution_in_fewer_fine_sweeps():
+    case = _hertz_case(0.5)
+    mu_n = 0.3 * case["normal_load"]
+    for order in (1, 2):
+        cold = solve_rolling_3d(1e-3, 5e-4, 3.0, **case, mx=60, my=20, transport_order=order,
+                                tolerance=1e-9)
+        warm = solve_rolling_3d(1e-3, 5e-4, 3.0, **case, mx=60, my=20, transport_order=order,
+                                tolerance=1e-9, coarse_start=True)
+        assert warm.tx == pytest.approx(cold.tx, abs=1e-7 * mu_n)
+        assert warm.ty == pytest.approx(cold.ty, abs=1e-7 * mu_n)
+        assert warm.mz == pytest.approx(cold.mz, rel=1e-6)

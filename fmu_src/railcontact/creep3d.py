@@ -988,7 +988,7 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
         kw = dict(tolerance=tolerance, sensitivities=sensitivities,
                   transport_order=int(transport_order))
-        one = solve_rolling_3d(*similar, mx=mx, my=my, **kw)
+        one = solve_rolling_3d(*similar, mx=mx, my=my, coarse_start=True, **kw)
         fine = one
         if extrapolate:  # one Richardson step in the rolling-direction element size
             fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, initial_guess=one,

@@ -118,6 +118,7 @@ K.L. Johnson, Contact Mechanics, Cambridge 1985.
 from __future__ import annotations
 
 import math
+import dataclasses
 from dataclasses import dataclass, field
 from functools import lru_cache
 import warnings
@@ -788,21 +789,24 @@ class _SlipProduct:
     def line_inverses(self, lengths):
         """Inverses of the line matrices (the Toeplitz kernel of offsets along x in the same
         row, leading ``n x n`` block) for rows of the given lengths: ``(inv_x, inv_y,
-        row_index)`` with ``inv_x[row_index[r], :n, :n]`` for row r (cached per length)."""
-        tbxx, _, tbyy = self.transposed
-        for n in set(int(v) for v in lengths) - set(self._inverses):
-            idx = np.arange(n)
-            off = idx[None, :] - idx[:, None] + self.mx - 1
-            self._inverses[n] = (np.linalg.inv(tbxx[self.my - 1][off]),
-                                 np.linalg.inv(tbyy[self.my - 1][off]))
-        unique = sorted(set(int(v) for v in lengths))
-        nmax = max(unique)
-        inv_x = np.zeros((len(unique), nmax, nmax))
-        inv_y = np.zeros((len(unique), nmax, nmax))
-        for i, n in enumerate(unique):
-            inv_x[i, :n, :n], inv_y[i, :n, :n] = self._inverses[n]
-        row_index = np.searchsorted(unique, lengths).astype(np.int64)
-        return inv_x, inv_y, row_index
+        row_index)`` with ``inv_x[row_index[r], :n, :n]`` for row r. Cached (the rows of a
+        grid's contact are the same for every creepage); memory ``2 k n_max^2`` doubles for k
+        distinct row lengths (about 2 MB at 80x40)."""
+        key = tuple(int(v) for v in lengths)
+        if key not in self._inverses:
+            tbxx, _, tbyy = self.transposed
+            unique = sorted(set(key))
+            nmax = unique[-1]
+            inv_x = np.zeros((len(unique), nmax, nmax))
+            inv_y = np.zeros((len(unique), nmax, nmax))
+            for i, n in enumerate(unique):
+                idx = np.arange(n)
+                off = idx[None, :] - idx[:, None] + self.mx - 1
+                inv_x[i, :n, :n] = np.linalg.inv(tbxx[self.my - 1][off])
+                inv_y[i, :n, :n] = np.linalg.inv(tbyy[self.my - 1][off])
+            row_index = np.searchsorted(unique, key).astype(np.int64)
+            self._inverses = {key: (inv_x, inv_y, row_index)}  # one contact per grid
+        return self._inverses[key]
 
     def __call__(self, pxa, pya):
         # scipy's FFT: about 1.5x faster than numpy's at these sizes (measured, 120 x 40)
@@ -989,7 +993,7 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                      youngs_modulus, poisson_ratio, friction_coefficient, mx=40, my=20,
                      scale=1.08, tolerance=1e-6, max_iterations=500, richardson=False,
                      spin_offset=None, initial_guess=None, sensitivities=False,
-                     transport_order=1):
+                     transport_order=1, coarse_start=False):
     r"""Steady rolling of two quasi-identical elastic bodies: Kalker's exact theory, discretised.
 
     Solves the Hertzian normal problem numerically on the grid, then the frictional steady
@@ -1059,6 +1063,12 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         grid-convergence cases: module docstring, ``benchmarks/bench_rolling3d.py``; e.g.
         60x20 0.38 %, 70x20 0.72 %, 80x20 0.30 % of mu N max, against 0.93 % at 40x20 and
         0.67 % at 80x40 with order 1). The cost per sweep is the same as order 1.
+    coarse_start : bool
+        Without ``initial_guess``: first solve the case on ``(mx // 2, my // 2)`` to a relative
+        traction change of 1e-2 and start from its prolongated solution (measured: 9 instead
+        of 13 sweeps on the fine grid, 15 % less time per case at 60x20). Only the number of
+        sweeps changes, not the converged solution (to the tolerance). ``iterations`` then
+        counts the sweeps of both grids.
     sensitivities : bool
         Also compute ``d(tx, ty, mz)/d(xi, eta, phi)`` (``Rolling3DResult.sensitivity``) by
         solving the problem linearised at the converged slip/stick partition: one dense
@@ -1119,8 +1129,20 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     if spin_offset is None:
         spin_offset = 1.0 / 6.0 if transport_order == 1 else 0.0
     spin_offset = float(check_range("spin_offset", spin_offset, "-", -1.0, 1.0))
+    start, start_sweeps = initial_guess, 0
+    if coarse_start and initial_guess is None and mx >= 16 and my >= 8:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # a coarse grid may touch the edge
+            try:
+                start = _solve_grid(*args, mx // 2, my // 2, scale, max(tolerance, 1e-2),
+                                    max_iterations, spin_offset, None, False, transport_order)
+                start_sweeps = start.iterations
+            except (RollingConvergenceError, ValueError):  # pragma: no cover - defensive
+                start = None
     coarse = _solve_grid(*args, mx, my, scale, tolerance, max_iterations, spin_offset,
-                         initial_guess, sensitivities, transport_order)
+                         start, sensitivities, transport_order)
+    if start_sweeps:
+        coarse = dataclasses.replace(coarse, iterations=coarse.iterations + start_sweeps)
     if not richardson:
         return coarse
     # the coarse solution, prolongated, starts the fine grid
