@@ -8,28 +8,31 @@ normal problem: caches cleared) and with it cached for the contact, and the max 
 of (Fx, Fy) in % of mu N over the 21 cases of tests/data/contact_hertz3d_grid_convergence.csv
 against two estimates of the converged exact theory: C, one Richardson step from CONTACT's
 120x60 and 240x60 rows (the solver reproduces CONTACT to 1e-7 of mu N on the same grid), and
-O, this solver with transport_order=2 on 160x80 and 240x80 (benchmarks/data/
-rolling3d_fine_reference.csv, ``--make-reference``). They agree to 0.04 % (a/b <= 1) and
-0.1 % (a/b = 5) without spin and differ by up to 0.33 % with spin, where neither is better
-than about 0.15 % (see the module docstring of reference.rolling3d). CONTACT's points from
-the issue are printed beside (those are one case, a/b = 0.5, against CONTACT's finest grid,
-timed on another machine, not over these 21 cases).
+O, this solver on fine grids (benchmarks/data/rolling3d_fine_reference.csv,
+``--make-reference``): the mean of transport_order=2 on 160x80 and 240x80, and for the six
+cases with spin and creepage, which converge slowly, the mean of orders 1 and 2 on 960x60
+(they approach each other from both sides; their difference there is the ``spread`` column).
+C and O agree to 0.13 % (0.04 % for a/b <= 1 without spin). CONTACT's points from the issue
+are printed beside (those are one case, a/b = 0.5, against CONTACT's finest grid, timed on
+another machine, not over these 21 cases).
 
-Measured (tolerance 1e-4; 2-core machine shared with a load of 6-7; ms cold / warm,
+Measured (tolerance 1e-4; 2-core machine shared with a load of 5-7; ms cold / warm,
 max / rms % of mu N against C; against O):
-20x10 16 / 2.0, 2.19 / 1.55; 2.29 / 1.61
-40x20 17 / 8.6, 0.86 / 0.61; 0.93 / 0.66
-80x40 140 / 108, 0.57 / 0.37; 0.67 / 0.44
-R 30x20->60x20 37 / 16, 0.45 / 0.19; 0.22 / 0.13
-R 40x20->80x20 54 / 25, 0.33 / 0.19; 0.44 / 0.26
-o2 30x10 8.5 / 2.7, 1.08 / 0.41; 1.09 / 0.34
-o2 40x20 19 / 9.5, 1.46 / 0.55; 1.13 / 0.44
-o2 60x20 32 / 17, 0.71 / 0.23; 0.38 / 0.13
-o2 80x20 48 / 28, 0.63 / 0.21; 0.30 / 0.10
-o2 80x40 149 / 119, 0.52 / 0.20; 0.19 / 0.10
+20x10 15 / 1.8, 2.19 / 1.55; 2.29 / 1.58
+40x20 20 / 7.0, 0.86 / 0.61; 0.93 / 0.64
+80x40 96 / 59, 0.57 / 0.37; 0.67 / 0.41
+R 30x20->60x20 34 / 14, 0.45 / 0.19; 0.34 / 0.16
+R 40x20->80x20 52 / 22, 0.33 / 0.19; 0.44 / 0.22
+o2 20x10 5.6 / 1.7, 1.99 / 0.75; 1.86 / 0.71
+o2 30x10 7.6 / 2.3, 1.08 / 0.41; 1.09 / 0.37
+o2 40x20 20 / 7.3, 1.46 / 0.55; 1.33 / 0.50
+o2 50x20 25 / 9.8, 1.02 / 0.42; 0.89 / 0.38
+o2 60x20 31 / 13, 0.71 / 0.23; 0.58 / 0.19
+o2 80x20 46 / 22, 0.63 / 0.21; 0.50 / 0.17
+o2 80x40 111 / 73, 0.52 / 0.20; 0.39 / 0.16
 
 Run:  python benchmarks/bench_rolling3d.py [--tolerance 1e-4]
-      python benchmarks/bench_rolling3d.py --make-reference   (about 10 min CPU)
+      python benchmarks/bench_rolling3d.py --make-reference   (about 30 min CPU)
       python benchmarks/bench_rolling3d.py --detail [--repeat 3] [--cases all]
 (``--detail``: per case and grid, errors against CONTACT's 240x60 row.)
 """
@@ -99,10 +102,13 @@ SETTINGS = [
     ("o2 80x40", [(80, 40)], [1.0], 2),
 ]
 
-#: own converged values (tests/data is for published data; these are this solver's):
-#: transport_order=2 on 160x80 and 240x80 (scale 1.08), mean of both; see --make-reference
+#: own converged values (tests/data is for published data; these are this solver's): the
+#: mean of transport_order=2 on 160x80 and 240x80 (scale 1.08); for the cases with spin and
+#: creepage ("Phi1"), which converge slowly, the mean of transport_order=1 and 2 on 960x60
+#: (the two approach each other from both sides); see --make-reference
 OWN_REFERENCE = Path(__file__).resolve().parent / "data" / "rolling3d_fine_reference.csv"
-OWN_REFERENCE_GRIDS = [(160, 80), (240, 80)]
+OWN_REFERENCE_GRIDS = [(160, 80, 2), (240, 80, 2)]
+OWN_REFERENCE_GRIDS_SPIN = [(960, 60, 1), (960, 60, 2)]
 
 
 def _converged_reference():
@@ -134,6 +140,17 @@ def _own_reference():
                                          float(r["spread"])) for r in rows}
 
 
+_OWN_REFERENCE_HEADER = (
+    "# Converged values of the 21 cases of tests/data/contact_hertz3d_grid_convergence.csv "
+    "computed by this project's solver\n# (reference.rolling3d.solve_rolling_3d, scale 1.08, "
+    "tolerance {tolerance:g}): the mean of transport_order=2 on 160x80 and 240x80;\n# for the "
+    "six cases with spin and creepage (Phi1) the mean of transport_order=1 and 2 on 960x60 "
+    "(they converge slowly, from both sides).\n# spread = max difference between the two "
+    "solutions averaged (units of mu N). contact_fx, contact_fy: Richardson of CONTACT's "
+    "120x60\n# and 240x60 rows, for comparison. Regenerate: python benchmarks/"
+    "bench_rolling3d.py --make-reference (about 30 min CPU)\n")
+
+
 def make_reference(tolerance=1e-7):
     """Solve the 21 cases with transport_order=2 on OWN_REFERENCE_GRIDS; write OWN_REFERENCE
     (the mean of the grids; ``spread`` = max |difference| between them, units of mu N)."""
@@ -144,9 +161,10 @@ def make_reference(tolerance=1e-7):
         args = _args(row)
         mu_n = args["friction_coefficient"] * args["normal_load"]
         vals = []
-        for mx, my in OWN_REFERENCE_GRIDS:
-            r = solve_rolling_3d(**args, mx=mx, my=my, transport_order=2, tolerance=tolerance,
-                                 max_iterations=3000)
+        grids = OWN_REFERENCE_GRIDS_SPIN if "Phi1" in row["case"] else OWN_REFERENCE_GRIDS
+        for mx, my, order in grids:
+            r = solve_rolling_3d(**args, mx=mx, my=my, transport_order=order,
+                                 tolerance=tolerance, max_iterations=3000)
             vals.append((r.tx / mu_n, r.ty / mu_n))
         vals = np.array(vals)
         fx, fy = vals.mean(axis=0)
@@ -154,14 +172,8 @@ def make_reference(tolerance=1e-7):
         lines.append(f"{row['a_over_b']},{row['case']},{fx:.6f},{fy:.6f},{spread:.6f},"
                      f"{fx_c:.6f},{fy_c:.6f}")
         print(lines[-1], flush=True)
-    grids = " and ".join(f"{mx}x{my}" for mx, my in OWN_REFERENCE_GRIDS)
     with open(OWN_REFERENCE, "w") as fh:
-        fh.write(f"# Converged values of the 21 cases of tests/data/contact_hertz3d_grid_convergence.csv"
-                 f" computed by this project's solver\n# (reference.rolling3d.solve_rolling_3d, "
-                 f"transport_order=2, scale 1.08, tolerance {tolerance:g}): mean of {grids};\n"
-                 f"# spread = max difference between the grids (units of mu N). contact_fx, "
-                 f"contact_fy: Richardson of CONTACT's 120x60 and\n# 240x60 rows, for comparison."
-                 f" Regenerate: python benchmarks/bench_rolling3d.py --make-reference\n")
+        fh.write(_OWN_REFERENCE_HEADER.format(tolerance=tolerance))
         fh.write("a_over_b,case,fx_over_mu_fn,fy_over_mu_fn,spread,contact_fx,contact_fy\n")
         fh.write("\n".join(lines) + "\n")
 
@@ -180,7 +192,8 @@ def frontier(tolerance=1e-4, settings=SETTINGS, cold=True):
           f"tolerance {tolerance:g}; CPU ms per case with the set-up (influence coefficients, "
           f"normal problem) and with it cached for the contact (warm)")
     print("reference C: Richardson of CONTACT's 120x60 and 240x60 rows; reference O: this "
-          "solver, transport_order=2, mean of 160x80 and 240x80" + ("" if own else " (missing)"))
+          "solver's fine grids (order 2 on 160x80 and 240x80; spin with creepage: orders 1 and "
+          "2 on 960x60)" + ("" if own else " (missing)"))
     print(f"{'setting':<16} {'ms/case':>8} {'ms warm':>8} {'C max %':>8} {'C rms %':>8}"
           f" {'O max %':>8} {'O rms %':>8} {'sweeps':>7}")
     for label, grids, weights, order in settings:
@@ -236,7 +249,7 @@ def main():
     parser.add_argument("--tolerance", type=float, default=1e-4,
                         help="relative traction change per sweep at which to stop")
     parser.add_argument("--make-reference", action="store_true",
-                        help="recompute the own converged values (about 10 min CPU)")
+                        help="recompute the own converged values (about 30 min CPU)")
     parser.add_argument("--detail", action="store_true",
                         help="per case and grid table instead of the frontier")
     opts = parser.parse_args()

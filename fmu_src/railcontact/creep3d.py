@@ -457,19 +457,20 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         order in the rolling-direction element size. Measured on one core over CONTACT's 21
         grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined creepage,
         spin up to pure spin; ``benchmarks/bench_rolling3d.py``, tolerance 1e-4, 2-core machine
-        under a load of 6-7), ms per case with the set-up (influence coefficients, normal
+        under a load of 5-7), ms per case with the set-up (influence coefficients, normal
         problem) / with it cached for the contact, and the error max / RMS in % of mu N
-        against two estimates of the converged exact theory, C (Richardson of CONTACT's 120x60
-        and 240x60) and O (this solver, ``transport_order=2``, 160x80 and 240x80); they differ
-        by up to 0.33 % on the spin cases, so neither is better than about 0.15 % there:
-        (20, 10) 16 / 2 ms, C 2.2 / 1.5 %, O 2.3 / 1.6 %; (40, 20) (default) 17 / 9 ms,
-        C 0.86 / 0.61 %, O 0.93 / 0.66 %; (80, 40) 140 / 108 ms, C 0.57 / 0.37 %, O 0.67 / 0.44 %.
+        against two estimates of the converged exact theory that agree to 0.13 %: O, this
+        solver on fine grids, and C, the Richardson value of CONTACT's 120x60 and 240x60 rows:
+        (20, 10) 15 / 1.8 ms, O 2.3 / 1.6 %, C 2.2 / 1.5 %; (40, 20) (default) 20 / 7 ms,
+        O 0.93 / 0.64 %, C 0.86 / 0.61 %; (80, 40) 96 / 59 ms, O 0.67 / 0.41 %,
+        C 0.57 / 0.37 %. From 32 x 16 elements the grid starts from a solve on half the
+        elements (``coarse_start`` of the solver).
     extrapolate : bool, keyword-only
         ``method="exact"`` only: one Richardson step in the rolling direction,
         ``2 F(2 mx, my) - F(mx, my)``, the fine grid started from the coarse solution. With
-        ``grid=(30, 20)``: 37 / 16 ms per case, C 0.45 / 0.19 %, O 0.22 / 0.13 % (the best
-        setting measured at this cost); with ``grid=(40, 20)``: 54 / 25 ms, C 0.33 / 0.19 %,
-        O 0.44 / 0.26 % (the contact-edge part of the error does not halve with the grid, and
+        ``grid=(30, 20)``: 34 / 14 ms per case, O 0.34 / 0.16 %, C 0.45 / 0.19 % (the best
+        maximum measured at this cost); with ``grid=(40, 20)``: 52 / 22 ms, O 0.44 / 0.22 %,
+        C 0.33 / 0.19 % (the contact-edge part of the error does not halve with the grid, and
         the extrapolation amplifies it).
     tolerance : float, keyword-only
         ``method="exact"`` only: relative change of the tractions per Gauss-Seidel sweep at
@@ -480,10 +481,11 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         ``method="exact"`` only: difference of the rolling term, 1 (Kalker's and CONTACT's
         first-order upwind difference, default) or 2 (three-point upwind difference, see
         :func:`railcontact.reference.rolling3d.solve_rolling_3d`). Same continuum; on the same
-        grid a smaller error on average but not at every grid (the rest depends on where the
-        contact edge falls inside its element): grid (60, 20) 32 / 17 ms, C 0.71 / 0.23 %,
-        O 0.38 / 0.13 %; (80, 20) 48 / 28 ms, C 0.63 / 0.21 %, O 0.30 / 0.10 %; (80, 40)
-        149 / 119 ms, C 0.52 / 0.20 %, O 0.19 / 0.10 %; (70, 20): O 0.72 / 0.38 %. [-]
+        grid a smaller RMS error but not a smaller maximum (the rest depends on where the
+        contact edge falls inside its element, and lateral creepage with spin has a large
+        second-order error): grid (40, 20) 20 / 7 ms, O 1.33 / 0.50 %; (60, 20) 31 / 13 ms,
+        O 0.58 / 0.19 %, C 0.71 / 0.23 %; (80, 20) 46 / 22 ms, O 0.50 / 0.17 %,
+        C 0.63 / 0.21 %; (80, 40) 111 / 73 ms, O 0.39 / 0.16 %, C 0.52 / 0.20 %. [-]
     **method_options
         Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
         (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,

@@ -42,24 +42,26 @@ Method
   smooth -- the idea of Vollebregt and Wilders' FASTSIM2 (second-order integration along the
   rolling direction) applied to the exact theory. Only the kernels change (one more offset);
   the solver is the same. Measured over the 21 grid-convergence cases of CONTACT
-  (``benchmarks/bench_rolling3d.py``), max / RMS error in % of mu N against the converged
-  values estimated as this solver's ``transport_order=2`` on 160x80 and 240x80 (O; against the
-  Richardson value of CONTACT's rows in brackets): first order 40x20 0.93 / 0.66
-  (0.86 / 0.61), 80x40 0.67 / 0.44 (0.57 / 0.37); second order 40x20 1.13 / 0.44
-  (1.46 / 0.55), 60x20 0.38 / 0.13 (0.71 / 0.23), 70x20 0.72 / 0.38, 80x20 0.30 / 0.10
-  (0.63 / 0.21), 80x40 0.19 / 0.10 (0.52 / 0.20). So the same grid gives a smaller error on
-  average, but the error is not a clean power of the element size: at 40-80 elements along x
-  it is dominated by where the contact edge of the central rows falls inside its element
-  (+-0.1-0.4 % of mu N, changing sign from one grid to the next), which a Richardson step
-  amplifies instead of removing. Not the default: one Richardson step of the first-order
-  scheme, 30x20 -> 60x20, costs the same as second order at 60x20 and has the smaller
-  maximum (0.22 / 0.13 %, (0.45 / 0.19 %)).
-  Found on the way: the converged values of the spin cases are uncertain by about 0.15 % of
-  mu N. For a0 = b0, lateral creepage with Phi = 1, Fy / (mu N) at 120x40, 240x40, 480x40,
-  960x40 is -0.8811, -0.8804, -0.8796, -0.8795 (first order) and -0.8782 (240x40), -0.8784,
-  -0.8789 (second order): the two approach each other near -0.879, while the Richardson value
-  of CONTACT's 120x60 and 240x60 rows is -0.8803 (those rows are not yet in the asymptotic
-  range for spin) and the second-order 160x80 / 240x80 mean is -0.8776.
+  (``benchmarks/bench_rolling3d.py``), max / RMS error in % of mu N against converged values
+  from this solver's fine grids (O: order 2 on 160x80 and 240x80; for the six cases with spin
+  and creepage, which converge slowly, the mean of orders 1 and 2 on 960x60, which differ by
+  0.04-0.05 % there) and, in brackets, against the Richardson value of CONTACT's 120x60 and
+  240x60 rows (C; C and O agree to 0.13 %): first order 40x20 0.93 / 0.64 (0.86 / 0.61);
+  second order 40x20 1.33 / 0.50 (1.46 / 0.55), 60x20 0.58 / 0.19 (0.71 / 0.23), 70x20
+  0.92 / 0.44, 80x20 0.50 / 0.17 (0.63 / 0.21), 80x40 0.39 / 0.16 (0.52 / 0.20). So the same
+  grid gives a smaller error on average, but not a smaller maximum, and the error is not a
+  clean power of the element size: (1) where the contact edge of the central rows falls
+  inside its element shifts it by +-0.1-0.4 % of mu N from one grid to the next (measured by
+  changing ``scale`` at 40x40: about 0 to 0.55 %), which a Richardson step amplifies instead of
+  removing; (2) lateral creepage with spin (Phi = 1) converges as the square of the element
+  size but with a large constant (a0 = b0, 40 lateral elements: about 0.95, 0.31, 0.09 % at
+  40, 80, 160 elements along x), and dominates the maximum. Not the default for these reasons: one Richardson step of
+  the first-order scheme, 30x20 -> 60x20, costs the same as second order at 60x20 and has the
+  smaller maximum (0.34 / 0.16 %, (0.45 / 0.19 %)).
+  Spin cases converge slowly with either difference: for a0 = b0, lateral creepage with
+  Phi = 1, Fy / (mu N) at 120x40, 240x40, 480x40, 960x40 is -0.8811, -0.8804, -0.8796,
+  -0.8795 (first order) and -0.8782 (240x40), -0.8784, -0.8789 (second order); at 960x60
+  -0.8797 and -0.8792. The Richardson value of CONTACT's rows is -0.8803.
 * **Friction**: ``|p| <= g = mu pn``; ``s = 0`` where ``|p| < g`` (adhesion), else
   ``p = -g s/|s|`` (slip, traction opposes slip). ``mu`` is a constant (Coulomb) or a function of
   the slip magnitude ``|s|`` [-] (slip velocity over rolling speed).
@@ -77,7 +79,8 @@ Method
   and grid): the sticking elements' ``v`` is known at once, so only the slipping elements
   enter a dense solve. The slip of all elements is computed by FFT before each sweep, and after
   each line the slip of the lines still to be visited in the sweep is corrected by the line's
-  traction change (exact block Gauss-Seidel). The sweeps start with one Newton step per line and sweep (cheap, and enough
+  traction change (exact block Gauss-Seidel).
+  The sweeps start with one Newton step per line and sweep (cheap, and enough
   while the sweeps contract); from the first sweep (after the third) that reduces the
   residual by less than a factor 0.8, every line is solved to convergence (Newton until the
   step is below a tenth of the line's first step or the absolute traction tolerance; at
@@ -1058,11 +1061,13 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
         Vollebregt and Wilders' FASTSIM2 (second-order integration along the rolling
         direction) applied to the exact theory. It converges to the same continuum (checked
         against CONTACT's converged values in the tests) with a much smaller error on the same
-        grid on average; the rest is dominated by where the contact edge falls inside its
-        element, which is not a smooth function of the grid (measured over the 21
-        grid-convergence cases: module docstring, ``benchmarks/bench_rolling3d.py``; e.g.
-        60x20 0.38 %, 70x20 0.72 %, 80x20 0.30 % of mu N max, against 0.93 % at 40x20 and
-        0.67 % at 80x40 with order 1). The cost per sweep is the same as order 1.
+        grid on average, not a smaller maximum: the rest depends on where the contact edge
+        falls inside its element, which is not a smooth function of the grid, and lateral
+        creepage with spin has a large second-order error (measured over the 21
+        grid-convergence cases: module docstring, ``benchmarks/bench_rolling3d.py``; max /
+        RMS % of mu N: 40x20 1.33 / 0.50, 60x20 0.58 / 0.19, 70x20 0.92 / 0.44, 80x20
+        0.50 / 0.17, against 0.93 / 0.64 at 40x20 with order 1). The cost per sweep is the
+        same as order 1.
     coarse_start : bool
         Without ``initial_guess`` and for ``mx >= 32``, ``my >= 16``: first solve the case on
         ``(mx // 2, my // 2)`` to a relative traction change of 1e-2 and start from its
