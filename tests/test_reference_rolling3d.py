@@ -581,3 +581,22 @@ def test_coarse_start_gives_the_same_solution_in_fewer_fine_sweeps():
         assert warm.tx == pytest.approx(cold.tx, abs=1e-7 * mu_n)
         assert warm.ty == pytest.approx(cold.ty, abs=1e-7 * mu_n)
         assert warm.mz == pytest.approx(cold.mz, rel=1e-6)
+
+
+def test_second_order_transport_sensitivities_match_central_differences():
+    # the linearised problem uses the order-2 kernels and spin offset 0 as well
+    case = dict(normal_load=1e5, a0=6e-3, b0=6e-3, youngs_modulus=E, poisson_ratio=NU,
+                friction_coefficient=0.3, mx=30, my=20, transport_order=2)
+    creepages = (1e-3, 5e-4, 0.5)
+    r = solve_rolling_3d(*creepages, **case, sensitivities=True, tolerance=1e-10)
+    fd = np.zeros((3, 3))
+    for j, h in enumerate((1e-7, 1e-7, 1e-4)):
+        up, down = list(creepages), list(creepages)
+        up[j] += h
+        down[j] -= h
+        rp = solve_rolling_3d(*up, **case, tolerance=1e-10)
+        rm = solve_rolling_3d(*down, **case, tolerance=1e-10)
+        fd[:, j] = [(rp.tx - rm.tx) / (2 * h), (rp.ty - rm.ty) / (2 * h),
+                    (rp.mz - rm.mz) / (2 * h)]
+    scale_col = np.abs(fd).max(axis=0)
+    assert np.all(np.abs(r.sensitivity - fd) <= 2e-4 * scale_col)
