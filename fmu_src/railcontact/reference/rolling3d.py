@@ -120,8 +120,8 @@ K.L. Johnson, Contact Mechanics, Cambridge 1985.
 
 from __future__ import annotations
 
-import math
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 import warnings
