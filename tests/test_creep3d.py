@@ -613,6 +613,24 @@ def test_exact_bad_input_names_parameter():
         creep_force_3d(1e-3, 0.0, 0.0, *rest, method="exact", tolerance=0.0)
     with pytest.raises(ValueError, match="need method='exact'"):
         creep_solution_3d(1e-3, 0.0, 0.0, *rest, sensitivities=True)
+    with pytest.raises(ValueError, match="transport_order must be 1 or 2"):
+        creep_force_3d(1e-3, 0.0, 0.0, *rest, method="exact", transport_order=3)
+
+
+def test_exact_second_order_transport_against_converged_theory():
+    # transport_order=2 reaches the solver's option; at (80, 20) its error against the
+    # Richardson value of CONTACT's rows is a fraction of the first-order one (measured,
+    # % of mu N, order 2 / order 1: long k1 a/b = 1 0.06 / 0.55; comb k1 a/b = 0.2
+    # 0.05 / 0.36)
+    for a_over_b, case in (("1", "long k1"), ("0.2", "comb k1")):
+        row, (fx, fy) = _converged(a_over_b, case)
+        args = _row_inputs(row)
+        mu_n = args[3] * args[8]
+        second = creep_force_3d(*args, method="exact", grid=(80, 20), transport_order=2)
+        first = creep_force_3d(*args, method="exact", grid=(80, 20))
+        err2 = max(abs(second.tx / mu_n - fx), abs(second.ty / mu_n - fy))
+        err1 = max(abs(first.tx / mu_n - fx), abs(first.ty / mu_n - fy))
+        assert err2 < 0.004 and err2 < 0.5 * err1
 
 
 def test_exact_extreme_magnitudes_give_a_finite_answer_or_a_value_error():

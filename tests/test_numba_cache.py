@@ -16,7 +16,7 @@ PACKAGE = Path(rolling3d.__file__).resolve().parent.parent
 
 def test_package_functions_cache_in_the_user_directory(tmp_path, monkeypatch):
     monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
-    py_func = rolling3d._sweep_solver.py_func
+    py_func = rolling3d._sweep.py_func
     locator = _numba_cache.RailcontactCacheLocator.from_function(py_func, rolling3d.__file__)
     path = Path(locator.get_cache_path())
     assert path.parent == tmp_path / "numba" and path.name.startswith("railcontact.reference.rolling3d-")
@@ -41,7 +41,7 @@ def test_fresh_extraction_loads_the_cache(tmp_path):
               "from railcontact.reference import rolling3d as r\n"
               "rc.creep_force_3d(1e-3, 0, 0.5, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3, "
               "method='exact')\n"
-              "print(sum(r._sweep_solver.stats.cache_hits.values()))\n")
+              "print(sum(r._sweep.stats.cache_hits.values()))\n")
     env = dict(os.environ, RAILCONTACT_CACHE_DIR=str(tmp_path / "cache"),
                OPENBLAS_NUM_THREADS="1")
     env.pop("NUMBA_CACHE_DIR", None)

@@ -89,6 +89,7 @@ __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
 
 METHODS = ("linear", "she", "strip", "modified_strip")
 EXACT_DEFAULT_GRID = (40, 20)  # method="exact": elements (rolling, lateral); see creep_force_3d
+EXACT_DEFAULT_TRANSPORT_ORDER = 1  # method="exact": difference of the rolling term; ditto
 # Methods users compare against, each in its own module (railcontact.fastsim, railcontact.polach);
 # creep_force_3d and creep_solution_3d dispatch to them by name.
 COMPARISON_METHODS = ("fastsim", "polach", "fastrip")
@@ -367,7 +368,7 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
                    *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-4,
-                   **method_options):
+                   transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -408,22 +409,36 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]``; the accuracy knob. The error is first
         order in the rolling-direction element size. Measured on one core over CONTACT's 21
         grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined creepage,
-        spin up to pure spin), against the converged exact theory (Richardson of CONTACT's
-        120x60 and 240x60; ``benchmarks/bench_rolling3d.py``), ms per case with the
-        set-up (influence coefficients, normal problem) / with it cached for the contact,
-        error max / RMS in % of mu N: (20, 10) 15 / 2 ms, 2.2 / 1.5 %; (40, 20) (default)
-        27 / 17 ms, 0.86 / 0.61 %; (80, 40) 330 / 300 ms, 0.57 / 0.37 %.
+        spin up to pure spin; ``benchmarks/bench_rolling3d.py``, tolerance 1e-4, 2-core machine
+        under a load of 5-7), ms per case with the set-up (influence coefficients, normal
+        problem) / with it cached for the contact, and the error max / RMS in % of mu N
+        against two estimates of the converged exact theory that agree to 0.13 %: O, this
+        solver on fine grids, and C, the Richardson value of CONTACT's 120x60 and 240x60 rows:
+        (20, 10) 15 / 1.8 ms, O 2.3 / 1.6 %, C 2.2 / 1.5 %; (40, 20) (default) 20 / 7 ms,
+        O 0.93 / 0.64 %, C 0.86 / 0.61 %; (80, 40) 96 / 59 ms, O 0.67 / 0.41 %,
+        C 0.57 / 0.37 %. From 32 x 16 elements the grid starts from a solve on half the
+        elements (``coarse_start`` of the solver).
     extrapolate : bool, keyword-only
         ``method="exact"`` only: one Richardson step in the rolling direction,
         ``2 F(2 mx, my) - F(mx, my)``, the fine grid started from the coarse solution. With
-        ``grid=(40, 20)``: 95 / 63 ms per case, 0.33 / 0.19 % of mu N (max / RMS); with
-        ``grid=(30, 20)``: 62 / 38 ms, 0.45 / 0.19 %.
+        ``grid=(30, 20)``: 34 / 14 ms per case, O 0.34 / 0.16 %, C 0.45 / 0.19 % (the best
+        maximum measured at this cost); with ``grid=(40, 20)``: 52 / 22 ms, O 0.44 / 0.22 %,
+        C 0.33 / 0.19 % (the contact-edge part of the error does not halve with the grid, and
+        the extrapolation amplifies it).
     tolerance : float, keyword-only
         ``method="exact"`` only: relative change of the tractions per Gauss-Seidel sweep at
         which the iteration stops, in (0, 0.1]. The default 1e-4 changes the forces by at most
         5e-6 of mu N against 1e-8 (measured on the 21 cases at 40x20 and 80x20) and saves
-        about 30 % of the time against 1e-6; the times quoted above are for 1e-6 (at 1e-4:
-        (40, 20) 23 / 13 ms; extrapolated (30, 20) 49 / 24 ms, (40, 20) 73 / 41 ms). [-]
+        about 30 % of the time against 1e-6. [-]
+    transport_order : {1, 2}, keyword-only
+        ``method="exact"`` only: difference of the rolling term, 1 (Kalker's and CONTACT's
+        first-order upwind difference, default) or 2 (three-point upwind difference, see
+        :func:`railcontact.reference.rolling3d.solve_rolling_3d`). Same continuum; on the same
+        grid a smaller RMS error but not a smaller maximum (the rest depends on where the
+        contact edge falls inside its element, and lateral creepage with spin has a large
+        second-order error): grid (40, 20) 20 / 7 ms, O 1.33 / 0.50 %; (60, 20) 31 / 13 ms,
+        O 0.58 / 0.19 %, C 0.71 / 0.23 %; (80, 20) 46 / 22 ms, O 0.50 / 0.17 %,
+        C 0.63 / 0.21 %; (80, 40) 111 / 73 ms, O 0.39 / 0.16 %, C 0.52 / 0.20 %. [-]
     **method_options
         Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
         (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
@@ -464,7 +479,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                            extrapolate, tolerance)
+                            extrapolate, tolerance, transport_order)
     tx, ty = _solve(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, method)[:2]
     return CreepForce3D(tx[()], ty[()])
@@ -639,7 +654,8 @@ def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
                       method="modified_strip", *, grid=EXACT_DEFAULT_GRID, extrapolate=False,
-                      tolerance=1e-4, sensitivities=False, fields=False, **method_options):
+                      tolerance=1e-4, sensitivities=False, fields=False,
+                      transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -703,7 +719,7 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     if method == "exact":
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                               extrapolate, sensitivities, fields, tolerance)
+                               extrapolate, sensitivities, fields, tolerance, transport_order)
     if sensitivities or fields:
         raise ValueError(f"sensitivities and fields need method='exact'; got method={method!r}")
     (tx, ty, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0) = _solve(
@@ -870,7 +886,7 @@ def _check_exact_grid(grid):
 
 def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
            poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-           tolerance):
+           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER):
     """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`."""
     from .reference.rolling3d import solve_rolling_3d
 
@@ -879,6 +895,9 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         poisson_ratio, friction_coefficient, creepage_bound=1.0)
     mx, my = _check_exact_grid(grid)
     tolerance = float(check_range("tolerance", tolerance, "-", 0.0, 0.1, lower_closed=False))
+    if transport_order not in (1, 2) or isinstance(transport_order, bool):
+        raise ValueError(f"transport_order must be 1 or 2 [-] (first- or second-order upwind "
+                         f"difference of the rolling term); got {transport_order!r}")
     sim = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, "exact")
     args = np.broadcast_arrays(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
     shape = args[0].shape
@@ -892,8 +911,9 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
-        kw = dict(tolerance=tolerance, sensitivities=sensitivities)
-        one = solve_rolling_3d(*similar, mx=mx, my=my, **kw)
+        kw = dict(tolerance=tolerance, sensitivities=sensitivities,
+                  transport_order=int(transport_order))
+        one = solve_rolling_3d(*similar, mx=mx, my=my, coarse_start=True, **kw)
         fine = one
         if extrapolate:  # one Richardson step in the rolling-direction element size
             fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, initial_guess=one,
@@ -930,20 +950,20 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
 
 def _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                 tolerance):
+                 tolerance, transport_order):
     out = _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate, False,
-                 False, tolerance)
+                 False, tolerance, transport_order)
     return CreepForce3D(out[0][()], out[1][()])
 
 
 def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                    sensitivities, fields, tolerance):
+                    sensitivities, fields, tolerance, transport_order):
     tx, ty, mz, stick, width, sens, res, iters, checked = _exact(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-        tolerance)
+        tolerance, transport_order)
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = checked
     z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu),
                         tx.shape)
