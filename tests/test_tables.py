@@ -128,7 +128,9 @@ def test_shipped_tables_exist():
     names = {p.stem for p in SHIPPED}
     assert "creep_modified_strip" in names
     for p in SHIPPED:
-        assert p.stat().st_size < 2_000_000, p  # keep the shipped tables small
+        # keep the shipped tables small: 2 MB each, the 5-D exact creep table 20 MB (issue 16)
+        limit = 20_000_000 if p.stem == "creep_exact" else 2_000_000
+        assert p.stat().st_size < limit, p
 
 
 @pytest.mark.parametrize("path", SHIPPED, ids=[p.stem for p in SHIPPED])
