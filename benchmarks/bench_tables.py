@@ -88,7 +88,7 @@ def exact_lookups(args):
     w_sat = np.pi * (1 + nu) * mu * 1.5 * n_load / (a0 * b0 * e_mod)
     coords = [float(v) for v in exact_table_coordinates(xi, eta, phi, a0, b0, nu, w_sat,
                                                         (c.c11, c.c22, c.c23))]
-    slab = ex._slab_for(coords[0], coords[1])
+    slab = ex._slab_of(coords[0], coords[1])
     out, work = np.empty((4, 4)), np.empty(336)
     _spline_point(ex._coef, slab, True, ex._knots, ex._kstart, *coords, out, work)
     bare = _spline_point.overloads[_spline_point.signatures[0]].entry_point

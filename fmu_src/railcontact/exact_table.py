@@ -155,6 +155,7 @@ from numba import njit  # noqa: E402
 
 from . import _numba_cache  # noqa: E402,F401  (the user cache, before any njit is compiled)
 from .creep_common import CreepForce3D, ExactCreepSolution3D, spin_coefficient  # noqa: E402
+from .tables import find_span  # noqa: E402  (the span search of the generic evaluator)
 
 #: Table name and the axes it must have, in order.
 TABLE_NAME = "creep_exact"
@@ -165,24 +166,6 @@ VARIABLES = ("force_ratio_parallel", "force_ratio_perpendicular", "spin_moment_r
 #: Below this combined creepage |v| the Jacobian is taken at |v| = JACOBIAN_RHO_MIN in the
 #: same direction (the polar coordinates divide by |v|; the Jacobian is continuous there). [-]
 JACOBIAN_RHO_MIN = 1e-6
-
-
-@njit(cache=True)
-def _span(t, n_coef, x):
-    """``i`` with ``t[i] <= x < t[i+1]``, clamped to ``3 .. n_coef - 1``."""
-    lo = 3
-    hi = n_coef
-    if x >= t[hi]:
-        return hi - 1
-    if x <= t[lo]:
-        return lo
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if t[mid] <= x:
-            lo = mid
-        else:
-            hi = mid
-    return lo
 
 
 @njit(cache=True)
@@ -240,9 +223,9 @@ def _spline_point(coef, slab, use_slab, knots, kstart, x0, x1, x2, x3, x4, out, 
     b1 = work[44:48]
     db = work[52:56]
     block = work[64:320]    # (a, c, e, v) -> ((a * 4 + c) * 4 + e) * 4 + v
-    i2 = _span(t2, n2, x2)
-    i3 = _span(t3, n3, x3)
-    i4 = _span(t4, n4, x4)
+    i2 = find_span(t2, n2, x2)
+    i3 = find_span(t3, n3, x3)
+    i4 = find_span(t4, n4, x4)
     _cubic_basis(t2, i2, x2, b2, d2, scratch)
     _cubic_basis(t3, i3, x3, b3, d3, scratch)
     _cubic_basis(t4, i4, x4, b4, d4, scratch)
@@ -256,8 +239,8 @@ def _spline_point(coef, slab, use_slab, knots, kstart, x0, x1, x2, x3, x4, out, 
     else:
         t0 = knots[kstart[0]:kstart[1]]
         t1 = knots[kstart[1]:kstart[2]]
-        i0 = _span(t0, coef.shape[0], x0)
-        i1 = _span(t1, coef.shape[1], x1)
+        i0 = find_span(t0, coef.shape[0], x0)
+        i1 = find_span(t1, coef.shape[1], x1)
         _cubic_basis(t0, i0, x0, b0, db, scratch)
         _cubic_basis(t1, i1, x1, b1, db, scratch)
         for k in range(256):
@@ -435,8 +418,6 @@ class ExactCreepTable:
         self._kstart = np.cumsum([0] + [len(t) for t in self._knot_list[:-1]]).astype(np.int64)
         self._coef = np.ascontiguousarray(np.moveaxis(table.coefficients, 0, -1))
         self._empty_slab = np.zeros((1, 1, 1, 4))
-        self._slab_key = None
-        self._slab = self._empty_slab
         self._g_range = tuple(float(np.exp(table.axes[0]["nodes"][k])) for k in (0, -1))
         self._log_g = (float(table.axes[0]["nodes"][0]), float(table.axes[0]["nodes"][-1]))
         self.tau_max = float(table.axes[4]["nodes"][-1])
@@ -459,13 +440,21 @@ class ExactCreepTable:
         return cls(Table.from_file(path, expected_name=TABLE_NAME), solver)
 
     # -- one contact's (ln g, nu) summed out once -------------------------------------------
-    def _slab_for(self, log_g, nu):
-        """:meth:`_slab_of`, remembered for the last contact (the vectorised path)."""
-        key = (log_g, nu)
-        if key != self._slab_key:
-            self._slab = self._slab_of(log_g, nu)
-            self._slab_key = key
-        return self._slab
+    def _contact(self, g, nu):
+        """``((C11, C22, C23), ln g, inside the a0/b0 axis, slab)`` of one contact, memoised
+        (a Hertz contact's a0/b0 = (a1 s)/(b1 s) takes a few rounded values as the load
+        changes: each keeps its entry)."""
+        key = (g, nu)
+        contact = self._contacts.get(key)
+        if contact is None:
+            log_g = math.log(g) if g > 0.0 else -math.inf
+            inside = self._log_g[0] <= log_g <= self._log_g[1]
+            contact = ((_kalker_pair(float(g), float(nu)) if inside else (0.0, 0.0, 0.0)),
+                       log_g, inside, self._slab_of(log_g, float(nu)) if inside else None)
+            if len(self._contacts) >= 16:
+                self._contacts.clear()
+            self._contacts[key] = contact
+        return contact
 
     def _slab_of(self, log_g, nu):
         """The coefficients summed over the (ln g, nu) axes at one contact: (n_s, n_theta,
@@ -473,7 +462,7 @@ class ExactCreepTable:
         w = []
         for d, x in ((0, log_g), (1, nu)):
             t = self._knot_list[d]
-            i = _span(t, self._coef.shape[d], x)
+            i = find_span(t, self._coef.shape[d], x)
             b, db = np.empty(4), np.empty(4)
             _cubic_basis(t, i, x, b, db, np.empty(12))
             w.append((i, b))
@@ -518,21 +507,7 @@ class ExactCreepTable:
             return None
         if not plain:
             return None
-        g = a0 / b0
-        key = (g, poisson_ratio)
-        contact = self._contacts.get(key)
-        if contact is None:     # a new contact: its Kalker coefficients and (ln g, nu) slab
-            log_g = math.log(g) if g > 0.0 else -_inf
-            inside = self._log_g[0] <= log_g <= self._log_g[1]
-            contact = ((_kalker_pair(float(g), float(poisson_ratio)) if inside
-                        else (0.0, 0.0, 0.0)), log_g, inside,
-                       self._slab_of(log_g, float(poisson_ratio)) if inside else None)
-            if len(self._contacts) >= 16:
-                self._contacts.clear()
-            # (a Hertz contact's a0/b0 = (a1 s)/(b1 s) takes a few rounded values as the load
-            # changes: each keeps its entry)
-            self._contacts[key] = contact
-        (c11, c22, c23), log_g, inside, slab = contact
+        (c11, c22, c23), log_g, inside, slab = self._contact(a0 / b0, poisson_ratio)
         if not inside:
             return None
         w_sat = 4.71238898038469 * (1.0 + poisson_ratio) * friction_coefficient \
@@ -590,9 +565,8 @@ class ExactCreepTable:
         if idx.size:
             one = bool(np.all(log_g[idx] == log_g[idx[0]]) and np.all(nu[idx] == nu[idx[0]]))
             if one:
-                c = [np.full(idx.size, v) for v in _kalker_pair(float(g[idx[0]]),
-                                                                float(nu[idx[0]]))]
-                slab = self._slab_for(float(log_g[idx[0]]), float(nu[idx[0]]))
+                coeffs, _, _, slab = self._contact(float(g[idx[0]]), float(nu[idx[0]]))
+                c = [np.full(idx.size, v) for v in coeffs]
             else:
                 from .kalker import kalker_coefficients  # noqa: PLC0415
 

@@ -186,7 +186,7 @@ def fit_tensor_bspline(values, nodes, knots, periodic=()):
 # --------------------------------------------------------------------------------------------
 
 @njit(cache=True)
-def _find_span(t, n_coef, x):
+def find_span(t, n_coef, x):
     """Index ``i`` with ``t[i] <= x < t[i+1]``, ``3 <= i <= n_coef - 1`` (x clamped to range)."""
     lo = SPLINE_DEGREE
     hi = n_coef  # t[n_coef] is the right end
@@ -299,7 +299,7 @@ def _tensor_eval(coef, shape, knots, knot_start, strides, offset, points, deriv,
         block = 1
         for d in range(ndim - 1, -1, -1):
             t = knots[knot_start[d]:knot_start[d] + shape[d] + p1]
-            span = _find_span(t, shape[d], points[ip, d])
+            span = find_span(t, shape[d], points[ip, d])
             _basis_ders(t, span, points[ip, d], deriv[d], tmp, ndu, wrk, left, right)
             base += (span - SPLINE_DEGREE) * strides[d]
             if block == 1:
