@@ -23,6 +23,7 @@ debug_logging=True)``). No NaN is ever returned.
 import ctypes
 import json
 import math
+import operator
 import os
 import sys
 from pathlib import Path
@@ -221,6 +222,16 @@ def _described(description, unit):
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
          "corrugation_growth_rate", "Mz", "corrugation_series_error_estimate"}
 
+#: Real inputs and outputs held by the ContactPoint: variable name -> its field (the table
+#: behind get_real / set_real).
+_INPUT_FIELDS = {name: name for name in _scene.INPUTS}
+_REAL_FIELDS = dict(_INPUT_FIELDS, **{name: field for name, (_, _, field) in OUTPUTS.items()})
+
+
+def _no_auxiliary(contact):
+    """Before initialisation: no effect computes anything on demand."""
+
+
 #: SI units used by the variables: name -> exponents of kg, m, s.
 UNITS = {
     "1": {}, "N": {"kg": 1, "m": 1, "s": -2}, "m": {"m": 1}, "Pa": {"kg": 1, "m": -1, "s": -2},
@@ -259,8 +270,10 @@ class WheelRailContact(Fmi2Slave):
         self._pipeline = None
         self._steps = ()
         self._checked_step = _effects.checked_steps(())    # (no effects before initialisation)
+        self._auxiliary_all = _no_auxiliary
         self._warned = set()
         self._built_from = None
+        self._real_getters, self._real_setters = {}, {}
 
         self.scene_file = ""
         self.scene_toml = ""
@@ -378,13 +391,11 @@ class WheelRailContact(Fmi2Slave):
                                                  warn=self._warn_once)
         self._steps = self._pipeline.steps
         self._checked_step = self._pipeline.checked_step
-        # creep-only table scene: the whole step in one Python frame (an instance attribute
-        # shadows the do_step method; PythonFMU looks the method up by name on each step)
-        self.__dict__.pop("do_step", None)
-        fused = self._pipeline.fmu_step(self._contact, self._do_step_full,
-                                        self._log_step_failure)
-        if fused is not None:
-            self.do_step = fused
+        self._auxiliary_all = self._pipeline.auxiliary
+        # the whole step in one Python frame (an instance attribute shadows the do_step
+        # method; PythonFMU looks the method up by name on each step)
+        self.do_step = self._pipeline.fmu_step(self._contact, self._do_step_full,
+                                               self._log_step_failure)
         self._contact.friction_coefficient = scene.friction_coefficient
         self._built_from = values
         self.log(f"scene {scene.name!r}: effects on: {self._pipeline.summary()}",
@@ -435,9 +446,56 @@ class WheelRailContact(Fmi2Slave):
 
     def _auxiliary(self, field):
         """Value of an output some effects compute only when it is read (after a step)."""
-        if self._pipeline is not None:
-            self._pipeline.auxiliary(self._contact)
+        self._auxiliary_all(self._contact)
         return getattr(self._contact, field)
+
+    # ---------------------------------------------------------------------------------------
+    # reading outputs and setting inputs: a precomputed table per list of value references
+    # ---------------------------------------------------------------------------------------
+    # PythonFMU's generic get_real/set_real look every variable up and call a lambda per
+    # variable; an importer asks for the same lists of value references step after step, so
+    # each list gets, on first use, one operator.attrgetter over the ContactPoint fields it
+    # names (the lazy outputs' auxiliary evaluation made once before it). Lists with a
+    # parameter or a non-Real variable keep the generic path (and its error).
+    def get_real(self, vrs):
+        key = tuple(vrs)
+        getter = self._real_getters.get(key)
+        if getter is None:
+            getter = self._real_getters[key] = self._real_getter(key)
+        return getter()
+
+    def set_real(self, vrs, values):
+        key = tuple(vrs)
+        fields = self._real_setters.get(key)
+        if fields is None:
+            fields = self._real_setters[key] = self._real_fields(key, _INPUT_FIELDS)
+        if not fields:
+            return super().set_real(vrs, values)
+        c = self._contact
+        for field, value in zip(fields, values):
+            setattr(c, field, value)
+
+    def _real_fields(self, vrs, allowed):
+        """The ContactPoint fields of the Real variables ``vrs`` (names in ``allowed``), or ()
+        if one of them is not such a variable."""
+        names = [getattr(self.vars.get(vr), "name", None) for vr in vrs]
+        if not names or not all(allowed.get(n) for n in names):
+            return ()
+        return tuple(allowed[n] for n in names)
+
+    def _real_getter(self, vrs):
+        fields = self._real_fields(vrs, _REAL_FIELDS)
+        if not fields:
+            return lambda: Fmi2Slave.get_real(self, list(vrs))
+        c, get = self._contact, operator.attrgetter(*fields)
+        lazy = any(f in _LAZY for f in fields)
+        if len(fields) == 1:
+            if lazy:
+                return lambda: (self._auxiliary_all(c), [get(c)])[1]
+            return lambda: [get(c)]
+        if lazy:
+            return lambda: (self._auxiliary_all(c), list(get(c)))[1]
+        return lambda: list(get(c))
 
     def _evaluate(self):
         c = self._contact
@@ -449,8 +507,8 @@ class WheelRailContact(Fmi2Slave):
         # input check (one isfinite on the sum of the inputs, N >= 0, V >= 0) and evaluates the
         # effects in one call; it returns False, changing nothing, when that check does not
         # pass: then _do_step_full's range check names the bad input (or finds all valid, e.g.
-        # when only their sum overflowed) before the effects run. For the creep-only table
-        # scene _build replaces this method by Pipeline.fmu_step, the same in one frame.
+        # when only their sum overflowed) before the effects run. _build replaces this method
+        # by Pipeline.fmu_step, the same in one frame.
         if not 0.0 <= step_size < math.inf:        # (NaN fails too)
             return self._do_step_full(current_time, step_size)
         self._contact.step_size = step_size        # (NonSteady: the rolled distance V h)
@@ -510,6 +568,7 @@ class WheelRailContact(Fmi2Slave):
         if built_from is None:
             self._pipeline, self._steps, self._built_from = None, (), None
             self._checked_step = _effects.checked_steps(())
+            self._auxiliary_all = _no_auxiliary
             self.__dict__.pop("do_step", None)
         elif built_from != self._built_from:
             self._build(dict(built_from))

@@ -378,7 +378,7 @@ def test_scalar_corrugated_contact_equals_array_function():
     same iterations from the same start; libm's sin/cos and the order of the sums over
     harmonics round differently, so the iterates may differ by ulps and stop one step apart)
     -- and |T| within 1e-13 mu N. Measured: 0.81 eps ("exact"), 0.99 eps ("linear") of those
-    scales. (The wear depth's pair, wear._corrugated_wear_depth_scalar against
+    scales. (The wear depth's pair, wear.corrugated_wear_depth_unchecked against
     wear.corrugated_wear_depth: tests/test_wear.py.)"""
     eps = float(np.finfo(float).eps)
     worst = {"exact": 0.0, "linear": 0.0}

@@ -17,6 +17,7 @@ import pytest
 import railcontact.creep3d as creep3d
 import railcontact.hertz as hertz
 from railcontact import effects
+from railcontact.effects import creep as creep_effect
 from railcontact.carter import carter_stick_ratio
 from railcontact.effects import ContactPoint, EffectUnavailable, build_pipeline
 from railcontact.scene import SceneError, parse_scene
@@ -155,7 +156,7 @@ def test_no_contact_gives_zero_forces_not_nan():
 @pytest.fixture
 def counted(monkeypatch):
     """Wrap the model entry points with call counters."""
-    counts = {"hertz_3d": 0, "creep_solution_3d": 0, "_creep_solution_scalar": 0}
+    counts = {"hertz_3d": 0, "creep_solution_3d": 0, "creep_solution_3d_scalar": 0}
 
     def wrap(module, name):
         original = getattr(module, name)
@@ -167,7 +168,8 @@ def counted(monkeypatch):
 
     wrap(hertz, "hertz_3d")
     wrap(creep3d, "creep_solution_3d")
-    wrap(creep3d, "_creep_solution_scalar")    # its scalar path, which the effect uses
+    # its scalar path, which the effect uses (as the effect module's name)
+    wrap(creep_effect, "creep_solution_3d_scalar")
     return counts
 
 
@@ -194,7 +196,7 @@ def test_slave_calls_only_switched_on_effects(counted):
     _run_slave(slave, 25)
     assert list(slave._pipeline.effects) == ["normal"]
     assert slave._pipeline.calls() == {"normal": 26}
-    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "_creep_solution_scalar": 0}
+    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "creep_solution_3d_scalar": 0}
     assert slave._contact.Fx == 0.0
 
 
@@ -204,7 +206,7 @@ def test_slave_creep_scene_calls_creep_once_per_step(counted):
     slave = _run_slave(slave, 25)
     assert slave._pipeline.calls() == {"normal": 26, "creep": 26}
     # Hertz once at build (N^(1/3) scaling afterwards), creep once per step + once at init
-    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "_creep_solution_scalar": 26}
+    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "creep_solution_3d_scalar": 26}
     assert slave._contact.Fx < 0.0
 
 
@@ -614,12 +616,12 @@ def test_series_error_estimate_bounds_the_wear_coefficient_truncation(ka, r):
         assert actual >= 1e-3 * estimate or actual < 1e-11, degree
 
 
-# Fused FMU step (the creep-only table scene in one frame, for speed): a refactoring guard,
-# not a physics check -- the physics of both paths is checked against direct railcontact calls
-# in tests/test_fmu.py.
+# The checked step (Pipeline.checked_step, the FMU's do_step): the effects' own steps behind a
+# cheap input check -- a guard of that contract, the physics being checked against direct
+# railcontact calls in tests/test_fmu.py.
 import random  # noqa: E402
 
-from railcontact.effects import ContactPoint, build_pipeline, checked_steps  # noqa: E402
+from railcontact.effects import ContactPoint, build_pipeline  # noqa: E402
 from railcontact.scene import parse_scene  # noqa: E402
 
 
@@ -628,13 +630,12 @@ from railcontact.scene import parse_scene  # noqa: E402
     "[effects.creep]\nmethod = 'modified_strip'\nsource = 'table'\nspin = false\n",
     "[geometry]\nkind = 'semi_axes'\nsemi_axis_longitudinal = 6e-3\nsemi_axis_lateral = 4e-3\n"
     "[effects.creep]\nmethod = 'modified_strip'\nsource = 'table'\n"])
-def test_fused_table_step_equals_effect_steps(toml):
-    """The fused normal + table-creep step (Pipeline.checked_step) is bit-identical to the two
-    effects' own steps, counters and lazy outputs included; bad inputs change nothing."""
+def test_checked_step_is_the_effect_steps_and_refuses_implausible_inputs(toml):
+    """Pipeline.checked_step gives what Pipeline.step gives, bit for bit, counters and lazy
+    outputs included, over loads from 0 through 1e-300 N to 2e5 N; NaN, inf or a negative
+    load make it return False and change nothing."""
     scene = parse_scene(toml)
-    fused, plain = build_pipeline(scene), build_pipeline(scene)
-    assert fused._fused
-    generic = checked_steps(plain._steps)
+    checked, plain = build_pipeline(scene), build_pipeline(scene)
     c1, c2 = ContactPoint(), ContactPoint()
     c1.friction_coefficient = c2.friction_coefficient = scene.friction_coefficient
     rng = random.Random(6)
@@ -646,16 +647,17 @@ def test_fused_table_step_equals_effect_steps(toml):
         for c in (c1, c2):
             (c.normal_force, c.creepage_longitudinal, c.creepage_lateral, c.spin,
              c.rolling_speed, c.rail_position) = vals
-        assert fused.checked_step(c1) and generic(c2)
+        assert checked.checked_step(c1)
+        plain.step(c2)
         if k % 7 == 0:
-            fused.auxiliary(c1)
+            checked.auxiliary(c1)
             plain.auxiliary(c2)
         assert c1.as_dict() == c2.as_dict()
-    assert fused.calls() == plain.calls() == {"normal": 2000, "creep": 2000}
+    assert checked.calls() == plain.calls() == {"normal": 2000, "creep": 2000}
     before = c1.as_dict()
     for bad in (float("nan"), float("inf"), -1.0):
         c1.normal_force = bad
-        assert not fused.checked_step(c1)
+        assert not checked.checked_step(c1)
         c1.normal_force = before["normal_force"]
         assert c1.as_dict() == before
 
@@ -1339,7 +1341,7 @@ def test_slave_state_carries_the_relaxed_creepage():
                                         "time_domain_carter", None])
 def test_corrugation_wear_scalar_paths_give_the_public_functions_results(method, wear_model):
     """Corrugation.step (corrugation.CorrugatedContactSolver and
-    wear._corrugated_wear_depth_scalar), Corrugation.auxiliary (the kernels'
+    wear.corrugated_wear_depth_unchecked), Corrugation.auxiliary (the kernels'
     series_relative_error) and Wear.auxiliary (the kernels' wear_coefficients_list for the
     series models) against corrugated_contact,
     corrugated_wear_depth, series_truncation_error and wear_number x wear_coefficients,

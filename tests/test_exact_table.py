@@ -62,6 +62,39 @@ def test_creepage_coordinate_inverse_and_limits():
     assert creepage_coordinate(-2.0) == -creepage_coordinate(2.0)
 
 
+@pytest.mark.parametrize("tau", [0.0, 0.7, -3.0, 20.0])
+def test_creepage_coordinate_with_spin(tau):
+    """s = rho / sqrt(rho^2 + 1 + tau^2): inverse at every spin, even in tau, and with large
+    spin the creepage as large as the spin's slip (rho ~ |tau|, where the force turns from the
+    spin's direction to the creepage's) sits mid-axis, not in the last interval."""
+    rho = np.array([0.0, 1e-6, 0.5, 3.0, 25.0, 400.0])
+    s = creepage_coordinate(rho, tau)
+    np.testing.assert_allclose(creepage_magnitude(s, tau), rho, rtol=1e-9, atol=1e-15)
+    np.testing.assert_array_equal(s, creepage_coordinate(rho, -tau))
+    w = math.sqrt(1.0 + tau * tau)
+    assert creepage_coordinate(w, tau) == pytest.approx(math.sqrt(0.5), rel=1e-12)
+    assert creepage_coordinate(np.inf, tau) == 1.0
+
+
+def test_a_table_of_the_old_coordinate_is_refused(tmp_path):
+    """A file without the creepage coordinate's spin weight (built before it was introduced:
+    s = rho / sqrt(1 + rho^2)) would be misread; the reader names the attribute."""
+    from railcontact.tables import Table, TableFileError
+
+    class Old:
+        axes = [{"name": n} for n in ("log_aspect_ratio", "poisson_ratio",
+                                      "creepage_coordinate", "creepage_angle",
+                                      "spin_coordinate")]
+        variables = ["force_ratio_parallel", "force_ratio_perpendicular",
+                     "spin_moment_ratio", "stick_area_fraction"]
+        attrs = {}
+        path = tmp_path / "creep_exact.nc"
+
+    assert issubclass(TableFileError, ValueError) and Table is not None
+    with pytest.raises(TableFileError, match="creepage_coordinate_spin_weight None"):
+        ExactCreepTable(Old())
+
+
 def test_coordinates_round_trip_every_sign():
     """Coordinates of physical inputs (all signs), mapped back to the reference contact, give
     the same coordinates: the reduction to (a0/b0, nu, v, tau) loses nothing."""
@@ -285,8 +318,9 @@ def test_jacobian_against_finite_differences_of_the_solver(table):
         up, dn = x0.copy(), x0.copy()
         up[k] += h[k]
         dn[k] -= h[k]
-        fu = creep_force_3d(*_args(*up), method="exact", extrapolate=True, tolerance=1e-8)
-        fd_ = creep_force_3d(*_args(*dn), method="exact", extrapolate=True, tolerance=1e-8)
+        table_setting = dict(grid=(40, 20), extrapolate=True, grid_shifts=1, tolerance=1e-8)
+        fu = creep_force_3d(*_args(*up), method="exact", **table_setting)
+        fd_ = creep_force_3d(*_args(*dn), method="exact", **table_setting)
         fd = np.array([fu.tx - fd_.tx, fu.ty - fd_.ty]) / (2 * h[k])
         np.testing.assert_allclose(jac[:2, k], fd, atol=0.02 * np.abs(jac[:2, :2]).max())
 
@@ -299,7 +333,8 @@ def test_beyond_the_spin_axis_the_solver_answers(table):
 
     args = _args(1e-4, 0.0, 40.0)
     got = table.creep_solution_3d(*args, sensitivities=False)
-    want = creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True)
+    want = creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True,
+                             grid_shifts=1, tolerance=1e-4)  # the table's setting
     assert got.tx == want.tx and got.ty == want.ty and got.spin_moment == want.spin_moment
     bare = ExactCreepTable.from_file(TABLE)
     with pytest.raises(ValueError, match=r"spin must give a spin coordinate \|tau\| <= 20"):

@@ -712,7 +712,7 @@ def test_data_file_read_after_the_first_extraction_is_gone(fmu_path):
     package = build_fmu.bundle_names(build_fmu.fmu_digest(fmu_path))[1]
     simulate(fmu_path, CORRUGATION_SCENE)              # imports the bundle; extraction deleted
     kalker = sys.modules[f"{package}.kalker"]
-    for cached in (kalker.kalker_table, kalker._spline, kalker._coefficients_cached):
+    for cached in (kalker.kalker_table, kalker._spline, kalker.kalker_coefficients_cached):
         cached.cache_clear()
     scene, result, _ = simulate(fmu_path, MAIN_SCENE)  # first read of the file: now
     reference = reference_result(scene)

@@ -127,9 +127,57 @@ def test_slave_and_runner_reach_the_package_by_plain_imports():
         if isinstance(node, ast.ImportFrom) and node.module == "railcontact":
             imported.update(f"railcontact.{a.name}" for a in node.names)
     assert {"railcontact.effects", "railcontact.scene"} <= imported
-    for path in (slave, Path(rc.__file__).parent / "effects.py",
-                 Path(rc.__file__).parent / "run.py"):
+    effects_dir = Path(rc.__file__).parent / "effects"
+    for path in (slave, *sorted(effects_dir.glob("*.py")), Path(rc.__file__).parent / "run.py"):
         text = path.read_text(encoding="utf-8")
         assert "import_module" not in text and "spec_from_file_location" not in text, path
     assert run.fmu_build is fmu_build and build_fmu.build is fmu_build.build
     assert fmu_build.SLAVE == slave.resolve()
+
+
+def _private_reads(path, package_dir):
+    """(line, text) of every private name another module of the package is read for in
+    ``path``: ``from .mod import _name`` (unless ``_name`` is itself a module) and
+    ``alias._name`` where ``alias`` is an imported package module."""
+    import ast
+
+    tree = ast.parse(path.read_text())
+    modules = {p.stem for p in package_dir.rglob("*.py")} | {
+        p.name for p in package_dir.rglob("*") if p.is_dir()}
+    aliases, found = set(), []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith(
+                "railcontact")):
+            for a in node.names:
+                if a.name in modules:
+                    aliases.add(a.asname or a.name)
+                elif a.name.startswith("_") and not a.name.startswith("__"):
+                    found.append((node.lineno, f"from {node.module} import {a.name}"))
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.startswith("railcontact") and a.asname:
+                    aliases.add(a.asname)
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                and node.value.id in aliases and node.attr.startswith("_")
+                and not node.attr.startswith("__")):
+            found.append((node.lineno, f"{node.value.id}.{node.attr}"))
+    return found
+
+
+def test_no_module_reads_another_modules_private_names():
+    """One source per formula, read through public names: private names stay in their
+    module (private *modules*, such as ``_floats``, offer public names to the package)."""
+    from pathlib import Path
+
+    package_dir = Path(rc.__file__).parent
+    bad = {str(p.relative_to(package_dir)): _private_reads(p, package_dir)
+           for p in package_dir.rglob("*.py")}
+    assert {k: v for k, v in bad.items() if v} == {}
+
+
+def test_private_read_finder_finds_one(tmp_path):
+    (tmp_path / "a.py").write_text("from . import b\nfrom .b import _hidden\nx = b._other\n")
+    (tmp_path / "b.py").write_text("_hidden = 1\n_other = 2\n")
+    found = _private_reads(tmp_path / "a.py", tmp_path)
+    assert [t for _, t in found] == ["from b import _hidden", "b._other"]

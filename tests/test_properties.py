@@ -433,10 +433,10 @@ def test_scalar_paths_equal_array_paths(creep_table, xi_x, xi_y, phi, ratio, loa
     """The FMU's per-step scalar paths (plain floats, no numpy) against the public array
     paths: within 4 eps (forces relative to mu N, or |T| for the linear theory; stick
     measures absolute; z and Phi relative)."""
-    from railcontact.creep3d import _creep_solution_scalar
+    from railcontact._scalar import creep_solution_3d_scalar
     a0, b0 = _ellipse(ratio)
     args = (xi_x, xi_y, phi, load, a0, b0, E, nu, mu)
-    one, ref = _creep_solution_scalar(*args, method), creep_solution_3d(*args, method)
+    one, ref = creep_solution_3d_scalar(*args, method), creep_solution_3d(*args, method)
     scale = max(mu * load, abs(float(ref.tx)), abs(float(ref.ty)))
     assert abs(one.tx - ref.tx) <= 4 * EPS * scale and abs(one.ty - ref.ty) <= 4 * EPS * scale
     for k in (2, 3):
@@ -444,7 +444,7 @@ def test_scalar_paths_equal_array_paths(creep_table, xi_x, xi_y, phi, ratio, loa
     for k in (4, 5):
         assert one[k] == ref[k] or abs(one[k] - ref[k]) <= 4 * EPS * ref[k]
     assert one.within_validity == ref.within_validity
-    stick, z = creep_table._scalar_stick(*args)
+    stick, z = creep_table.stick_unchecked(*args)
     _, _, ref_stick, ref_z = creep_table.creep_solution_3d(*args)
     assert abs(stick - ref_stick) <= 4 * EPS and abs(z - ref_z) <= 4 * EPS * ref_z
 

@@ -600,3 +600,49 @@ def test_second_order_transport_sensitivities_match_central_differences():
                     (rp.mz - rm.mz) / (2 * h)]
     scale_col = np.abs(fd).max(axis=0)
     assert np.all(np.abs(r.sensitivity - fd) <= 2e-4 * scale_col)
+
+
+# ------------------------------------------------------------------------------------------
+# Grid shift (the grids that creep_force_3d(method="exact", grid_shifts=2) averages)
+# ------------------------------------------------------------------------------------------
+def test_grid_shift_moves_the_grid_and_keeps_the_discrete_problem():
+    case = _hertz_case(0.5)
+    base = solve_rolling_3d(1e-3, 5e-4, 0.2, **case, mx=30, my=20, tolerance=1e-9)
+    for shift in (-0.25, 0.25):
+        r = solve_rolling_3d(1e-3, 5e-4, 0.2, **case, mx=30, my=20, tolerance=1e-9,
+                             grid_shift=shift)
+        dx = base.x[1] - base.x[0]
+        np.testing.assert_allclose(r.x, base.x + shift * dx, rtol=0, atol=1e-15)
+        np.testing.assert_array_equal(r.y, base.y)
+        # the same load on the moved grid, a force that differs within the grid error
+        assert r.normal_load == pytest.approx(case["normal_load"], rel=1e-12)
+        mu_n = 0.3 * case["normal_load"]
+        assert 0.0 < abs(r.tx - base.tx) / mu_n < 0.01
+    with pytest.raises(ValueError, match=r"grid_shift must be in \[-0.5, 0.5\] \[-\]; got 0.6"):
+        solve_rolling_3d(1e-3, 0, 0, **case, grid_shift=0.6)
+
+
+def test_grid_shift_average_removes_the_edge_part_of_the_error():
+    # one Richardson step 30x20 -> 60x20 on CONTACT's grid and averaged over the grids moved
+    # -1/4 and +1/4 of an element, against the Richardson value of CONTACT's 120x60 and
+    # 240x60 rows (measured, % of mu N: a/b = 5 lat k1 Phi1 0.448 -> 0.092; a/b = 1 long k1
+    # 0.156 -> 0.054)
+    rows = {(r["a_over_b"], r["case"], r["mx"], r["my"]): r for r in HERTZ3D}
+    for a_over_b, case_name, bound in (("5", "lat k1 Phi1", 0.001), ("1", "long k1", 0.001)):
+        fine, coarse = rows[(a_over_b, case_name, "240", "60")], rows[(a_over_b, case_name,
+                                                                        "120", "60")]
+        want = np.array([2 * float(fine[k]) - float(coarse[k])
+                         for k in ("fx_over_mu_fn", "fy_over_mu_fn")])
+        args = _case_args(fine)
+        mu_n = args["friction_coefficient"] * args["normal_load"]
+
+        def richardson(shift):
+            one = solve_rolling_3d(**args, mx=30, my=20, grid_shift=shift, tolerance=1e-6)
+            two = solve_rolling_3d(**args, mx=60, my=20, grid_shift=shift, tolerance=1e-6,
+                                   initial_guess=one)
+            return np.array([2 * two.tx - one.tx, 2 * two.ty - one.ty]) / mu_n
+
+        single = np.abs(richardson(0.0) - want).max()
+        averaged = np.abs((richardson(-0.25) + richardson(0.25)) / 2 - want).max()
+        print(a_over_b, case_name, f"{single * 100:.3f} -> {averaged * 100:.3f} % of mu N")
+        assert averaged < bound < single

@@ -10,10 +10,14 @@ numpy's) 4 eps relative to |Z^n| times the conditioning ``1 + |n log(1 - W)|`` o
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from railcontact import _scalar as S
 from railcontact import evolution as ev
 from railcontact.carter import carter_creep_force, carter_critical_creepage, carter_stick_ratio
+from railcontact.creep3d import (METHODS, creep_solution_3d, saturation_creepage_3d,
+                                 spin_coefficient)
 from railcontact.friction import normalised_inputs, step_law_creep_force_normalised
 from railcontact.hertz import hertz_2d
 
@@ -153,6 +157,80 @@ def _evolve_agree(got, want):
     return True
 
 
+# ---------------------------------------------------------------------------------------------
+# creep_solution_3d_scalar and spin_coefficient_scalar (railcontact.creep3d)
+# ---------------------------------------------------------------------------------------------
+# Bound: 4 eps, relative to mu N (and to |T| for the unbounded linear theory) for the forces,
+# absolute for the [0, 1] stick measures, relative for z and Phi; the validity flag equal.
+# Measured on these inputs: <= 1.5 eps (libm's hypot and acos against numpy's; the arithmetic
+# is otherwise the same operations in the same order).
+def _regime_cases(seed, n_per=40):
+    """Inputs (tuples) covering every regime: full stick (tiny creepage), partial slip, full
+    sliding (z > 1), zero creepage, spin-dominated, pure spin, N = 0, mu = 0, a0/b0 from 0.05
+    to 20, nu from 0 to 0.49."""
+    rng = np.random.default_rng(seed)
+    cases = []
+    for regime in ("stick", "partial", "sliding", "zero", "spin_dominated", "pure_spin",
+                   "no_load", "no_friction", "huge"):
+        for _ in range(n_per):
+            g = float(np.exp(rng.uniform(np.log(0.05), np.log(20.0))))
+            a0, b0 = 5e-3 * np.sqrt(g), 5e-3 / np.sqrt(g)
+            n_load, nu, mu = rng.uniform(1.0, 2e5), rng.uniform(0.0, 0.49), rng.uniform(0.01, 1)
+            e_mod = rng.uniform(7e10, 2.2e11)
+            s_sat = float(saturation_creepage_3d(n_load, a0, b0, e_mod, nu, mu))
+            xi = rng.normal(size=2) * s_sat
+            phi = rng.normal() * s_sat / np.sqrt(a0 * b0)
+            if regime == "stick":
+                xi, phi = xi * 1e-9, phi * 1e-9
+            elif regime == "sliding":
+                xi, phi = xi * rng.uniform(2.0, 50.0), phi * rng.uniform(2.0, 50.0)
+            elif regime == "zero":
+                xi, phi = xi * 0.0, 0.0
+            elif regime == "spin_dominated":
+                xi, phi = xi * 1e-3, phi * rng.uniform(1.0, 30.0)
+            elif regime == "pure_spin":
+                xi = xi * 0.0
+            elif regime == "no_load":
+                n_load = 0.0
+            elif regime == "no_friction":
+                mu = 0.0
+            elif regime == "huge":
+                xi, phi = xi * 1e6, phi * 1e6
+            cases.append((float(xi[0]), float(xi[1]), float(phi), float(n_load), float(a0),
+                          float(b0), float(e_mod), float(nu), float(mu)))
+    return cases
+
+
+def _creep_cases():
+    for method in METHODS:
+        for args in _regime_cases(seed=61):
+            yield (*args, method)
+
+
+def _creep_public(*args):
+    return creep_solution_3d(*args), args[3] * args[8]          # (solution, mu N)
+
+
+def _creep_agree(one, want):
+    ref, mu_n = want
+    scale = max(mu_n, abs(float(ref.tx)), abs(float(ref.ty)))
+    ok = [abs(one[k] - float(ref[k])) <= ULPS * EPS * scale for k in (0, 1)]      # [N]
+    ok += [abs(one[k] - float(ref[k])) <= ULPS * EPS for k in (2, 3)]             # in [0, 1]
+    ok += [one[k] == float(ref[k]) if np.isinf(ref[k]) or ref[k] == 0.0           # z, Phi
+           else abs(one[k] - float(ref[k])) <= ULPS * EPS * float(ref[k]) for k in (4, 5)]
+    return all(ok) and isinstance(one[6], bool) and one[6] == bool(ref.within_validity)
+
+
+def _spin_cases():
+    for args in _regime_cases(seed=62, n_per=20):
+        xi_x, xi_y, phi, _, a0, b0 = args[:6]
+        yield (xi_x, xi_y, phi, a0, b0)
+
+
+def _spin_agree(one, ref):
+    return one == ref or abs(one - ref) <= ULPS * EPS * ref
+
+
 #: Every float twin: (twin, its public function, seeded inputs, agreement test).
 PAIRS = {
     "carter_scalar": (S.carter_scalar, _carter_public, _carter_cases, _carter_agree),
@@ -164,6 +242,11 @@ PAIRS = {
         _all_close),
     "evolve_harmonics_scalar": (S.evolve_harmonics_scalar, _evolve_public, _evolve_cases,
                                 _evolve_agree),
+    "creep_solution_3d_scalar": (S.creep_solution_3d_scalar, _creep_public, _creep_cases,
+                                 _creep_agree),
+    "spin_coefficient_scalar": (S.spin_coefficient_scalar,
+                                lambda *args: float(spin_coefficient(*args)), _spin_cases,
+                                _spin_agree),
 }
 
 
@@ -179,7 +262,8 @@ def test_float_twin_equals_its_public_function(name):
         got = twin(*args)
         values = got if isinstance(got, tuple) else (got,)
         flat = [v for item in values for v in (item if isinstance(item, list) else [item])]
-        assert all(isinstance(v, float) for v in flat), (name, args)
+        # (plain floats; a flag, as CreepSolution3D.within_validity, a bool)
+        assert all(isinstance(v, (float, bool)) for v in flat), (name, args)
         assert agree(got, public(*args)), (name, args)
         count += 1
     assert count >= 100
@@ -203,6 +287,28 @@ def test_carter_scalar_keeps_tiny_creepage_digits_and_limits():
     assert S.carter_scalar(0.0, *args)[1] == 1.0
     n0 = (0.0, *args[1:])
     assert S.carter_scalar(1e-3, *n0) == (-0.0, 0.0) and S.carter_scalar(0.0, *n0)[1] == 1.0
+
+
+def test_spin_coefficient_scalar_limits_and_a_worked_value():
+    """No spin -> 0 (also without creepage), pure spin -> inf; sqrt(3^2 + 4^2) mm * 2 /m /
+    hypot(3e-3, 4e-3) = 2."""
+    assert S.spin_coefficient_scalar(0.0, 0.0, 0.0, 3e-3, 4e-3) == 0.0
+    assert S.spin_coefficient_scalar(0.0, 0.0, 0.5, 3e-3, 4e-3) == np.inf
+    assert S.spin_coefficient_scalar(3e-3, -4e-3, -2.0, 3e-3, 4e-3) == pytest.approx(
+        2.0, rel=4 * EPS)
+
+
+@settings(max_examples=60, derandomize=True)
+@given(xi_x=st.floats(-0.05, 0.05), xi_y=st.floats(-0.05, 0.05), phi=st.floats(-20.0, 20.0),
+       n_load=st.one_of(st.just(0.0), st.floats(1e-3, 3e5)),
+       log_ratio=st.floats(np.log(0.05), np.log(20.0)), nu=st.floats(0.0, 0.49),
+       mu=st.one_of(st.just(0.0), st.floats(1e-3, 1.0)), method=st.sampled_from(METHODS))
+def test_creep_solution_3d_scalar_property(xi_x, xi_y, phi, n_load, log_ratio, nu, mu, method):
+    """creep_solution_3d_scalar against creep_solution_3d on hypothesis' inputs (the bound of
+    the table above)."""
+    a0, b0 = 5e-3 * np.exp(0.5 * log_ratio), 5e-3 * np.exp(-0.5 * log_ratio)
+    args = (xi_x, xi_y, phi, n_load, a0, b0, 210e9, nu, mu, method)
+    assert _creep_agree(S.creep_solution_3d_scalar(*args), _creep_public(*args))
 
 
 def test_step_law_scalar_initial_slope():

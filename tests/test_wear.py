@@ -295,7 +295,7 @@ def test_corrugated_wear_depth_bad_input_names_it():
 
 
 def test_scalar_corrugated_wear_depth_equals_array_function():
-    """wear._corrugated_wear_depth_scalar (the FMU's per-step call) against
+    """wear.corrugated_wear_depth_unchecked (the FMU's per-step call) against
     corrugated_wear_depth, every wear model, seeded surfaces (M = 1, 3, 10 harmonics, k a0 in
     [0.01, 3], sum k^2 R |Z| up to 0.95) and creepages from zero to full sliding: 8 eps of the
     size of the terms summed (the same compiled kernels; the series models' coefficients from
@@ -318,7 +318,7 @@ def test_scalar_corrugated_wear_depth_equals_array_function():
             for model in wear.WEAR_MODELS:
                 args = (x, n_load, radius, _E, _NU, mu, xi, za, zb, list(lam), 1e-9, model)
                 ref = float(wear.corrugated_wear_depth(*args))
-                got = wear._corrugated_wear_depth_scalar(*args)
+                got = wear.corrugated_wear_depth_unchecked(*args)
                 assert isinstance(got, float)
                 scale = 1e-9 * mu * mu * n_load / a0 * (a0 ** 2 / radius + float(np.sum(
                     np.abs(wear.wear_coefficients(a0 / lam, r, model)) * np.hypot(za, zb))))
@@ -333,4 +333,4 @@ def test_wear_depth_raises_at_huge_loads_like_wear_coefficients():
     with pytest.raises(ValueError, match=r"degree must be in \[1, 100000\]"):
         wear.corrugated_wear_depth(*args)
     with pytest.raises(ValueError, match=r"degree must be in \[1, 100000\]"):
-        wear._corrugated_wear_depth_scalar(*args)
+        wear.corrugated_wear_depth_unchecked(*args)

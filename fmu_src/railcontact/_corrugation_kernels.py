@@ -469,17 +469,23 @@ def wear_coefficients_array(beta, r, n_nodes, degree, material_point):
     return out
 
 
-def wear_coefficients_list(a0_over_wavelengths, stick_ratio, wear_model):
+def wear_coefficients_series(a0_over_wavelengths, stick_ratio, wear_model):
     """:func:`railcontact.wear.wear_coefficients` of the series models ("material_point",
-    "patch_coordinate") for a list of ``a0/L`` at one ``r_a0`` in [0, 1], unchecked (the FMU's
-    per-step call; the scene checked the inputs): a list of complex. The same kernel, nodes
+    "patch_coordinate") for a sequence of ``a0/L`` at one ``r_a0`` in [0, 1], unchecked (the
+    FMU's per-step call; the scene checked the inputs): a complex array. The same kernel, nodes
     (24), default series degree ``ceil(e max k a0) + 12`` and limit of that degree (100000,
     the same ValueError) as the public function."""
-    beta = TWO_PI * np.array(a0_over_wavelengths, dtype=float)
-    degree = int(check_range("degree", math.ceil(math.e * max(float(beta.max()), 0.0)) + 12,
-                             "-", 1, 100000))
-    return wear_coefficients_array(beta, np.full(beta.size, float(stick_ratio)), 24, degree,
-                                   wear_model == "material_point").tolist()
+    beta = TWO_PI * np.asarray(a0_over_wavelengths, dtype=float)
+    degree = math.ceil(math.e * max(float(beta.max()), 0.0)) + 12
+    if not 1 <= degree <= 100000:
+        check_range("degree", degree, "-", 1, 100000)          # raises, naming the degree
+    return wear_coefficients_array(beta, np.full(beta.size, float(stick_ratio)), 24,
+                                   int(degree), wear_model == "material_point")
+
+
+def wear_coefficients_list(a0_over_wavelengths, stick_ratio, wear_model):
+    """:func:`wear_coefficients_series` as a list of complex."""
+    return wear_coefficients_series(a0_over_wavelengths, stick_ratio, wear_model).tolist()
 
 
 @_jit

@@ -7,7 +7,7 @@ bounded by mu N, a ratio) does not. Here a value is carried as x = m 2^e (np.fre
 0.5 <= |m| < 1 or m = 0, integer e): multiplying and dividing mantissas and adding exponents
 has the same rounding as the plain left-to-right expression (scaling by a power of two is
 exact), so the results equal the plain expressions bit for bit wherever those stay in the
-normal range. Only the final value is rounded into the float range (:func:`_value`: inf or 0
+normal range. Only the final value is rounded into the float range (:func:`value`: inf or 0
 where it really is out of range; the callers turn an infinite result into a ValueError).
 """
 
@@ -15,11 +15,11 @@ from __future__ import annotations
 
 import numpy as np
 
-_TINY_SUBNORMAL = float(np.nextafter(0.0, 1.0))
-_NO_EXP = -(2**40)          # exponent of an exact zero (below every other)
+TINY_SUBNORMAL = float(np.nextafter(0.0, 1.0))
+NO_EXP = -(2**40)          # exponent of an exact zero (below every other)
 
 
-def _scaled(factors, divisors=()):
+def scaled(factors, divisors=()):
     """prod(factors) / prod(divisors), evaluated left to right, as (m, e) with
     0.5 <= |m| < 1 (or m = 0); an item may itself be an (m, e) pair. No divisor may be 0.
 
@@ -36,49 +36,49 @@ def _scaled(factors, divisors=()):
             m = m * fm if sign > 0 else m / fm
             m, de = np.frexp(m)
             e = e + de.astype(np.int64) + sign * np.asarray(fe).astype(np.int64)
-    return m, np.where(m == 0.0, _NO_EXP, e)
+    return m, np.where(m == 0.0, NO_EXP, e)
 
 
-def _value(m, e):
+def value(m, e):
     """m 2^e rounded into the float range (inf on overflow, 0 on underflow, sign kept)."""
     with np.errstate(over="ignore", under="ignore"):
         return np.ldexp(m, np.clip(e, -4000, 4000).astype(np.int32))
 
 
 
-def _hypot_scaled(x, y):
-    """hypot(x, y) as (m, e) (see _scaled), without overflow for any finite x, y; x and y may
+def hypot_scaled(x, y):
+    """hypot(x, y) as (m, e) (see scaled), without overflow for any finite x, y; x and y may
     be (m, e) pairs."""
-    mx, ex = x if isinstance(x, tuple) else _scaled((x,))
-    my, ey = y if isinstance(y, tuple) else _scaled((y,))
+    mx, ex = x if isinstance(x, tuple) else scaled((x,))
+    my, ey = y if isinstance(y, tuple) else scaled((y,))
     top = np.maximum(ex, ey)
-    top = np.where(top == _NO_EXP, 0, top)
-    h = np.hypot(_value(mx, ex - top), _value(my, ey - top))
+    top = np.where(top == NO_EXP, 0, top)
+    h = np.hypot(value(mx, ex - top), value(my, ey - top))
     m, e = np.frexp(h)
-    return m, np.where(m == 0.0, _NO_EXP, top + e.astype(np.int64))
+    return m, np.where(m == 0.0, NO_EXP, top + e.astype(np.int64))
 
 
-def _root_ab(a0, b0):
+def root_ab(a0, b0):
     """sqrt(a0 b0) as (m, e): ``np.sqrt(a0 * b0)`` (the scalar paths' rounding) where a0 b0 is
     a normal float, sqrt(a0) sqrt(b0) where it would overflow or underflow."""
     with np.errstate(over="ignore", under="ignore"):
         ab = a0 * b0
     ok = (ab >= np.finfo(float).tiny) & (ab < np.inf)
-    return _scaled((np.where(ok, np.sqrt(np.where(ok, ab, 1.0)), np.sqrt(a0)),
+    return scaled((np.where(ok, np.sqrt(np.where(ok, ab, 1.0)), np.sqrt(a0)),
                     np.where(ok, 1.0, np.sqrt(b0))))
 
 
-def _root(pair, n):
+def root(pair, n):
     """The real n-th root (n = 2 or 3) of m 2^e >= 0, as a float (inf/0 outside the range):
     ``np.sqrt`` / ``np.cbrt`` of the mantissa times an exact power of two."""
     m, e = pair
     e = np.where(m == 0.0, 0, e)
     r = np.mod(e, n)
     base = np.sqrt if n == 2 else np.cbrt
-    return _value(base(np.ldexp(m, r.astype(np.int32))), (e - r) // n)
+    return value(base(np.ldexp(m, r.astype(np.int32))), (e - r) // n)
 
 
-def _overflow_error(what, unit, values, names):
+def overflow_error(what, unit, values, names):
     """ValueError for the first non-finite element of ``values`` (a result that overflows the
     float range), naming the inputs that produce it (``names``: name -> array)."""
     bad = ~np.isfinite(values)
@@ -89,7 +89,7 @@ def _overflow_error(what, unit, values, names):
                       f"(overflow at {at})")
 
 
-def _finite_or_scaled(plain, scaled, exact_zero):
+def finite_or_scaled(plain, scaled, exact_zero):
     """``plain`` where it is a normal finite float (or 0 where ``exact_zero``: a zero factor),
     else ``scaled()`` there (the overflow-safe evaluation, computed only if needed): plain
     results stay bit for bit."""
@@ -106,7 +106,7 @@ def _finite_or_scaled(plain, scaled, exact_zero):
 MODERATE_MIN, MODERATE_MAX = 1e-50, 1e50
 
 
-def _moderate(*values, _lo=MODERATE_MIN, _hi=MODERATE_MAX):
+def moderate(*values, _lo=MODERATE_MIN, _hi=MODERATE_MAX):
     """True if every value is 0 or of magnitude in [1e-50, 1e50] (False for NaN, inf)."""
     for v in values:
         if v != 0.0 and not _lo <= abs(v) <= _hi:

@@ -20,8 +20,14 @@ from __future__ import annotations
 import cmath
 import math
 
+from . import creep3d
+from ._floats import MODERATE_MAX, MODERATE_MIN, moderate as _moderate
+from .creep_common import CreepSolution3D
+from .kalker import kalker_coefficients_cached
+
 __all__ = ["carter_scalar", "normalised_inputs_scalar",
-           "step_law_creep_force_normalised_scalar", "evolve_harmonics_scalar"]
+           "step_law_creep_force_normalised_scalar", "evolve_harmonics_scalar",
+           "creep_solution_3d_scalar", "spin_coefficient_scalar"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -32,7 +38,7 @@ __all__ = ["carter_scalar", "normalised_inputs_scalar",
 # repeats the array paths' arithmetic (hertz_2d's a0, carter_critical_creepage,
 # _sliding_fraction, carter_creep_force's f (2 - f) form, carter_stick_ratio's 1 - f) operation
 # for operation on floats with the math module, for callers that have already range-checked
-# their inputs (the FMU slave: railcontact.effects._inputs_plausible, the scene's checks). It
+# their inputs (the FMU slave: railcontact.effects.inputs_plausible, the scene's checks). It
 # ASSUMES, and does not check: every input a finite float (or int, not bool), normal_load >= 0,
 # radius > 0, youngs_modulus > 0, 0 <= poisson_ratio < 0.5, friction_coefficient >= 0. Outside
 # that the result is undefined (possibly NaN or an exception); use the public functions there.
@@ -67,7 +73,7 @@ def carter_scalar(creepage, normal_load, radius, youngs_modulus, poisson_ratio,
 # call of normalised_inputs or step_law_creep_force_normalised on scalars, for well under 1 us
 # of arithmetic. The functions below repeat the array paths' arithmetic operation for operation
 # on floats with the math module, for callers that have already range-checked their inputs (the
-# FMU slave: railcontact.effects._inputs_plausible, the scene's checks). They ASSUME, and do not
+# FMU slave: railcontact.effects.inputs_plausible, the scene's checks). They ASSUME, and do not
 # check: every input a finite float (or int, not bool), normal_load > 0, radius > 0,
 # youngs_modulus > 0, 0 <= poisson_ratio < 0.5, mu_static > 0, mu_kinetic >= 0, kappa >= 0
 # (normalised_inputs), friction_ratio >= 0 (the step law). Outside that the result is undefined
@@ -151,3 +157,135 @@ def evolve_harmonics_scalar(amplitudes_cos, amplitudes_sin, w1, w2, n_passages,
         za_n, zb_n = evolve_harmonics(amplitudes_cos, amplitudes_sin, w1, w2, [n_passages])
         return [float(v) for v in za_n[0]], [float(v) for v in zb_n[0]]
     return out_a, out_b
+
+
+# ---------------------------------------------------------------------------------------------
+# railcontact.creep3d
+# ---------------------------------------------------------------------------------------------
+# numpy's per-call overhead (array creation, ufunc dispatch, broadcasting, the input checks)
+# is ~100 us per call of creep_solution_3d on scalars, for ~1 us of arithmetic. The helpers
+# below repeat the array paths' arithmetic operation for operation on floats with the math
+# module, for callers that have already range-checked their inputs (the FMU slave: see
+# railcontact.effects.inputs_plausible, the scene's checks and Hertz's a0, b0). They ASSUME,
+# and do not check: every input a finite float (or int, not bool), normal_load >= 0, a0 >= 0,
+# b0 >= 0, youngs_modulus > 0, 0 <= poisson_ratio < 0.5, friction_coefficient >= 0, method in
+# METHODS, and a0/b0 in the range kalker_coefficients accepts (> 0, any value; for a0 b0 = 0
+# the array path's placeholder 1 is used). Outside that the result is undefined (possibly NaN
+# or an exception); use the public functions there. Inputs of extreme magnitude (outside
+# MODERATE_MIN..MODERATE_MAX, see _moderate) are passed on to the overflow-safe array path.
+# Agreement with the array paths to a few ulp (libm's hypot, acos and pow may round
+# differently from numpy's) is tested in tests/test_scalar.py.
+
+
+# Magnitudes the scalar paths accept (railcontact._floats.MODERATE_MIN .. MODERATE_MAX): every
+# non-zero input in [1e-50, 1e50] keeps all their intermediate products (at most five factors)
+# in the normal float range, where they equal the array paths' (mantissa, exponent) arithmetic
+# to a few ulp. Outside it they call the array path (overflow-safe; it also raises the
+# ValueError of an input out of range).
+def _f_over_z_scalar(z, _sqrt=math.sqrt, _acos=math.acos):
+    """``railcontact.creep3d`` strip theory's F(z)/z for one float 0 <= z <= 1."""
+    q = 1.0 - z * z
+    r = _sqrt(q if q > 0.0 else 0.0)
+    return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * _acos(z)
+
+
+def spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0):
+    """:func:`railcontact.creep3d.spin_coefficient` for plain floats (inputs assumed in range,
+    see above)."""
+    if not _moderate(xi_x, xi_y, phi, a0, b0):
+        return float(creep3d.spin_coefficient(xi_x, xi_y, phi, a0, b0))
+    return _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
+
+
+def _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0, _hypot=math.hypot, _inf=math.inf):
+    """:func:`spin_coefficient_scalar` for inputs already known to be moderate."""
+    num = _hypot(a0, b0) * abs(phi)
+    den = _hypot(xi_x, xi_y)
+    if den > 0.0:
+        return num / den
+    return _inf if num > 0.0 else 0.0
+
+
+_EPS4 = 4.0 * 2.220446049250313e-16
+_STRIP_C22 = math.pi**2 / 4.0
+
+
+def creep_solution_3d_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method,
+                             _kalker=kalker_coefficients_cached, _sqrt=math.sqrt,
+                             _hypot=math.hypot, _acos=math.acos, _pi=math.pi, _inf=math.inf,
+                             _lo=MODERATE_MIN, _hi=MODERATE_MAX):
+    """:func:`railcontact.creep3d.creep_solution_3d` for plain floats (inputs assumed in range,
+    see above).
+
+    The same operations in the same order as the array path of ``creep_solution_3d``;
+    Kalker's coefficients from the cache :func:`railcontact.kalker.kalker_coefficients_cached` (per
+    (a0/b0, nu); an FMU asks for the same ellipse shape step after step).
+
+    Returns
+    -------
+    CreepSolution3D
+        Fields as plain floats (``within_validity`` a bool).
+    """
+    # _moderate, inlined (one call per FMU step)
+    if not ((xi_x == 0.0 or _lo <= abs(xi_x) <= _hi) and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
+            and (phi == 0.0 or _lo <= abs(phi) <= _hi) and (n_load == 0.0 or _lo <= n_load <= _hi)
+            and _lo <= a0 <= _hi and _lo <= b0 <= _hi and _lo <= e_mod <= _hi
+            and (mu == 0.0 or _lo <= mu <= _hi)):
+        res = creep3d.creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
+        return CreepSolution3D(*(float(v) for v in res[:6]), bool(res[6]))
+    mu_n = mu * n_load
+    has_area = a0 > 0.0 and b0 > 0.0
+    c11, c22, c23 = _kalker(a0 / b0 if has_area else 1.0, nu)
+    if method == "strip":
+        c11 = _pi**2 / (4.0 * (1.0 - nu)) + 0.0 * c11
+        c22 = _STRIP_C22 + 0.0 * c22
+    w_x = c11 * xi_x
+    w_y = c22 * xi_y + _sqrt(a0 * b0) * c23 * phi
+    w_abs = _hypot(w_x, w_y)
+    area = _pi * a0 * b0
+    p0 = 1.5 * n_load / area if area > 0.0 else 0.0
+    w_sat = _pi**2 * (1.0 + nu) * mu * p0 / e_mod
+    has_force = mu_n > 0.0 and w_sat > 0.0
+    if w_sat > 0.0:
+        z = w_abs / w_sat                                   # (inf on overflow, as meant)
+    else:
+        z = _inf if w_abs > 0.0 else 0.0
+    stiffness = e_mod / (2.0 * (1.0 + nu)) * a0 * b0        # G a0 b0 [N]
+    if method == "linear":
+        factor = stiffness
+    elif method == "she":
+        t_lin = stiffness * w_abs
+        if mu_n > 0.0:
+            u = t_lin / mu_n
+        else:
+            u = _inf if t_lin > 0.0 else 0.0
+        if u <= 3.0:
+            factor = stiffness * (1.0 - u / 3.0 + u * u / 27.0)
+        else:
+            factor = mu_n / w_abs if w_abs > 0.0 else 0.0
+        if not (has_force or w_abs == 0.0):
+            factor = 0.0
+    elif has_force:
+        if z <= 1.0:
+            factor = (mu_n / w_sat) * _f_over_z_scalar(z)
+        else:
+            factor = mu_n / w_abs if w_abs > 0.0 else 0.0
+    else:
+        factor = 0.0
+    tx = -factor * w_x
+    ty = -factor * w_y
+    if method != "linear":                  # never above mu N (see _solve)
+        t_abs = _hypot(tx, ty)
+        margin = 1.0 - _EPS4 if (tx != 0.0 and ty != 0.0) else 1.0
+        if t_abs > mu_n * margin:
+            scale = mu_n * (1.0 - _EPS4) / t_abs
+            tx, ty = tx * scale, ty * scale
+    tx, ty = tx + 0.0, ty + 0.0
+    phi_coef = _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
+    if method == "linear":
+        return CreepSolution3D(tx, ty, 1.0, 1.0, z, phi_coef,
+                               phi_coef <= 1.0 and _hypot(tx, ty) <= mu_n)
+    zc = z if z < 1.0 else 1.0
+    root = _sqrt(1.0 - zc * zc)
+    stick = (2.0 / _pi) * (_acos(zc) - zc * root)
+    return CreepSolution3D(tx, ty, stick, root, z, phi_coef, phi_coef <= 1.0)

@@ -33,7 +33,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._floats import _finite_or_scaled, _overflow_error, _scaled, _value
+from ._floats import finite_or_scaled as _finite_or_scaled
+from ._floats import overflow_error as _overflow_error
+from ._floats import scaled as _scaled, value as _value
 from ._validation import check_range
 from .hertz import hertz_2d
 

@@ -695,6 +695,28 @@ class CorrugatedContactSolver:
         self.method = method
         nu, e_mod = self.poisson_ratio, self.youngs_modulus
         self._comp = 4.0 * (1.0 - nu * nu) / (math.pi * e_mod)       # C
+        self._surface_key = (None, None, None)       # the lists self._surface was made from
+        self._surface = None
+
+    def surface(self, amplitudes_cos, amplitudes_sin, wavelengths):
+        """The harmonics as float arrays ``(Z_A, Z_B, L, k)`` and whether they are a valid
+        surface (equal 1-D non-empty shapes, finite, L > 0, condition (4.2)); converted and
+        checked once per surface (the lists the caller passes: a new surface is new lists)."""
+        key = self._surface_key
+        if (amplitudes_cos is key[0] and amplitudes_sin is key[1] and wavelengths is key[2]):
+            return self._surface
+        za = np.array(amplitudes_cos, dtype=float)
+        zb = np.array(amplitudes_sin, dtype=float)
+        lam = np.array(wavelengths, dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            k = _TWO_PI / lam
+            ok = bool(za.shape == zb.shape == lam.shape and za.ndim == 1 and za.size
+                      and np.all(np.isfinite(za)) and np.all(np.isfinite(zb))
+                      and np.all(lam > 0.0)
+                      and np.all(k * k * self.radius * np.hypot(za, zb) < 1.0))
+        self._surface_key = (amplitudes_cos, amplitudes_sin, wavelengths)
+        self._surface = (za, zb, lam, k, ok)
+        return self._surface
 
     def load_underflows(self, normal_load):
         """True if the normalised load ``8 (1 - nu^2) N / (pi E)`` is below the smallest
@@ -709,15 +731,10 @@ class CorrugatedContactSolver:
         ``amplitudes_cos``, ``amplitudes_sin``, ``wavelengths``: sequences of floats (the
         harmonics may change between calls, e.g. by surface evolution)."""
         x, n_load, big_r, mu = rail_position, normal_load, self.radius, friction_coefficient
-        za = np.array(amplitudes_cos, dtype=float)
-        zb = np.array(amplitudes_sin, dtype=float)
-        lam = np.array(wavelengths, dtype=float)
-        k = _TWO_PI / lam
-        if not (math.isfinite(x) and math.isfinite(creepage) and 0.0 < mu < math.inf
-                and not self.load_underflows(n_load) and n_load < math.inf
-                and za.shape == zb.shape == lam.shape and za.ndim == 1 and za.size
-                and np.all(np.isfinite(za)) and np.all(np.isfinite(zb))
-                and np.all(lam > 0.0) and np.all(k * k * big_r * np.hypot(za, zb) < 1.0)):
+        za, zb, lam, k, surface_ok = self.surface(amplitudes_cos, amplitudes_sin, wavelengths)
+        if not (surface_ok and math.isfinite(x) and math.isfinite(creepage)
+                and 0.0 < mu < math.inf and not self.load_underflows(n_load)
+                and n_load < math.inf):
             return self._public(rail_position, normal_load, friction_coefficient, creepage,
                                 amplitudes_cos, amplitudes_sin, wavelengths)
         xi = abs(creepage)

@@ -70,26 +70,31 @@ References
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ._validation import (check_choice, check_contact_inputs, check_creep_inputs,
                           check_range)
-from ._floats import (_NO_EXP, _TINY_SUBNORMAL, MODERATE_MAX, MODERATE_MIN,
-                      _moderate, _root_ab, _scaled, _value)
+from ._floats import scaled as _scaled, value as _value
+from .creep_common import axis_ratio as _axis_ratio, coulomb_limit as _check_coulomb_limit
+from .creep_common import saturation_creepage_scaled as _saturation_scaled
+from .creep_common import weighted_creepage_scaled as _weighted_scaled
 from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
                            spin_coefficient)
-from .kalker import A0_OVER_B0_MAX, _coefficients_cached, kalker_coefficients
+from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
-           "COMPARISON_METHODS", "creep_force_3d", "creep_solution_3d", "load_exact_table",
-           "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
-           "strip_force_function"]
+           "COMPARISON_METHODS", "creep_coefficients", "creep_force_3d", "creep_solution_3d",
+           "load_exact_table", "spin_coefficient", "saturation_creepage_3d",
+           "normalised_creepage_3d", "strip_force_function"]
 
 METHODS = ("linear", "she", "strip", "modified_strip")
-EXACT_DEFAULT_GRID = (40, 20)  # method="exact": elements (rolling, lateral); see creep_force_3d
-EXACT_DEFAULT_TRANSPORT_ORDER = 1  # method="exact": difference of the rolling term; ditto
+# method="exact" defaults, the setting on the accuracy-per-cost frontier (see creep_force_3d):
+# one Richardson step 30x20 -> 60x20, averaged over two grids moved -1/4 and +1/4 of an element
+EXACT_DEFAULT_GRID = (30, 20)  # elements (rolling, lateral)
+EXACT_DEFAULT_EXTRAPOLATE = True  # one Richardson step in the rolling-direction element size
+EXACT_DEFAULT_GRID_SHIFTS = 2  # grids averaged, moved by 1/grid_shifts of an element along x
+EXACT_DEFAULT_TOLERANCE = 1e-3  # relative traction change per sweep at which to stop
+EXACT_DEFAULT_TRANSPORT_ORDER = 1  # difference of the rolling term
 # Methods users compare against, each in its own module (railcontact.fastsim, railcontact.polach);
 # creep_force_3d and creep_solution_3d dispatch to them by name.
 COMPARISON_METHODS = ("fastsim", "polach", "fastrip")
@@ -121,75 +126,34 @@ def _f_over_z(z):
     return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * np.arccos(z)
 
 
-def _axis_ratio(a0, b0):
-    """a0/b0 where both are > 0 (else the placeholder 1), checked against the range of
-    :func:`railcontact.kalker_coefficients`; an underflow to 0 is held at the smallest
-    subnormal (the coefficients have reached their a0/b0 -> 0 limits long before)."""
-    has_area = (a0 > 0.0) & (b0 > 0.0)
-    with np.errstate(over="ignore", under="ignore"):
-        g = np.where(has_area, a0 / np.where(has_area, b0, 1.0), 1.0)
-    return check_range("a0/b0", np.maximum(g, _TINY_SUBNORMAL), "-", 0.0, A0_OVER_B0_MAX,
-                       lower_closed=False,
-                       condition="semi-axis ratio; Kalker's C23 ~ (a0/b0)^1.5 overflows beyond")
+def creep_coefficients(a0, b0, poisson_ratio, method):
+    r"""The coefficients C11, C22, C23 of the Kalker-weighted creepage a theory uses.
 
+    ``w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi)``: Kalker's coefficients
+    (:func:`railcontact.kalker_coefficients` at a0/b0) for every method but the strip theory,
+    whose C11 = pi^2 / (4 (1 - nu)) (Nielsen Eq. (2.89)) and C22 = pi^2 / 4 (see the module
+    docstring).
 
-def _coefficients(a0, b0, nu, method):
+    Parameters
+    ----------
+    a0, b0 : array_like
+        Semi-axes, >= 0 (a0 b0 = 0: the placeholder a0/b0 = 1). [m]
+    poisson_ratio : array_like
+        Poisson's ratio, in [0, 0.5]. [-]
+    method : str
+        One of :data:`METHODS`.
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(C11, C22, C23)``. [-]
+    """
+    nu = poisson_ratio
     c11, c22, c23 = kalker_coefficients(_axis_ratio(a0, b0), nu)
     if method == "strip":
         c11 = np.pi**2 / (4.0 * (1.0 - nu)) + 0.0 * c11
         c22 = np.pi**2 / 4.0 + 0.0 * c22
     return c11, c22, c23
-
-
-def _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23, parts=False):
-    """The Kalker-weighted creepage w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) without
-    overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e); with
-    ``parts`` also (ux, uy, top), w = (ux, uy) 2^top."""
-    t1 = _scaled((c11, xi_x))
-    t2 = _scaled((c22, xi_y))
-    t3 = _scaled((_root_ab(a0, b0), c23, phi))
-    ey = np.maximum(t2[1], t3[1])
-    wy_m = _value(t2[0], t2[1] - ey) + _value(t3[0], t3[1] - ey)    # |.| <= 2
-    wy_m, wy_e = np.frexp(wy_m)
-    wy_e = np.where(wy_m == 0.0, _NO_EXP, ey + wy_e.astype(np.int64))
-    top = np.maximum(t1[1], wy_e)
-    ux = _value(t1[0], t1[1] - top)                 # w / 2^top: |.| <= 1, one of them >= 1/2
-    uy = _value(wy_m, wy_e - top)
-    u_abs = np.hypot(ux, uy)
-    nonzero = u_abs > 0.0
-    safe = np.where(nonzero, u_abs, 1.0)
-    dx = np.where(nonzero, ux / safe, 0.0)
-    dy = np.where(nonzero, uy / safe, 0.0)
-    m, e = np.frexp(u_abs)
-    out = dx, dy, m, np.where(nonzero, top + e.astype(np.int64), _NO_EXP)
-    return out + (ux, uy, top) if parts else out
-
-
-def _saturation_scaled(n_load, a0, b0, e_mod, nu, mu):
-    """w_sat = 1.5 pi (1 + nu) mu N / (a0 b0 E) (= pi^2 (1 + nu) mu p0 / E with Hertz's p0)
-    as (m, e); m = 0 without contact (N, mu, a0 or b0 zero)."""
-    has_area = (a0 > 0.0) & (b0 > 0.0)
-    # the operations (and roundings) of pi^2 (1 + nu) mu (1.5 N / (pi a0 b0)) / E
-    area = _scaled((np.pi, np.where(has_area, a0, 1.0), np.where(has_area, b0, 1.0)))
-    p0 = _scaled((1.5, n_load), (area,))
-    m, e = _scaled((np.pi**2 * (1.0 + nu), mu, p0), (e_mod,))
-    m = np.where(has_area, m, 0.0)
-    return m, np.where(m == 0.0, _NO_EXP, e)
-
-
-def _check_coulomb_limit(mu, n_load):
-    """mu N, which must be a finite float (it bounds the force)."""
-    with np.errstate(over="ignore"):
-        mu_n = mu * n_load
-    if not np.all(np.isfinite(mu_n)):
-        bad = np.broadcast_arrays(mu, n_load, mu_n)
-        i = np.flatnonzero(~np.isfinite(bad[2]))[0]
-        raise ValueError(
-            f"friction_coefficient * normal_load (the Coulomb limit mu N) must be in "
-            f"[0, {np.finfo(float).max:g}] [N]; got inf (friction_coefficient = "
-            f"{bad[0].flat[i]:g}, normal_load = {bad[1].flat[i]:g})")
-    return mu_n
-
 
 
 def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
@@ -221,7 +185,7 @@ def normalised_creepage_3d(creepage_longitudinal, creepage_lateral, spin, normal
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient)
-    c11, c22, c23 = _coefficients(a0, b0, nu, method)
+    c11, c22, c23 = creep_coefficients(a0, b0, nu, method)
     _, _, w_m, w_e = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23)
     s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
     w_m, w_e, s_m, s_e = np.broadcast_arrays(w_m, w_e, s_m, s_e)
@@ -272,7 +236,7 @@ def saturation_creepage_3d(normal_load, a0, b0, youngs_modulus, poisson_ratio,
     a0 = check_range("a0", a0, "m", 0.0, None, lower_closed=False)
     b0 = check_range("b0", b0, "m", 0.0, None, lower_closed=False)
     theta = check_range("direction", direction, "rad")
-    c11, c22, _ = _coefficients(a0, b0, nu, method)
+    c11, c22, _ = creep_coefficients(a0, b0, nu, method)
     s_m, s_e = _saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
     s_sat = _value(s_m / np.hypot(c11 * np.cos(theta), c22 * np.sin(theta)), s_e)
     if not np.all(np.isfinite(s_sat)):
@@ -300,9 +264,11 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
             mu_n = mu * n_load                   # (only for within_validity: may be inf)
     else:
         mu_n = _check_coulomb_limit(mu, n_load)
-    c11, c22, c23 = _coefficients(a0, b0, nu, "strip" if method == "strip" else "modified_strip")
+    c11, c22, c23 = creep_coefficients(a0, b0, nu,
+                                       "strip" if method == "strip" else "modified_strip")
     # All in (mantissa, exponent) form (see _scaled): no intermediate overflows or underflows,
-    # and the same operations in the same order as the scalar path (_creep_solution_scalar),
+    # and the same operations in the same order as the scalar path
+    # (railcontact._scalar.creep_solution_3d_scalar),
     # so the two agree bit for bit wherever its plain floats stay in the normal range.
     d_x, d_y, w_m, w_e, u_x, u_y, top = _weighted_scaled(xi_x, xi_y, phi, a0, b0, c11, c22,
                                                          c23, parts=True)
@@ -367,8 +333,9 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
-                   *, grid=EXACT_DEFAULT_GRID, extrapolate=False, tolerance=1e-4,
-                   transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, **method_options):
+                   *, grid=EXACT_DEFAULT_GRID, extrapolate=EXACT_DEFAULT_EXTRAPOLATE,
+                   tolerance=EXACT_DEFAULT_TOLERANCE, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
+                   grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -406,30 +373,49 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         broadcast element; it needs ``|creepage| <= 1`` and ``|spin| max(a0, b0) <= 1``.
     grid : (int, int), keyword-only
         ``method="exact"`` only: elements (mx, my) in the rolling and lateral direction over
-        ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]``; the accuracy knob. The error is first
-        order in the rolling-direction element size. Measured on one core over CONTACT's 21
-        grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined creepage,
-        spin up to pure spin; ``benchmarks/bench_rolling3d.py``, tolerance 1e-4, 2-core machine
-        under a load of 5-7), ms per case with the set-up (influence coefficients, normal
+        ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]`` (CONTACT's potential area); with
+        ``extrapolate`` and ``grid_shifts`` the accuracy knob. The default is the setting on
+        the accuracy-per-cost frontier that meets 0.2 % of mu N: ``grid=(30, 20),
+        extrapolate=True, grid_shifts=2, tolerance=1e-3``. Measured on one core over CONTACT's
+        21 grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined
+        creepage, spin up to pure spin; ``benchmarks/bench_rolling3d.py``; 2-core machine
+        under a load of 3-6), ms per case with the set-up (influence coefficients, normal
         problem) / with it cached for the contact, and the error max / RMS in % of mu N
-        against two estimates of the converged exact theory that agree to 0.13 %: O, this
-        solver on fine grids, and C, the Richardson value of CONTACT's 120x60 and 240x60 rows:
-        (20, 10) 15 / 1.8 ms, O 2.3 / 1.6 %, C 2.2 / 1.5 %; (40, 20) (default) 20 / 7 ms,
-        O 0.93 / 0.64 %, C 0.86 / 0.61 %; (80, 40) 96 / 59 ms, O 0.67 / 0.41 %,
-        C 0.57 / 0.37 %. From 32 x 16 elements the grid starts from a solve on half the
-        elements (``coarse_start`` of the solver).
+        against two estimates of the converged exact theory that agree to 0.13 %: C, the
+        Richardson value of CONTACT's 120x60 and 240x60 rows, and O, this solver on fine grids:
+
+        * default (30x20 -> 60x20, two grid shifts, tolerance 1e-3): 65 / 20-22 ms, C 0.17 / 0.07 %,
+          O 0.18 / 0.08 % (the largest at a0/b0 = 0.2, pure spin: the lateral element size);
+        * ``grid=(40, 20), extrapolate=False, grid_shifts=1``: 20-30 / 7-8 ms, C 0.86 / 0.61 %,
+          O 0.93 / 0.64 %; ``(80, 40)`` likewise: 96 / 59 ms, C 0.57 / 0.37 %;
+        * ``grid=(30, 20), grid_shifts=1`` (one Richardson step on one grid): 34-39 / 14-16 ms,
+          C 0.45 / 0.19 %; ``grid=(40, 20), grid_shifts=1``: 52-56 / 22-24 ms, C 0.33 / 0.19 %
+          (the table ``creep_exact``'s setting).
+
+        A plain solve on one grid: ``extrapolate=False, grid_shifts=1``. From 32 x 16 elements
+        a grid starts from a solve on half the elements (``coarse_start`` of the solver).
     extrapolate : bool, keyword-only
         ``method="exact"`` only: one Richardson step in the rolling direction,
-        ``2 F(2 mx, my) - F(mx, my)``, the fine grid started from the coarse solution. With
-        ``grid=(30, 20)``: 34 / 14 ms per case, O 0.34 / 0.16 %, C 0.45 / 0.19 % (the best
-        maximum measured at this cost); with ``grid=(40, 20)``: 52 / 22 ms, O 0.44 / 0.22 %,
-        C 0.33 / 0.19 % (the contact-edge part of the error does not halve with the grid, and
-        the extrapolation amplifies it).
+        ``2 F(2 mx, my) - F(mx, my)``, the fine grid started from the coarse solution (the
+        error is first order in the rolling-direction element size). Default True.
+    grid_shifts : {1, 2, 3, 4}, keyword-only
+        ``method="exact"`` only: the forces (and moment, sensitivities) are averaged over this
+        many grids moved by ``(k + 1/2) / grid_shifts - 1/2`` of an element along x (2: -1/4
+        and +1/4), each with its own Richardson step. Why: part of the grid error depends on
+        where the contact edge of each row falls inside its element; it is not a smooth
+        function of the element size, so a Richardson step alone amplifies it (one grid:
+        0.45 % at 30x20, 0.70 % at 24x20, 0.69 % at 32x20, 0.33 % at 40x20); moving the grid
+        by half an element moves every edge by half an element, and the average of the two
+        removes most of it (two shifts: 0.17, 0.21, 0.26, 0.18 % against C, 0.18, 0.28, 0.18,
+        0.19 % against O; four shifts no better). The error left is mostly the lateral element
+        size (second order; a0/b0 = 0.2, pure spin). Default 2. Needs
+        ``mx >= 30`` with the 1.08 potential area (at 20 the shifted contact reaches its edge
+        and the solver warns).
     tolerance : float, keyword-only
         ``method="exact"`` only: relative change of the tractions per Gauss-Seidel sweep at
-        which the iteration stops, in (0, 0.1]. The default 1e-4 changes the forces by at most
-        5e-6 of mu N against 1e-8 (measured on the 21 cases at 40x20 and 80x20) and saves
-        about 30 % of the time against 1e-6. [-]
+        which the iteration stops, in (0, 0.1]. Default 1e-3: the forces within 0.006 % of
+        mu N of those at 1e-8 (measured on the 21 cases at 30x20, 40x20 and 60x20; 1e-4:
+        0.0004 %), about 30 % faster than 1e-4. [-]
     transport_order : {1, 2}, keyword-only
         ``method="exact"`` only: difference of the rolling term, 1 (Kalker's and CONTACT's
         first-order upwind difference, default) or 2 (three-point upwind difference, see
@@ -438,7 +424,8 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         contact edge falls inside its element, and lateral creepage with spin has a large
         second-order error): grid (40, 20) 20 / 7 ms, O 1.33 / 0.50 %; (60, 20) 31 / 13 ms,
         O 0.58 / 0.19 %, C 0.71 / 0.23 %; (80, 20) 46 / 22 ms, O 0.50 / 0.17 %,
-        C 0.63 / 0.21 %; (80, 40) 111 / 73 ms, O 0.39 / 0.16 %, C 0.52 / 0.20 %. [-]
+        C 0.63 / 0.21 %; (80, 40) 111 / 73 ms, O 0.39 / 0.16 %, C 0.52 / 0.20 % (each with
+        ``extrapolate=False, grid_shifts=1``). [-]
     **method_options
         Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
         (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
@@ -466,20 +453,20 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     ----------
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Secs. 2.5-2.6.
     """
+    if method == "exact_table" and not method_options:
+        table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
+        return table.creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
+                                    a0, b0, youngs_modulus, poisson_ratio, friction_coefficient)
     if method in COMPARISON_METHODS:
         tx, ty = _comparison(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                              youngs_modulus, poisson_ratio, friction_coefficient, method,
                              method_options)[:2]
         return CreepForce3D(tx, ty)
     _no_options(method, method_options)
-    if method == "exact_table":
-        return load_exact_table().creep_force_3d(
-            creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
-            poisson_ratio, friction_coefficient)
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                            extrapolate, tolerance, transport_order)
+                            extrapolate, tolerance, transport_order, grid_shifts)
     tx, ty = _solve(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, method)[:2]
     return CreepForce3D(tx[()], ty[()])
@@ -653,9 +640,11 @@ def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
 
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
-                      method="modified_strip", *, grid=EXACT_DEFAULT_GRID, extrapolate=False,
-                      tolerance=1e-4, sensitivities=False, fields=False,
-                      transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, **method_options):
+                      method="modified_strip", *, grid=EXACT_DEFAULT_GRID,
+                      extrapolate=EXACT_DEFAULT_EXTRAPOLATE, tolerance=EXACT_DEFAULT_TOLERANCE,
+                      sensitivities=False, fields=False,
+                      transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
+                      grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -671,16 +660,21 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     evaluated (|T| <= mu N still holds) and ``within_validity`` is False; pure spin is off by
     up to 59 % (large spin makes the true curve decay, which these theories do not model).
 
-    With ``method="exact"`` (see :func:`creep_force_3d` for ``grid``, ``extrapolate`` and
-    ``tolerance``, their cost and accuracy) the exact theory is solved and the result also
-    holds the spin moment, and on request:
+    With ``method="exact"`` (see :func:`creep_force_3d` for ``grid``, ``extrapolate``,
+    ``grid_shifts`` and ``tolerance``, their defaults, cost and accuracy) the exact theory is
+    solved and the result also holds the spin moment, and on request:
 
     sensitivities : bool, keyword-only
         The Jacobian d(tx, ty, M_z)/d(xi_x, xi_y, phi) of the discrete problem, from the
-        problem linearised at the converged slip/stick partition (one dense solve per grid:
-        about 0.1 s at 40x20, growing as the cube of the number of contact elements).
+        problem linearised at the converged slip/stick partition (one dense solve per grid,
+        growing as the cube of the number of contact elements: about 0.1 s at 40x20; with the
+        default four grids up to 30x20 and 60x20, about 1 s), extrapolated and averaged over
+        the grid shifts like the forces.
     fields : bool, keyword-only
-        The solver's element fields (pressure, tractions, slip, stick/slip masks).
+        The solver's element fields (pressure, tractions, slip, stick/slip masks) of the
+        finest grid solved (with ``grid_shifts``, the last shifted one; the forces are the
+        extrapolated, averaged ones, not the sum of these tractions). The stick area fraction
+        and width ratio are those of the same grid.
 
     For "fastsim" and "fastrip" the stick area fraction is the method's own (its grid);
     for "polach" (no stick zone) the modified-strip estimate, as for "she"; the other fields
@@ -719,7 +713,8 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     if method == "exact":
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                               extrapolate, sensitivities, fields, tolerance, transport_order)
+                               extrapolate, sensitivities, fields, tolerance, transport_order,
+                               grid_shifts)
     if sensitivities or fields:
         raise ValueError(f"sensitivities and fields need method='exact'; got method={method!r}")
     (tx, ty, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0) = _solve(
@@ -740,136 +735,6 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
 
 
 # --------------------------------------------------------------------------------------------
-# Scalar paths (plain Python floats): the FMU's per-step calls
-# --------------------------------------------------------------------------------------------
-# numpy's per-call overhead (array creation, ufunc dispatch, broadcasting, the input checks)
-# is ~100 us per call of creep_solution_3d on scalars, for ~1 us of arithmetic. The helpers
-# below repeat the array paths' arithmetic operation for operation on floats with the math
-# module, for callers that have already range-checked their inputs (the FMU slave: see
-# railcontact.effects._inputs_plausible, the scene's checks and Hertz's a0, b0). They ASSUME,
-# and do not check: every input a finite float (or int, not bool), normal_load >= 0, a0 >= 0,
-# b0 >= 0, youngs_modulus > 0, 0 <= poisson_ratio < 0.5, friction_coefficient >= 0, method in
-# METHODS, and a0/b0 in the range kalker_coefficients accepts (> 0, any value; for a0 b0 = 0
-# the array path's placeholder 1 is used). Outside that the result is undefined (possibly NaN
-# or an exception); use the public functions there. Inputs of extreme magnitude (outside
-# MODERATE_MIN..MODERATE_MAX, see _moderate) are passed on to the overflow-safe array path.
-# Agreement with the array paths to a few ulp (libm's hypot, acos and pow may round
-# differently from numpy's) is tested in tests/test_creep3d.py.
-
-
-#: Magnitudes the scalar paths accept: every non-zero input in [1e-50, 1e50] keeps all their
-#: intermediate products (at most five factors) in the normal float range, where they equal the
-#: array paths' (mantissa, exponent) arithmetic to a few ulp. Outside it they call the array
-#: path (overflow-safe; it also raises the ValueError of an input out of range).
-def _f_over_z_scalar(z, _sqrt=math.sqrt, _acos=math.acos):
-    """:func:`_f_over_z` for one float 0 <= z <= 1."""
-    q = 1.0 - z * z
-    r = _sqrt(q if q > 0.0 else 0.0)
-    return z**3 * (2.0 + r) / (2.0 * (1.0 + r) ** 2) + 1.5 * _acos(z)
-
-
-def _spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0):
-    """:func:`spin_coefficient` for plain floats (inputs assumed in range, see above)."""
-    if not _moderate(xi_x, xi_y, phi, a0, b0):
-        return float(spin_coefficient(xi_x, xi_y, phi, a0, b0))
-    return _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
-
-
-def _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0, _hypot=math.hypot, _inf=math.inf):
-    """:func:`_spin_coefficient_scalar` for inputs already known to be moderate."""
-    num = _hypot(a0, b0) * abs(phi)
-    den = _hypot(xi_x, xi_y)
-    if den > 0.0:
-        return num / den
-    return _inf if num > 0.0 else 0.0
-
-
-_EPS4 = 4.0 * float(np.finfo(float).eps)
-_STRIP_C22 = np.pi**2 / 4.0
-
-
-def _creep_solution_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method,
-                           _kalker=_coefficients_cached, _sqrt=math.sqrt, _hypot=math.hypot,
-                           _acos=math.acos, _pi=math.pi, _inf=math.inf, _lo=MODERATE_MIN,
-                           _hi=MODERATE_MAX):
-    """:func:`creep_solution_3d` for plain floats (inputs assumed in range, see above).
-
-    The same operations in the same order as :func:`_solve` and :func:`creep_solution_3d`;
-    Kalker's coefficients from the cache :func:`railcontact.kalker._coefficients_cached` (per
-    (a0/b0, nu); an FMU asks for the same ellipse shape step after step).
-
-    Returns
-    -------
-    CreepSolution3D
-        Fields as plain floats (``within_validity`` a bool).
-    """
-    # _moderate, inlined (one call per FMU step)
-    if not ((xi_x == 0.0 or _lo <= abs(xi_x) <= _hi) and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
-            and (phi == 0.0 or _lo <= abs(phi) <= _hi) and (n_load == 0.0 or _lo <= n_load <= _hi)
-            and _lo <= a0 <= _hi and _lo <= b0 <= _hi and _lo <= e_mod <= _hi
-            and (mu == 0.0 or _lo <= mu <= _hi)):
-        res = creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
-        return CreepSolution3D(*(float(v) for v in res[:6]), bool(res[6]))
-    mu_n = mu * n_load
-    has_area = a0 > 0.0 and b0 > 0.0
-    c11, c22, c23 = _kalker(a0 / b0 if has_area else 1.0, nu)
-    if method == "strip":
-        c11 = _pi**2 / (4.0 * (1.0 - nu)) + 0.0 * c11
-        c22 = _STRIP_C22 + 0.0 * c22
-    w_x = c11 * xi_x
-    w_y = c22 * xi_y + _sqrt(a0 * b0) * c23 * phi
-    w_abs = _hypot(w_x, w_y)
-    area = _pi * a0 * b0
-    p0 = 1.5 * n_load / area if area > 0.0 else 0.0
-    w_sat = _pi**2 * (1.0 + nu) * mu * p0 / e_mod
-    has_force = mu_n > 0.0 and w_sat > 0.0
-    if w_sat > 0.0:
-        z = w_abs / w_sat                                   # (inf on overflow, as meant)
-    else:
-        z = _inf if w_abs > 0.0 else 0.0
-    stiffness = e_mod / (2.0 * (1.0 + nu)) * a0 * b0        # G a0 b0 [N]
-    if method == "linear":
-        factor = stiffness
-    elif method == "she":
-        t_lin = stiffness * w_abs
-        if mu_n > 0.0:
-            u = t_lin / mu_n
-        else:
-            u = _inf if t_lin > 0.0 else 0.0
-        if u <= 3.0:
-            factor = stiffness * (1.0 - u / 3.0 + u * u / 27.0)
-        else:
-            factor = mu_n / w_abs if w_abs > 0.0 else 0.0
-        if not (has_force or w_abs == 0.0):
-            factor = 0.0
-    elif has_force:
-        if z <= 1.0:
-            factor = (mu_n / w_sat) * _f_over_z_scalar(z)
-        else:
-            factor = mu_n / w_abs if w_abs > 0.0 else 0.0
-    else:
-        factor = 0.0
-    tx = -factor * w_x
-    ty = -factor * w_y
-    if method != "linear":                  # never above mu N (see _solve)
-        t_abs = _hypot(tx, ty)
-        margin = 1.0 - _EPS4 if (tx != 0.0 and ty != 0.0) else 1.0
-        if t_abs > mu_n * margin:
-            scale = mu_n * (1.0 - _EPS4) / t_abs
-            tx, ty = tx * scale, ty * scale
-    tx, ty = tx + 0.0, ty + 0.0
-    phi_coef = _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
-    if method == "linear":
-        return CreepSolution3D(tx, ty, 1.0, 1.0, z, phi_coef,
-                               phi_coef <= 1.0 and _hypot(tx, ty) <= mu_n)
-    zc = z if z < 1.0 else 1.0
-    root = _sqrt(1.0 - zc * zc)
-    stick = (2.0 / _pi) * (_acos(zc) - zc * root)
-    return CreepSolution3D(tx, ty, stick, root, z, phi_coef, phi_coef <= 1.0)
-
-
-
-# --------------------------------------------------------------------------------------------
 # method="exact": Kalker's exact theory, discretised (railcontact.reference.rolling3d)
 # --------------------------------------------------------------------------------------------
 def _check_exact_grid(grid):
@@ -886,7 +751,7 @@ def _check_exact_grid(grid):
 
 def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
            poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER):
+           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, grid_shifts=1):
     """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`."""
     from .reference.rolling3d import solve_rolling_3d
 
@@ -894,6 +759,11 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, creepage_bound=1.0)
     mx, my = _check_exact_grid(grid)
+    if isinstance(grid_shifts, bool) or grid_shifts not in (1, 2, 3, 4):
+        raise ValueError(f"grid_shifts must be an integer in [1, 4] [-] (grids averaged, "
+                         f"shifted by 1/grid_shifts of an element); got {grid_shifts!r}")
+    # element fractions by which the grids are moved in the rolling direction: -1/4, 1/4 for 2
+    shifts = [(k + 0.5) / int(grid_shifts) - 0.5 for k in range(int(grid_shifts))]
     tolerance = float(check_range("tolerance", tolerance, "-", 0.0, 0.1, lower_closed=False))
     if transport_order not in (1, 2) or isinstance(transport_order, bool):
         raise ValueError(f"transport_order must be 1 or 2 [-] (first- or second-order upwind "
@@ -913,23 +783,36 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
         kw = dict(tolerance=tolerance, sensitivities=sensitivities,
                   transport_order=int(transport_order))
-        one = solve_rolling_3d(*similar, mx=mx, my=my, coarse_start=True, **kw)
-        fine = one
-        if extrapolate:  # one Richardson step in the rolling-direction element size
-            fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, initial_guess=one,
-                                    **kw)  # prolongated coarse start
+        total = [0.0, 0.0, 0.0]
+        sens_sum = 0.0
+        iters[idx] = 0
+        one = fine = None
         w_c, w_f = (-1.0, 2.0) if extrapolate else (0.0, 1.0)
+        for shift in shifts:  # grids moved along x, their forces averaged (grid_shifts)
+            # the first grid starts from a half-size solve, a shifted one from the last grid
+            one = solve_rolling_3d(*similar, mx=mx, my=my, coarse_start=one is None,
+                                   initial_guess=one, grid_shift=shift, **kw)
+            fine = one
+            if extrapolate:  # one Richardson step in the rolling-direction element size
+                fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, grid_shift=shift,
+                                        initial_guess=one, **kw)  # prolongated coarse start
+                iters[idx] += fine.iterations
+            iters[idx] += one.iterations
+            for k, name in enumerate(("tx", "ty", "mz")):
+                total[k] += (w_f * getattr(fine, name) + w_c * getattr(one, name)) / len(shifts)
+            if sensitivities:
+                sens_sum = sens_sum + (w_f * fine.sensitivity
+                                       + w_c * one.sensitivity) / len(shifts)
         force, moment = sim["force_scale"][idx], sim["moment_scale"][idx]
-        tx[idx] = (w_f * fine.tx + w_c * one.tx) * force
-        ty[idx] = (w_f * fine.ty + w_c * one.ty) * force
-        mz[idx] = (w_f * fine.mz + w_c * one.mz) * moment
-        iters[idx] = one.iterations + (fine.iterations if extrapolate else 0)
+        tx[idx] = total[0] * force
+        ty[idx] = total[1] * force
+        mz[idx] = total[2] * moment
         if sensitivities:
             rows = np.array([force, force, moment])[:, None]
             cols = np.array([sim["creepage_scale"][idx], sim["creepage_scale"][idx],
                              sim["spin_scale"][idx]])[None, :]
             with np.errstate(over="ignore", invalid="ignore"):
-                sens[idx] = (w_f * fine.sensitivity + w_c * one.sensitivity) * rows * cols
+                sens[idx] = sens_sum * rows * cols
             if not np.all(np.isfinite(sens[idx])):
                 raise ValueError("normal_load, a0, b0, youngs_modulus and "
                                  "friction_coefficient must give creep-force sensitivities "
@@ -950,20 +833,20 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
 
 def _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                 tolerance, transport_order):
+                 tolerance, transport_order, grid_shifts=1):
     out = _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate, False,
-                 False, tolerance, transport_order)
+                 False, tolerance, transport_order, grid_shifts)
     return CreepForce3D(out[0][()], out[1][()])
 
 
 def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                    sensitivities, fields, tolerance, transport_order):
+                    sensitivities, fields, tolerance, transport_order, grid_shifts=1):
     tx, ty, mz, stick, width, sens, res, iters, checked = _exact(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-        tolerance, transport_order)
+        tolerance, transport_order, grid_shifts)
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = checked
     z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu),
                         tx.shape)
@@ -977,13 +860,17 @@ def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, 
 _EXACT_TABLES = {}
 
 
+_DEFAULT_KEY = (None, None)
+
+
 def load_exact_table(path=None, directory=None):
     """The exact-theory table with the solver attached beyond its axes.
 
     :class:`railcontact.exact_table.ExactCreepTable` of ``creep_exact.nc`` (default: the
     shipped file, :func:`railcontact.tables.default_table_path`), loaded once per path and
     process. Beyond its a0/b0 range or spin axis it answers with
-    ``creep_solution_3d(..., method="exact", grid=(40, 20), extrapolate=True)``, the setting
+    ``creep_solution_3d(..., method="exact", grid=(40, 20), extrapolate=True, grid_shifts=1,
+    tolerance=1e-4)``, the setting
     the table was built with, so every finite input gets the exact theory.
 
     Parameters
@@ -1000,6 +887,7 @@ def load_exact_table(path=None, directory=None):
     from .exact_table import ExactCreepTable  # noqa: PLC0415  (numba: only when used)
 
     key = (None if path is None else str(path), None if directory is None else str(directory))
+    # _DEFAULT_KEY: the shipped table, looked up directly by creep_force_3d's fast path
     table = _EXACT_TABLES.get(key)
     if table is None:
         table = _EXACT_TABLES[key] = ExactCreepTable.from_file(path, directory,
@@ -1010,4 +898,4 @@ def load_exact_table(path=None, directory=None):
 def _exact_table_solver(*args, sensitivities=False):
     """The exact solver at the table's setting (the table's answer beyond its axes)."""
     return creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True,
-                             sensitivities=sensitivities)
+                             grid_shifts=1, tolerance=1e-4, sensitivities=sensitivities)

@@ -11,8 +11,11 @@ from collections import namedtuple
 
 import numpy as np
 
-from ._floats import _hypot_scaled, _value
+from ._floats import NO_EXP as _NO_EXP, TINY_SUBNORMAL as _TINY_SUBNORMAL
+from ._floats import hypot_scaled as _hypot_scaled, root_ab as _root_ab
+from ._floats import scaled as _scaled, value as _value
 from ._validation import check_range
+from .kalker import A0_OVER_B0_MAX
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "spin_coefficient"]
 
@@ -100,3 +103,69 @@ def spin_coefficient(creepage_longitudinal, creepage_lateral, spin, a0, b0):
     den = d_m > 0.0
     ratio = _value(num_m / np.where(den, d_m, 1.0), n_e + p_e.astype(np.int64) - d_e)
     return np.where(den, ratio, np.where(num_m > 0.0, np.inf, 0.0))[()]
+
+
+# --------------------------------------------------------------------------------------------
+# The overflow-safe creepage arithmetic the closed-form theories and the strip table share
+# --------------------------------------------------------------------------------------------
+
+def axis_ratio(a0, b0):
+    """a0/b0 where both are > 0 (else the placeholder 1), checked against the range of
+    :func:`railcontact.kalker_coefficients`; an underflow to 0 is held at the smallest
+    subnormal (the coefficients have reached their a0/b0 -> 0 limits long before)."""
+    has_area = (a0 > 0.0) & (b0 > 0.0)
+    with np.errstate(over="ignore", under="ignore"):
+        g = np.where(has_area, a0 / np.where(has_area, b0, 1.0), 1.0)
+    return check_range("a0/b0", np.maximum(g, _TINY_SUBNORMAL), "-", 0.0, A0_OVER_B0_MAX,
+                       lower_closed=False,
+                       condition="semi-axis ratio; Kalker's C23 ~ (a0/b0)^1.5 overflows beyond")
+
+
+def weighted_creepage_scaled(xi_x, xi_y, phi, a0, b0, c11, c22, c23, parts=False):
+    """The Kalker-weighted creepage w = (C11 xi_x, C22 xi_y + sqrt(a0 b0) C23 phi) without
+    overflow: its direction (unit vector, (0, 0) for w = 0) and |w| as (m, e); with
+    ``parts`` also (ux, uy, top), w = (ux, uy) 2^top."""
+    t1 = _scaled((c11, xi_x))
+    t2 = _scaled((c22, xi_y))
+    t3 = _scaled((_root_ab(a0, b0), c23, phi))
+    ey = np.maximum(t2[1], t3[1])
+    wy_m = _value(t2[0], t2[1] - ey) + _value(t3[0], t3[1] - ey)    # |.| <= 2
+    wy_m, wy_e = np.frexp(wy_m)
+    wy_e = np.where(wy_m == 0.0, _NO_EXP, ey + wy_e.astype(np.int64))
+    top = np.maximum(t1[1], wy_e)
+    ux = _value(t1[0], t1[1] - top)                 # w / 2^top: |.| <= 1, one of them >= 1/2
+    uy = _value(wy_m, wy_e - top)
+    u_abs = np.hypot(ux, uy)
+    nonzero = u_abs > 0.0
+    safe = np.where(nonzero, u_abs, 1.0)
+    dx = np.where(nonzero, ux / safe, 0.0)
+    dy = np.where(nonzero, uy / safe, 0.0)
+    m, e = np.frexp(u_abs)
+    out = dx, dy, m, np.where(nonzero, top + e.astype(np.int64), _NO_EXP)
+    return out + (ux, uy, top) if parts else out
+
+
+def saturation_creepage_scaled(n_load, a0, b0, e_mod, nu, mu):
+    """w_sat = 1.5 pi (1 + nu) mu N / (a0 b0 E) (= pi^2 (1 + nu) mu p0 / E with Hertz's p0)
+    as (m, e); m = 0 without contact (N, mu, a0 or b0 zero)."""
+    has_area = (a0 > 0.0) & (b0 > 0.0)
+    # the operations (and roundings) of pi^2 (1 + nu) mu (1.5 N / (pi a0 b0)) / E
+    area = _scaled((np.pi, np.where(has_area, a0, 1.0), np.where(has_area, b0, 1.0)))
+    p0 = _scaled((1.5, n_load), (area,))
+    m, e = _scaled((np.pi**2 * (1.0 + nu), mu, p0), (e_mod,))
+    m = np.where(has_area, m, 0.0)
+    return m, np.where(m == 0.0, _NO_EXP, e)
+
+
+def coulomb_limit(mu, n_load):
+    """mu N, which must be a finite float (it bounds the force)."""
+    with np.errstate(over="ignore"):
+        mu_n = mu * n_load
+    if not np.all(np.isfinite(mu_n)):
+        bad = np.broadcast_arrays(mu, n_load, mu_n)
+        i = np.flatnonzero(~np.isfinite(bad[2]))[0]
+        raise ValueError(
+            f"friction_coefficient * normal_load (the Coulomb limit mu N) must be in "
+            f"[0, {np.finfo(float).max:g}] [N]; got inf (friction_coefficient = "
+            f"{bad[0].flat[i]:g}, normal_load = {bad[1].flat[i]:g})")
+    return mu_n

@@ -39,7 +39,9 @@ from collections import namedtuple
 import numpy as np
 from scipy.special import elliprd
 
-from ._floats import _finite_or_scaled, _overflow_error, _root, _scaled, _value
+from ._floats import finite_or_scaled as _finite_or_scaled
+from ._floats import overflow_error as _overflow_error
+from ._floats import root as _root, scaled as _scaled, value as _value
 from ._validation import check_range
 
 __all__ = ["Hertz2D", "Hertz3D", "hertz_2d", "hertz_3d", "curvature_ratio_from_axis_ratio",

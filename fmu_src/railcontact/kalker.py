@@ -264,9 +264,9 @@ def kalker_coefficients(a0_over_b0, poisson_ratio):
 
 
 @lru_cache(maxsize=1024)
-def _coefficients_cached(a0_over_b0, poisson_ratio):
+def kalker_coefficients_cached(a0_over_b0, poisson_ratio):
     """(C11, C22, C23) as plain floats for scalar a0/b0 and nu, memoised (the scalar creep paths
-    of :mod:`railcontact.creep3d`: an FMU asks for the same ellipse shape step after step, and
+    of the FMU: an FMU asks for the same ellipse shape step after step, and
     a0/b0 = (a1 s)/(b1 s) of Hertz's scaling takes only a few rounded values). Same values as
     :func:`kalker_coefficients`, which also makes the range check on a cache miss."""
     c = kalker_coefficients(a0_over_b0, poisson_ratio)

@@ -95,7 +95,7 @@ limit only guards against accidental huge allocations."""
 # ---------------------------------------------------------------------------------------------
 # input checks
 # ---------------------------------------------------------------------------------------------
-def _check_degree(degree, lower=1):
+def check_degree(degree, lower=1):
     d = check_range("degree", degree, "-", lower, MAX_DEGREE)
     if d.ndim != 0 or float(d) != int(d):
         raise ValueError(f"degree must be an integer in [{lower}, {MAX_DEGREE}] [-]; got {degree!r}")
@@ -106,7 +106,7 @@ def _check_half_width(half_width):
     return float(check_range("half_width", half_width, "m", 0.0, None, lower_closed=False))
 
 
-def _check_coefficients(name, coefficients, unit, min_len=1):
+def check_coefficients(name, coefficients, unit, min_len=1):
     c = check_range(name, coefficients, unit)
     if c.ndim != 1 or c.size < min_len:
         raise ValueError(f"{name} must be a 1-D sequence of >= {min_len} coefficients [{unit}]; "
@@ -155,7 +155,7 @@ def moment_ratios(count):
     -------
     ndarray, shape (count,)
     """
-    n = _check_degree(count)
+    n = check_degree(count)
     return np.array(_moment_ratios(n))
 
 
@@ -189,7 +189,7 @@ def transform_coefficients(count, half_width=1.0):
         large ``k`` (e.g. a = 5 mm underflows past k ~ 140); use ``half_width=1`` and normalised
         coefficients for high degree.
     """
-    n = _check_degree(count)
+    n = check_degree(count)
     a = _check_half_width(half_width)
     return -np.pi * _scaled(np.asarray(_moment_ratios(n)), a)
 
@@ -214,7 +214,7 @@ def inverse_transform_coefficients(count, half_width=1.0):
     -------
     ndarray, shape (count,)
     """
-    n = _check_degree(count)
+    n = check_degree(count)
     a = _check_half_width(half_width)
     k = np.arange(n, dtype=float)
     return _scaled(np.asarray(_moment_ratios(n)), a) / (np.pi * (2.0 * k - 1.0))
@@ -232,7 +232,7 @@ def _toeplitz_even(coef, size):
 
 
 @lru_cache(maxsize=128)
-def _unit_matrices(n):
+def unit_matrices(n):
     """Normalised [A] and [A]^-1 (a = 1) of degree n, cached, read-only."""
     c = np.asarray(_moment_ratios((n + 1) // 2))
     k = np.arange(c.size, dtype=float)
@@ -280,7 +280,7 @@ def transform_matrix(degree, half_width=1.0):
     -------
     ndarray, shape (N, N)
     """
-    n = _check_degree(degree)
+    n = check_degree(degree)
     return _toeplitz_even(transform_coefficients((n + 1) // 2, half_width), n)
 
 
@@ -298,7 +298,7 @@ def inverse_transform_matrix(degree, half_width=1.0):
     -------
     ndarray, shape (N, N)
     """
-    n = _check_degree(degree)
+    n = check_degree(degree)
     return _toeplitz_even(inverse_transform_coefficients((n + 1) // 2, half_width), n)
 
 
@@ -324,7 +324,7 @@ def base_change_matrix(degree, shift):
     The entries grow like ``(1 + |d|)^N``; with normalised coordinates and ``|d| <= 1`` the
     base change loses about ``N log10(2)`` digits in the worst case (measured in the tests).
     """
-    n = _check_degree(degree, lower=0)
+    n = check_degree(degree, lower=0)
     d = float(check_range("shift", shift, "m"))
     i, j = np.indices((n + 1, n + 1))
     with np.errstate(invalid="ignore"):
@@ -346,7 +346,7 @@ def force_vector(degree, half_width=1.0):
     -------
     ndarray, shape (N+1,)
     """
-    n = _check_degree(degree, lower=0)
+    n = check_degree(degree, lower=0)
     out = np.zeros(n + 1)
     out[0::2] = transform_coefficients(n // 2 + 1, half_width)
     return out
@@ -370,7 +370,7 @@ def polynomial_form(coefficients, x, half_width=1.0):
         Same shape as ``x``. At ``|x| = a`` the value is 0 when the boundary conditions (3.3)
         hold; it is returned as 0 (closed form of the limit for a vanishing numerator).
     """
-    b = _check_coefficients("coefficients", coefficients, "-")
+    b = check_coefficients("coefficients", coefficients, "-")
     x = check_range("x", x, "m")
     a = _check_half_width(half_width)
     inside = np.abs(x) < a
@@ -392,7 +392,7 @@ def polynomial_form_force(coefficients, half_width=1.0):
     -------
     float
     """
-    b = _check_coefficients("coefficients", coefficients, "-")
+    b = check_coefficients("coefficients", coefficients, "-")
     return float(-force_vector(b.size - 1, half_width) @ b)
 
 
@@ -421,7 +421,7 @@ def principal_value_integral(coefficients, x, half_width=1.0):
     cancellation growing like ``|x/a|^N``; the value is computed in the equivalent, stable
     Chebyshev form (see the code comment), checked against quadrature in the tests.
     """
-    b = _check_coefficients("coefficients", coefficients, "-")
+    b = check_coefficients("coefficients", coefficients, "-")
     x = check_range("x", x, "m")
     a = _check_half_width(half_width)
     bn = b * a ** np.arange(b.size)  # normalised: s = x / a
@@ -429,7 +429,7 @@ def principal_value_integral(coefficients, x, half_width=1.0):
     if bn.size == 1:
         beta = np.zeros(1)
     else:
-        beta = _unit_matrices(bn.size - 1)[0] @ bn[1:]
+        beta = unit_matrices(bn.size - 1)[0] @ bn[1:]
     inside = np.polynomial.polynomial.polyval(s, beta)
     outside = np.abs(s) > 1.0
     # Outside the strip, beta(s) + I_-1(s) b(s) cancels like |s|^N (the sum decays as 1/s while
@@ -514,7 +514,7 @@ class PolynomialNormalContact:
         return k / self.half_width * principal_value_integral(self.normalised_coefficients, s)
 
 
-def _force_from_normalised(b):
+def force_from_normalised(b):
     c = np.asarray(_moment_ratios(b.size // 2 + 1))
     return float(np.pi * (c[: (b.size + 1) // 2] @ b[0::2]))
 
@@ -553,7 +553,7 @@ def normal_contact_from_coefficients(pressure_coefficients, half_width, youngs_m
     """
     a = _check_half_width(half_width)
     kernel_factor(youngs_modulus, poisson_ratio)
-    c = _check_coefficients("pressure_coefficients", pressure_coefficients,
+    c = check_coefficients("pressure_coefficients", pressure_coefficients,
                             "N/m" if normalised else "N/m^(n+1)", 1)
     d = float(check_range("centre", centre, "m"))
     b = c.copy() if normalised else c * a ** np.arange(c.size)
@@ -562,7 +562,7 @@ def normal_contact_from_coefficients(pressure_coefficients, half_width, youngs_m
     if abs(b.sum()) > rtol * scale or abs((sign * b).sum()) > rtol * scale:
         raise ValueError("pressure_coefficients must satisfy the boundary conditions (3.3) "
                          f"sum B_n (+-a)^n = 0 [-]; got {b.sum():g} and {(sign * b).sum():g}")
-    load = _force_from_normalised(b)
+    load = force_from_normalised(b)
     if not load > 0.0:
         raise ValueError(f"pressure_coefficients must give a positive normal load [N/m]; got {load:g}")
     return PolynomialNormalContact(a, d, b, load, float(youngs_modulus), float(poisson_ratio))
@@ -581,12 +581,12 @@ def _pressure_for(z, a, d, kern):
     n = z.size - 1
     g = _normalised_gap_slope(z, a, d)
     b = np.empty(n + 1)
-    b[1:] = (a / kern) * (_unit_matrices(n)[1] @ g)
+    b[1:] = (a / kern) * (unit_matrices(n)[1] @ g)
     b[0] = -b[2::2].sum()
     return b
 
 
-def _pressure_is_physical(b, tol=1e-8):
+def pressure_is_physical(b, tol=1e-8):
     s = np.cos(np.linspace(0.0, np.pi, 401))[1:-1]
     val = np.polynomial.polynomial.polyval(s, b) / np.sqrt(1.0 - s * s)
     return bool(val.min() >= -tol * max(val.max(), 0.0)) and val.max() > 0
@@ -633,7 +633,7 @@ def solve_normal_polynomial(gap_coefficients, normal_load, youngs_modulus, poiss
         Bad input; no minimum of the gap; no convergence; or a solution whose pressure is
         negative somewhere (contact not coherent: the thesis' "non-physical" roots).
     """
-    z = _check_coefficients("gap_coefficients", gap_coefficients, "m^(1-n)", 3)
+    z = check_coefficients("gap_coefficients", gap_coefficients, "m^(1-n)", 3)
     load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
     kern = float(kernel_factor(youngs_modulus, poisson_ratio))
     n = z.size - 1
@@ -657,7 +657,7 @@ def solve_normal_polynomial(gap_coefficients, normal_load, youngs_modulus, poiss
         d0 = float(check_range("centre_guess", centre_guess, "m"))
 
     def load_residual(a, d, target=load):
-        return (_force_from_normalised(_pressure_for(z, a, d, kern)) - target) / target
+        return (force_from_normalised(_pressure_for(z, a, d, kern)) - target) / target
 
     def start_width(d, target):
         curv = np.polynomial.polynomial.polyval(d, np.polynomial.polynomial.polyder(z, 2))
@@ -720,10 +720,10 @@ def solve_normal_polynomial(gap_coefficients, normal_load, youngs_modulus, poiss
         raise ValueError("gap_coefficients: the normal problem did not converge "
                          f"(residual {res:.3g}); give centre_guess/half_width_guess")
     b = _pressure_for(z, a, d, kern)
-    if not _pressure_is_physical(b):
+    if not pressure_is_physical(b):
         raise ValueError("gap_coefficients: the solution has negative pressure (contact not "
                          f"coherent) at a = {a:g} m, d = {d:g} m [m^(1-n)]")
-    return PolynomialNormalContact(a, d, b, _force_from_normalised(b), float(youngs_modulus),
+    return PolynomialNormalContact(a, d, b, force_from_normalised(b), float(youngs_modulus),
                                    float(poisson_ratio))
 
 
@@ -739,7 +739,7 @@ def _stick_solution(b, r):
     ``force2 = int Q2 ds`` (negative).
     """
     n = b.size - 1
-    beta = _unit_matrices(n)[0] @ b[1:]                         # slope of q1 / mu, in s
+    beta = unit_matrices(n)[0] @ b[1:]                         # slope of q1 / mu, in s
     delta = 1.0 - r
     gamma = _base_change(n - 1, delta) @ beta                 # slope of q1 in powers of s*
     if r == 0.0:
@@ -762,7 +762,7 @@ def _stick_scalars(b, r):
     """(xi_factor, force2) of :func:`_stick_solution` for real or complex r != 0 (polynomials
     in r; used for their Taylor series about full stick)."""
     n = b.size - 1
-    beta = _unit_matrices(n)[0] @ b[1:]
+    beta = unit_matrices(n)[0] @ b[1:]
     delta = 1.0 - r
     binom, power, upper = _binomials(n - 1)
     gamma = np.where(upper, binom * delta ** power, 0.0) @ beta
@@ -788,7 +788,7 @@ def _full_stick_series_cached(key):
     rho = 0.25
     eps = rho * np.exp(2j * np.pi * np.arange(m) / m)
     vals = np.array([_stick_scalars(b, 1.0 - e) for e in eps])
-    load = _force_from_normalised(b)
+    load = force_from_normalised(b)
     vals[:, 1] += load
     coef = (np.fft.fft(vals, axis=0) / m).real / rho ** np.arange(m)[:, None]
     coef[0] = 0.0  # xi and T vanish at full stick (exactly)
@@ -805,7 +805,7 @@ def _full_stick_series(b):
     return _full_stick_series_cached(np.ascontiguousarray(b, dtype=float).tobytes())
 
 
-_SERIES_LIMIT = 1e-4
+SERIES_LIMIT = 1e-4
 """Below this ``|xi|/xi_c`` (or ``|T|/(mu N)``) the creep state is taken from the full-stick
 Taylor series (relative accuracy ~1e-14 down to subnormal creepages)."""
 
@@ -1009,7 +1009,7 @@ def solve_tangential_polynomial(normal_contact, friction_coefficient, creepage=N
         if mu == 0.0 or target == 0.0:
             r = 1.0
             force = 0.0
-        elif target < _SERIES_LIMIT * xi_c:
+        elif target < SERIES_LIMIT * xi_c:
             eps, _, f = _series_state(b, target * nc.half_width / (kern * mu), 0)
             r = 1.0 - eps
             force = -sgn * mu * f
@@ -1024,7 +1024,7 @@ def solve_tangential_polynomial(normal_contact, friction_coefficient, creepage=N
         target = abs(force)
         if target == 0.0:
             r, xi = 1.0, 0.0
-        elif target < _SERIES_LIMIT * mu * nc.normal_load:
+        elif target < SERIES_LIMIT * mu * nc.normal_load:
             eps, x, _ = _series_state(b, target / mu, 1)
             r = 1.0 - eps
             xi = sgn * kern * mu * x / nc.half_width

@@ -9,12 +9,15 @@
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
 
-from ._floats import _moderate
+from ._floats import MODERATE_MAX, MODERATE_MIN, moderate as _moderate, scaled as _scaled
+from ._floats import value as _value
 from ._validation import check_range
+from .creep_common import (axis_ratio, coulomb_limit, saturation_creepage_scaled,
+                           weighted_creepage_scaled)
+from .kalker import kalker_coefficients_cached
 from .tables import Table, TableFileError, default_table_path
 
 __all__ = ["CreepTable"]
@@ -24,35 +27,10 @@ __all__ = ["CreepTable"]
 # Creep tables
 # --------------------------------------------------------------------------------------------
 
-@lru_cache(maxsize=512)
-def _kalker_cached(a0_over_b0, poisson_ratio):
-    from .kalker import kalker_coefficients  # noqa: PLC0415
-
-    c = kalker_coefficients(a0_over_b0, poisson_ratio)
-    return float(c.c11), float(c.c22), float(c.c23)
-
-
-_KALKER_MEMO = {}
-
-
-def _kalker_scalar(g, nu, _memo=_KALKER_MEMO):
-    """:func:`_kalker_cached` behind a small dict keyed by a0/b0 (one hash of a float; the
-    lru cache hashes the pair). With Hertz's N^(1/3) scaling a0/b0 = (a1 s)/(b1 s) takes a
-    few rounded values (3 seen), so a one-slot memo would miss often."""
-    hit = _memo.get(g)
-    if hit is not None and hit[0] == nu:
-        return hit[1]
-    coefs = _kalker_cached(g, nu)
-    if len(_memo) >= 64:
-        _memo.clear()
-    _memo[g] = (nu, coefs)
-    return coefs
-
-
 def _kalker(g, nu):
     """C11, C22, C23 (cached for scalars: an FMU calls with the same a0/b0 step after step)."""
     if np.ndim(g) == 0 and np.ndim(nu) == 0:
-        return _kalker_cached(float(g), float(nu))
+        return kalker_coefficients_cached(float(g), float(nu))
     from .kalker import kalker_coefficients  # noqa: PLC0415
 
     c = kalker_coefficients(g, nu)
@@ -136,13 +114,10 @@ class CreepTable:
         self._spline = table.spline
         self._z_max = float(table.axes[0]["nodes"][-1])
         self._i_f, self._i_s = _variable_indices(table, ("force_ratio", "stick_area_fraction"))
-        d1 = self._spline.evaluate_point([0.0], [1])
-        d2 = self._spline.evaluate_point([0.0], [2])
-        self._slope0 = float(d1[self._i_f])     # F'(0) of the table (3 pi / 4 exactly in theory)
-        self._curv0 = float(d2[self._i_f])
         # The same cubic spline of F(z) in piecewise-polynomial form, as plain Python floats, for
-        # the scalar path (_scalar): one bisect and one Horner step cost far less than a numba
-        # dispatch with array arguments (an FMU calls this once per step).
+        # the scalar path (force_unchecked): one bisect and one Horner step cost far less than a
+        # numba dispatch with array arguments (an FMU calls this once per step), and reading the
+        # table needs no compiled code.
         from bisect import bisect_right  # noqa: PLC0415
 
         from scipy.interpolate import BSpline, PPoly  # noqa: PLC0415
@@ -156,6 +131,12 @@ class CreepTable:
             setattr(self, name, [tuple(float(v) for v in pp.c[:, j])
                                  for j in np.flatnonzero(keep)])
         self._bisect = bisect_right
+        # F'(0) (3 pi / 4 in theory) and F''(0) of the table: its first piece at z = 0
+        if self._pp_breaks[0] != 0.0:
+            raise TableFileError(f"table file {str(table.path)!r}: the creep table's first node "
+                                 f"must be z = 0; got {self._pp_breaks[0]!r}")
+        _, curv_half, self._slope0, _ = self._pp_coefs[0]
+        self._curv0 = 2.0 * curv_half
 
     @classmethod
     def from_file(cls, path=None, directory=None):
@@ -176,32 +157,30 @@ class CreepTable:
         return out.reshape(z.shape + (-1,))
 
     def _solve(self, args, jacobian=False):
-        from . import creep3d as c3  # noqa: PLC0415  (the overflow-safe arithmetic)
-
         xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = _check_creep_inputs(*args)
         shape = np.broadcast(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu).shape
         xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = (np.broadcast_to(v, shape) for v in (
             xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))
-        mu_n = c3._check_coulomb_limit(mu, n_load)
-        c11, c22, c23 = _kalker(c3._axis_ratio(a0, b0), nu)
-        # w, w_sat and mu N / w_sat in (mantissa, exponent) form (railcontact.creep3d._scaled):
+        mu_n = coulomb_limit(mu, n_load)
+        c11, c22, c23 = _kalker(axis_ratio(a0, b0), nu)
+        # w, w_sat and mu N / w_sat in (mantissa, exponent) form (railcontact._floats.scaled):
         # no intermediate overflows or underflows for any finite input
-        d_x, d_y, w_m, w_e, u_x, u_y, top = c3._weighted_scaled(xi_x, xi_y, phi, a0, b0, c11,
+        d_x, d_y, w_m, w_e, u_x, u_y, top = weighted_creepage_scaled(xi_x, xi_y, phi, a0, b0, c11,
                                                                  c22, c23, parts=True)
-        s_m, s_e = c3._saturation_scaled(n_load, a0, b0, e_mod, nu, mu)
+        s_m, s_e = saturation_creepage_scaled(n_load, a0, b0, e_mod, nu, mu)
         has_force = (mu_n > 0.0) & (s_m > 0.0)
         s_safe = np.where(has_force, s_m, 1.0)
-        z = np.where(has_force, c3._value(w_m / s_safe, w_e - s_e), 0.0)
+        z = np.where(has_force, _value(w_m / s_safe, w_e - s_e), 0.0)
         vals = self._f(z)
         f = np.minimum(vals[..., self._i_f], 1.0)   # rounding guard: the spline is <= 1 + 1e-15
         stick = np.clip(vals[..., self._i_s], 0.0, 1.0)
         small = z < 1e-6
         f_over_z = np.where(small, self._slope0 + 0.5 * self._curv0 * z,
                             f / np.where(small, 1.0, z))
-        k_m, k_e = c3._scaled((np.where(has_force, mu_n, 0.0),), ((s_safe, s_e),))  # mu N/w_sat
+        k_m, k_e = _scaled((np.where(has_force, mu_n, 0.0),), ((s_safe, s_e),))  # mu N/w_sat
         held = z > self._z_max                       # full sliding: -mu N w/|w| (F = 1)
-        tx = np.where(held, -mu_n * d_x, -c3._value(k_m * f_over_z * u_x, k_e + top))
-        ty = np.where(held, -mu_n * d_y, -c3._value(k_m * f_over_z * u_y, k_e + top))
+        tx = np.where(held, -mu_n * d_x, -_value(k_m * f_over_z * u_x, k_e + top))
+        ty = np.where(held, -mu_n * d_y, -_value(k_m * f_over_z * u_y, k_e + top))
         tx, ty = np.where(has_force, tx, -0.0), np.where(has_force, ty, -0.0)
         # rounding guard (|T| = mu N f with f <= 1, but w/|w| is rounded): never above mu N
         t_abs = np.hypot(tx, ty)
@@ -214,7 +193,7 @@ class CreepTable:
         n_x, n_y = d_x, d_y
         n_x = np.where(w_m > 0.0, n_x, 1.0)
         # dT/dw = -(mu_n / w_sat) [F'(z) n n^T + (F/z)(I - n n^T)]
-        k = c3._value(k_m, k_e)
+        k = _value(k_m, k_e)
         with np.errstate(over="ignore", invalid="ignore"):
             a_ = -k * fp
             b_ = -k * f_over_z
@@ -251,23 +230,34 @@ class CreepTable:
                 youngs_modulus, poisson_ratio, friction_coefficient)
         result = _CreepForce3D or _creep_force_type()
         if _fast_scalars_ok(*args):
-            return result(*self._scalar(*args))
+            return result(*self.force_unchecked(*args))
         tx, ty = self._solve(args)[:2]
         return result(tx[()], ty[()])
 
-    def _scalar(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, _kalker=_kalker_scalar,
-                _sqrt=math.sqrt, _hypot=math.hypot, _pi=math.pi, _pi2=math.pi**2):
-        """Scalar fast path (inputs already range-checked).
+    def force_unchecked(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu,
+                        _kalker=kalker_coefficients_cached, _sqrt=math.sqrt, _hypot=math.hypot,
+                        _pi=math.pi, _pi2=math.pi**2, _lo=MODERATE_MIN, _hi=MODERATE_MAX):
+        """:meth:`creep_force_3d` for plain floats whose range the caller has checked, as
+        ``(tx, ty)`` [N]: the table's one scalar implementation (the FMU's creep effect calls
+        it once per step; :meth:`creep_force_3d` calls it for scalar inputs after its check).
 
-        Called once per FMU step, so written for the interpreter: the math functions and
-        constants are bound as default arguments (no global/attribute look-ups), no builtin
-        min/max calls, and the Kalker coefficients come from :func:`_kalker_scalar` (a small
-        dict per a0/b0: an FMU asks for the same ellipse shape step after step). Same
-        arithmetic, in the same order, as before these changes: results are bit-identical.
+        Assumes every input a finite float in the ranges of :meth:`creep_force_3d` (the FMU
+        slave checks them; a0, b0 come from Hertz) and checks nothing. Written for the
+        interpreter: the math functions and constants are bound as default arguments, no
+        builtin min/max calls, and Kalker's coefficients come from the cache
+        :func:`railcontact.kalker.kalker_coefficients_cached` (an FMU asks for the same ellipse
+        shape step after step). Inputs of extreme magnitude go to the overflow-safe array
+        path, which also names a bad input. Agrees with the array path to a few ulp
+        (tests/test_tables.py).
         """
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             return 0.0, 0.0
-        if not _moderate(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+        # railcontact._floats.moderate, inlined (one call per FMU step; N, a0, b0, mu > 0 here)
+        if not (_lo <= n_load <= _hi and _lo <= a0 <= _hi and _lo <= b0 <= _hi
+                and _lo <= e_mod <= _hi and _lo <= mu <= _hi
+                and (xi_x == 0.0 or _lo <= abs(xi_x) <= _hi)
+                and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
+                and (phi == 0.0 or _lo <= abs(phi) <= _hi)):
             # extreme magnitudes: the overflow-safe array path (it also names a bad input)
             tx, ty = self._solve((xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu))[:2]
             return float(tx), float(ty)
@@ -302,17 +292,18 @@ class CreepTable:
             tx, ty = tx * r, ty * r
         return tx, ty
 
-    def _scalar_stick(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu,
-                      _kalker=_kalker_scalar, _sqrt=math.sqrt, _hypot=math.hypot, _pi=math.pi,
-                      _pi2=math.pi**2):
+    def stick_unchecked(self, xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu,
+                        _kalker=kalker_coefficients_cached, _sqrt=math.sqrt, _hypot=math.hypot,
+                        _pi=math.pi, _pi2=math.pi**2):
         """Scalar path of the stick outputs: ``(stick_area_fraction, normalised_creepage)``,
         the last two items of :meth:`creep_solution_3d`, for plain floats.
 
-        Assumes what :meth:`_scalar` assumes (inputs finite and in the ranges of
+        Assumes what :meth:`force_unchecked` assumes (inputs finite and in the ranges of
         :meth:`creep_force_3d`, as the FMU slave has checked; no check is made here). z is
         computed with the same operations as the array path; the stick fraction comes from
-        the piecewise-polynomial copy of the table's spline (as the force in :meth:`_scalar`),
-        which agrees with the B-spline evaluation to a few ulp (tests/test_tables.py).
+        the piecewise-polynomial copy of the table's spline (as the force in
+        :meth:`force_unchecked`), which agrees with the B-spline evaluation to a few ulp
+        (tests/test_tables.py).
         """
         if a0 <= 0.0 or b0 <= 0.0 or n_load <= 0.0 or mu <= 0.0:
             z = 0.0

@@ -15,8 +15,10 @@ de Boor evaluator (e.g. ``scipy.interpolate.NdBSpline``, or 30 lines of C) repro
 attributes alone.
 
 Evaluation here is pure numpy/numba (no netCDF or xarray after loading): a compiled
-tensor-product de Boor kernel evaluates all variables of a table at once, with first and
-second partial derivatives.
+tensor-product de Boor kernel (:mod:`railcontact._spline_kernels`, loaded on the first
+evaluation) evaluates all variables of a table at once, with first and second partial
+derivatives. Loading checks the stored spline against the node values, for a 1-D table with
+scipy's ``NdBSpline``: reading the modified strip theory's table needs no numba.
 
 Out-of-grid behaviour (an explicit choice per axis, attribute ``out_of_range``):
 
@@ -45,10 +47,8 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from numba import njit
-from scipy.interpolate import make_interp_spline
+from scipy.interpolate import NdBSpline, make_interp_spline
 
-from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from ._validation import check_range
 
 __all__ = [
@@ -182,141 +182,46 @@ def fit_tensor_bspline(values, nodes, knots, periodic=()):
 
 
 # --------------------------------------------------------------------------------------------
-# Compiled evaluator
+# Evaluation: the compiled de Boor kernel (railcontact._spline_kernels, numba) is loaded on the
+# first evaluation, so that a table that is read but evaluated another way (the modified-strip
+# table's piecewise polynomial) needs no numba at all
 # --------------------------------------------------------------------------------------------
 
-@njit(cache=True)
-def find_span(t, n_coef, x):
-    """Index ``i`` with ``t[i] <= x < t[i+1]``, ``3 <= i <= n_coef - 1`` (x clamped to range)."""
-    lo = SPLINE_DEGREE
-    hi = n_coef  # t[n_coef] is the right end
-    if x >= t[hi]:
-        return hi - 1
-    if x <= t[lo]:
-        return lo
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if t[mid] <= x:
-            lo = mid
-        else:
-            hi = mid
-    return lo
+_tensor_eval = None
 
 
-@njit(cache=True)
-def _basis_ders(t, span, x, nder, out, ndu, a, left, right):
-    """Non-zero cubic basis functions and derivatives (The NURBS Book, Algorithm A2.3).
+def _kernel():
+    """The compiled tensor-product evaluator (numba: imported and loaded on first use)."""
+    global _tensor_eval
+    if _tensor_eval is None:
+        from . import _spline_kernels  # noqa: PLC0415  (numba, its user cache)
 
-    ``out[k, j]`` is the k-th derivative of N_{span-3+j,3}(x), k <= nder <= 2. ``ndu`` (4, 4),
-    ``a`` (2, 4), ``left``, ``right`` (4,) are work arrays.
-    """
-    p = SPLINE_DEGREE
-    ndu[0, 0] = 1.0
-    for j in range(1, p + 1):
-        left[j] = x - t[span + 1 - j]
-        right[j] = t[span + j] - x
-        saved = 0.0
-        for r in range(j):
-            ndu[j, r] = right[r + 1] + left[j - r]
-            temp = ndu[r, j - 1] / ndu[j, r]
-            ndu[r, j] = saved + right[r + 1] * temp
-            saved = left[j - r] * temp
-        ndu[j, j] = saved
-    for j in range(p + 1):
-        out[0, j] = ndu[j, p]
-    if nder == 0:
-        return
-    for r in range(p + 1):
-        s1 = 0
-        s2 = 1
-        a[0, 0] = 1.0
-        for k in range(1, nder + 1):
-            d = 0.0
-            rk = r - k
-            pk = p - k
-            if r >= k:
-                a[s2, 0] = a[s1, 0] / ndu[pk + 1, rk]
-                d = a[s2, 0] * ndu[rk, pk]
-            j1 = 1 if rk >= -1 else -rk
-            j2 = k - 1 if r - 1 <= pk else p - r
-            for j in range(j1, j2 + 1):
-                a[s2, j] = (a[s1, j] - a[s1, j - 1]) / ndu[pk + 1, rk + j]
-                d += a[s2, j] * ndu[rk + j, pk]
-            if r <= pk:
-                a[s2, k] = -a[s1, k - 1] / ndu[pk + 1, r]
-                d += a[s2, k] * ndu[r, pk]
-            out[k, r] = d
-            s1, s2 = s2, s1
-    fac = float(p)
-    for k in range(1, nder + 1):
-        for j in range(p + 1):
-            out[k, j] *= fac
-        fac *= p - k
+        assert _spline_kernels.SPLINE_DEGREE == SPLINE_DEGREE
+        _tensor_eval = _spline_kernels.tensor_eval
+    return _tensor_eval
 
 
-@njit(cache=True)
+def __getattr__(name):
+    # find_span, the compiled span search (railcontact.exact_table's kernels call it), is
+    # imported from the kernel module on first access
+    if name == "find_span":
+        from ._spline_kernels import find_span  # noqa: PLC0415
+
+        return find_span
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def _offsets(shape):
     """Strides of the flattened coefficient grid and the relative flat offsets of the
     (SPLINE_DEGREE+1)**D coefficients one point touches (last axis fastest)."""
-    ndim = shape.shape[0]
     p1 = SPLINE_DEGREE + 1
-    strides = np.empty(ndim, dtype=np.int64)
-    s = 1
-    for d in range(ndim - 1, -1, -1):
-        strides[d] = s
-        s *= shape[d]
-    ncomb = p1 ** ndim
-    offset = np.zeros(ncomb, dtype=np.int64)
-    block = 1
-    for d in range(ndim - 1, -1, -1):
-        for c in range(block, block * p1):
-            offset[c] = offset[c % block] + (c // block) * strides[d]
-        block *= p1
+    strides = np.ones(len(shape), dtype=np.int64)
+    for d in range(len(shape) - 2, -1, -1):
+        strides[d] = strides[d + 1] * shape[d + 1]
+    offset = np.zeros(1, dtype=np.int64)
+    for d in range(len(shape)):            # first axis slowest: combination c = (j_0 ... j_D-1)
+        offset = (offset[:, None] + np.arange(p1) * strides[d]).ravel()
     return strides, offset
-
-
-@njit(cache=True, fastmath=True)
-def _tensor_eval(coef, shape, knots, knot_start, strides, offset, points, deriv, out, work):
-    """Evaluate a tensor-product cubic spline (all variables) at many points.
-
-    coef : (n_var, prod(shape)) C-ordered coefficients (variable first); knots: all knot
-    vectors concatenated, axis d starting at knot_start[d] (length shape[d] + 4); strides,
-    offset from :func:`_offsets`; points (n_pts, D); deriv (D,) derivative orders (0, 1 or
-    2); out (n_pts, n_var); work: float scratch of length >= 4**D + 40.
-    """
-    ndim = shape.shape[0]
-    nvar = coef.shape[0]
-    p1 = SPLINE_DEGREE + 1
-    ncomb = offset.shape[0]
-    weight = work[:ncomb]
-    tmp = work[ncomb:ncomb + 12].reshape((3, p1))
-    ndu = work[ncomb + 12:ncomb + 28].reshape((p1, p1))
-    wrk = work[ncomb + 28:ncomb + 36].reshape((2, p1))
-    left = work[ncomb + 36:ncomb + 40]
-    right = np.empty(p1)
-    for ip in range(points.shape[0]):
-        base = 0
-        block = 1
-        for d in range(ndim - 1, -1, -1):
-            t = knots[knot_start[d]:knot_start[d] + shape[d] + p1]
-            span = find_span(t, shape[d], points[ip, d])
-            _basis_ders(t, span, points[ip, d], deriv[d], tmp, ndu, wrk, left, right)
-            base += (span - SPLINE_DEGREE) * strides[d]
-            if block == 1:
-                for j in range(p1):
-                    weight[j] = tmp[deriv[d], j]
-            else:
-                for j in range(p1 - 1, -1, -1):
-                    bj = tmp[deriv[d], j]
-                    for c in range(block):
-                        weight[j * block + c] = bj * weight[c]
-            block *= p1
-        for v in range(nvar):
-            cv = coef[v]
-            acc = 0.0
-            for c in range(ncomb):
-                acc += weight[c] * cv[base + offset[c]]
-            out[ip, v] = acc
 
 
 class TensorSpline:
@@ -407,8 +312,28 @@ class TensorSpline:
     def _eval(self, pts, deriv, out):
         if deriv.shape != (self.ndim,) or np.any((deriv < 0) | (deriv > 2)):
             raise ValueError(f"derivative must be {self.ndim} orders in 0..2; got {deriv}")
-        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, self._strides,
-                     self._offset, pts, deriv, out, np.empty_like(self._work))
+        (_tensor_eval or _kernel())(self._coef, self._shape, self._knots, self._knot_start,
+                                    self._strides, self._offset, pts, deriv, out,
+                                    np.empty_like(self._work))
+
+    def evaluate_unchecked(self, points):
+        """Values of all variables at several points inside the grid, in one compiled call.
+
+        ``points``: float64 array, shape (n_pts, D), C-contiguous, every coordinate within its
+        axis' nodes (not checked: the caller guarantees it). Returns a new (n_pts, n_var)
+        array. Uses a preallocated work buffer: not thread-safe (one object per thread).
+        """
+        out = np.empty((points.shape[0], self._coef.shape[0]))
+        (_tensor_eval or _kernel())(self._coef, self._shape, self._knots, self._knot_start,
+                                    self._strides, self._offset, points, self._zero, out,
+                                    self._work)
+        return out
+
+    def warm_up(self):
+        """Load the compiled evaluator now (numba and its cached machine code, or a first
+        compilation) by evaluating the lower corner of the grid, so that the first evaluation
+        a caller times (an FMU's first step) does not pay for it."""
+        self.evaluate_point(self._lower)
 
     def evaluate_point(self, point, derivative=None):
         """One point, no range check (fast path; the caller guarantees the range).
@@ -419,8 +344,9 @@ class TensorSpline:
         buf = self._pt_buf
         buf[0, :] = point
         deriv = self._zero if derivative is None else np.asarray(derivative, dtype=np.int64)
-        _tensor_eval(self._coef, self._shape, self._knots, self._knot_start, self._strides,
-                     self._offset, buf, deriv, self._out_buf, self._work)
+        (_tensor_eval or _kernel())(self._coef, self._shape, self._knots, self._knot_start,
+                                    self._strides, self._offset, buf, deriv, self._out_buf,
+                                    self._work)
         return self._out_buf[0].copy()
 
 
@@ -678,7 +604,13 @@ class Table:
             np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
         idx = np.unravel_index(flat, shape)
         pts = np.stack([a["nodes"][i] for a, i in zip(axes, idx)], axis=1)
-        got = table.spline.evaluate(pts, check=False)
+        if len(axes) == 1:
+            # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
+            # evaluated per step as a piecewise polynomial) is read without numba
+            got = NdBSpline(tuple(a["knots"] for a in axes),
+                            np.moveaxis(table.coefficients, 0, -1), SPLINE_DEGREE)(pts)
+        else:   # the compiled evaluator the table is read with (faster here than NdBSpline)
+            got = table.spline.evaluate(pts, check=False)
         want = np.stack([values[v][idx] for v in var_names], axis=1)
         scale = np.maximum(1.0, np.abs(want).max(axis=0))
         bad = np.abs(got - want).max(axis=0) / scale

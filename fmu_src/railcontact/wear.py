@@ -68,9 +68,10 @@ from scipy.special import itj0y0, j0, j1, jv
 from . import _corrugation_kernels as _kernels
 from ._validation import (check_choice, check_corrugated_contact_inputs,
                           check_load_not_underflowing, check_range)
-from .corrugation import (_TWO_PI, check_no_contact_loss, normal_response, solve_normal_exact,
+from .corrugation import (check_no_contact_loss, normal_response, solve_normal_exact,
                           solve_stick_zone_exact, stick_zone_response, tangential_force_response)
-from .hertz import hertz_2d
+
+_TWO_PI = 2.0 * np.pi
 
 __all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
            "corrugated_wear_depth",
@@ -496,44 +497,44 @@ def corrugated_wear_depth(rail_position, normal_load, radius, youngs_modulus, po
     k = _TWO_PI / lam
     check_no_contact_loss(k * k * big_r * np.hypot(za, zb))
     check_load_not_underflowing(n_load, e_mod, nu)
-    a0 = float(hertz_2d(n_load, big_r, e_mod, nu).a0)
-    r = max(a0 - xi * big_r / mu, 0.0) / a0
-    w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-    cw = np.ravel(wear_coefficients(a0 / lam, r, wear_model=wear_model)).astype(complex)
-    wear = _kernels.wear_depth_array(_floats(x), w0, kw * mu * mu * n_load / a0, _floats(k),
-                                     _floats(za), _floats(zb), cw)
+    wear = corrugated_wear_depth_unchecked(np.ravel(x), float(n_load), float(big_r),
+                                           float(e_mod), float(nu), float(mu), float(xi), za,
+                                           zb, lam, kw, wear_model)
     return np.reshape(wear, np.shape(x))
 
 
-def _floats(values):
-    """``values`` as a new 1-D float array (the compiled kernel's argument)."""
-    return np.ravel(values).astype(float)
+def corrugated_wear_depth_unchecked(rail_position, normal_load, radius, youngs_modulus,
+                                   poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
+                                   amplitudes_sin, wavelengths, wear_coefficient,
+                                   wear_model=DEFAULT_WEAR_MODEL):
+    """:func:`corrugated_wear_depth` without its range checks: its one implementation, which it
+    calls after checking, and the FMU's corrugation effect calls once per step.
 
+    Takes the arguments of :func:`corrugated_wear_depth` with the loads, moduli, mu and the
+    creepage as plain floats and the harmonics as sequences or float arrays; assumes what that
+    function checks (N, mu > 0, condition (4.2), a normalised load that does not underflow, a
+    known wear model) and checks nothing. The series models' coefficients come from the compiled
+    kernel's entry point for one r (the nodes and degree of :func:`wear_coefficients`, which
+    raises its ValueError for a degree beyond its limit), the time-domain models' from
+    :func:`wear_coefficients`; the superposition is one compiled kernel.
 
-# ---------------------------------------------------------------------------------------------
-# one rail position per call, as floats: the FMU's corrugation effect
-# ---------------------------------------------------------------------------------------------
-def _corrugated_wear_depth_scalar(rail_position, normal_load, radius, youngs_modulus,
-                                  poisson_ratio, friction_coefficient, creepage, amplitudes_cos,
-                                  amplitudes_sin, wavelengths, wear_coefficient,
-                                  wear_model=DEFAULT_WEAR_MODEL):
-    """:func:`corrugated_wear_depth` at one rail position for plain floats and lists, with its
-    range checks dropped (the FMU's corrugation effect; the scene and the slave checked the
-    inputs, N, mu > 0, condition (4.2) holds and the normalised load does not underflow): the
-    same compiled kernels (the series models' coefficients from
-    ``_corrugation_kernels.wear_coefficients_list``, the time-domain models' from
-    :func:`wear_coefficients`; the superposition from ``wear_depth_array``). [m]"""
+    Returns
+    -------
+    float or ndarray
+        W at ``rail_position``: a float for a scalar position, else a 1-D array. [m]
+    """
     x, n_load, big_r, nu, mu = (rail_position, normal_load, radius, poisson_ratio,
                                 friction_coefficient)
     a0 = math.sqrt(8.0 * (1.0 - nu * nu) * big_r * n_load / (math.pi * youngs_modulus))
     r = max(a0 - abs(creepage) * big_r / mu, 0.0) / a0
     kw = wear_coefficient
     w0 = kw * mu * mu * n_load * a0 / big_r * (1 - r) ** 2 * (1 + r)
-    lam = np.array(wavelengths, dtype=float)
+    lam = np.asarray(wavelengths, dtype=float)
     if wear_model in ("material_point", "patch_coordinate"):
-        cw = np.array(_kernels.wear_coefficients_list((a0 / lam).tolist(), r, wear_model))
+        cw = _kernels.wear_coefficients_series(a0 / lam, r, wear_model)
     else:
         cw = np.ravel(wear_coefficients(a0 / lam, r, wear_model)).astype(complex)
-    return float(_kernels.wear_depth_array(
-        np.array([float(x)]), w0, kw * mu * mu * n_load / a0, _TWO_PI / lam,
-        np.array(amplitudes_cos, dtype=float), np.array(amplitudes_sin, dtype=float), cw)[0])
+    wear = _kernels.wear_depth_array(
+        np.array(x, dtype=float, ndmin=1), w0, kw * mu * mu * n_load / a0, _TWO_PI / lam,
+        np.asarray(amplitudes_cos, dtype=float), np.asarray(amplitudes_sin, dtype=float), cw)
+    return float(wear[0]) if np.ndim(x) == 0 else wear

@@ -411,7 +411,7 @@ def asperity_tangential_contact(contact, friction_coefficient, creepage=None,
                          f"creepage={creepage!r}, tangential_force={tangential_force!r}")
 
     args = _asperity_args(c, mu)
-    tiny = _poly._SERIES_LIMIT
+    tiny = _poly.SERIES_LIMIT
     if creepage is not None:
         xi = float(check_range("creepage", creepage, "-"))
         force, r, _, status = _kernels.asperity_tangential(*args, xi, tiny)

@@ -424,7 +424,7 @@ class RoughRailSolver:
             bound, kfac, ref = self._constants
             *values, status = _kernels.rough_rail_contact(
                 *self._surface, rail_position, normal_load, nt, self.radius, bound, kfac, ref,
-                friction_coefficient, creepage, _poly._SERIES_LIMIT)
+                friction_coefficient, creepage, _poly.SERIES_LIMIT)
             if status == 0:
                 return tuple(values)
         res = rough_rail_contact(self.roughness, rail_position, normal_load, self.radius,

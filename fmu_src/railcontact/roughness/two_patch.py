@@ -40,7 +40,7 @@ def _pv_basis(degree, s):
     n = degree
     inside_vals = np.zeros((s.size, n + 1))
     if n >= 1:
-        amat = _poly._unit_matrices(n)[0]
+        amat = _poly.unit_matrices(n)[0]
         vand = np.vander(s, n, increasing=True)
         inside_vals[:, 1:] = vand @ amat
     outside = np.abs(s) > 1.0
@@ -59,7 +59,7 @@ def _pv_basis_complex(degree, z):
     n = degree
     vals = np.zeros((z.size, n + 1), dtype=complex)
     if n >= 1:
-        vals[:, 1:] = np.vander(z, n, increasing=True) @ _poly._unit_matrices(n)[0]
+        vals[:, 1:] = np.vander(z, n, increasing=True) @ _poly.unit_matrices(n)[0]
     factor = np.pi / (np.sqrt(z - 1.0) * np.sqrt(z + 1.0))
     return vals + factor[:, None] * np.vander(z, n + 1, increasing=True)
 
@@ -233,10 +233,10 @@ def two_patch_normal_contact(gap_coefficients, normal_load, youngs_modulus, pois
     ValueError
         Bad input; patches overlapping or merged; no convergence; negative pressure.
     """
-    z = _poly._check_coefficients("gap_coefficients", gap_coefficients, "m^(1-n)", 3)
+    z = _poly.check_coefficients("gap_coefficients", gap_coefficients, "m^(1-n)", 3)
     load = float(check_range("normal_load", normal_load, "N/m", 0.0, None, lower_closed=False))
     kern = float(_poly.kernel_factor(youngs_modulus, poisson_ratio))
-    m = _poly._check_degree(degree, lower=max(2, z.size - 1))
+    m = _poly.check_degree(degree, lower=max(2, z.size - 1))
     check_choice("expansion", expansion, {"chebyshev", "taylor"})
     guesses = np.sort(check_range("centre_guesses", centre_guesses, "m"))
     if guesses.shape != (2,) or guesses[0] == guesses[1]:
@@ -329,7 +329,7 @@ def two_patch_normal_contact(gap_coefficients, normal_load, youngs_modulus, pois
     if patches[0].centre + patches[0].half_width >= patches[1].centre - patches[1].half_width:
         raise ValueError(f"normal_load: the two patches merge [N/m]; got {load:g}")
     for p in patches:
-        if not _poly._pressure_is_physical(p.normalised_coefficients, tol=1e-7):
+        if not _poly.pressure_is_physical(p.normalised_coefficients, tol=1e-7):
             raise ValueError(f"normal_load: negative pressure in a patch [N/m]; got {load:g}")
     return TwoPatchContact(tuple(patches), load, bool(cross_influence), expansion, m)
 
@@ -338,7 +338,7 @@ def _patches(geo, b, g, e, nu):
     out = []
     for (a, c), coef in zip(geo, (b, g)):
         out.append(_poly.PolynomialNormalContact(float(a), float(c), coef,
-                                                 _poly._force_from_normalised(coef),
+                                                 _poly.force_from_normalised(coef),
                                                  float(e), float(nu)))
     return out
 

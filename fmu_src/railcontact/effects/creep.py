@@ -1,0 +1,304 @@
+"""The creep-force effects: 3-D creep (analytic theories, the modified-strip and exact tables)
+and Carter's 2-D force on a line contact."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .. import creep3d
+from .._scalar import carter_scalar, creep_solution_3d_scalar, spin_coefficient_scalar
+from ..scene import POLACH_KEYS, SceneError
+from .base import NOT_ESTIMATED, Effect, EffectUnavailable
+
+__all__ = ["Creep3D", "Creep2D", "table_error_estimate"]
+
+
+def table_error_estimate(table):
+    r"""Recorded max error of a creep table's force, in units of mu N, from its file attributes.
+
+    The table files record, per variable, the max ``|spline - direct computation|`` on seeded
+    random off-grid check points (netCDF attribute ``<variable>:max_abs_error``, read by
+    :meth:`railcontact.tables.Table.accuracy`); the direct computation is the theory the table
+    holds, so this is the interpolation error only, not the theory's own error.
+
+    * ``creep_modified_strip`` (:class:`railcontact.strip_table.CreepTable`): the force is
+      ``-mu N F(z) w/|w|`` with the direction exact, so the error of the force over mu N is that
+      of ``force_ratio``.
+    * ``creep_exact`` (:class:`railcontact.exact_table.ExactCreepTable`): the force over mu N has the
+      components ``force_ratio_parallel`` and ``force_ratio_perpendicular``; the returned bound on
+      the error of the force vector is ``hypot`` of their two recorded maxima. It is against the
+      solver the table was built with (file attribute ``solver_grid``: Richardson-extrapolated
+      40 x 20 / 80 x 20 elements), whose own error against the converged exact theory is in
+      docs/tables.md.
+
+    Parameters
+    ----------
+    table : railcontact.strip_table.CreepTable or railcontact.exact_table.ExactCreepTable
+        A loaded creep table.
+
+    Returns
+    -------
+    float
+        Max error of |T| / (mu N) over the check points. [-] :data:`NOT_ESTIMATED` (-1) if the
+        file records no accuracy.
+    """
+    acc = table.table.accuracy()
+    names = (("force_ratio",) if "force_ratio" in acc
+             else ("force_ratio_parallel", "force_ratio_perpendicular"))
+    errors = [acc[n]["max_abs_error"] for n in names]
+    if not all(math.isfinite(e) for e in errors):
+        return NOT_ESTIMATED
+    return float(math.hypot(*errors))
+
+
+class Creep3D(Effect):
+    r"""3-D creep forces: ``effects.creep`` (method, spin on/off, analytic or table).
+
+    Analytic: :func:`railcontact.creep3d.creep_solution_3d` (Kalker's linear theory, Shen,
+    Hedrick and Elkins, strip or modified strip theory, Nielsen Sec. 2.5-2.6), which also gives
+    the stick area fraction, the stick width ratio b*/b0 and the validity flag (spin pole
+    outside the ellipse). ``r_a0`` is the stick zone's length over the contact length on the
+    centre line y = 0 of the strip theories, ``a*(0)/a0 = 1 - min(z, 1)`` (Eq. (2.83) with
+    a(0) = a0, z the normalised creepage of :func:`~railcontact.creep3d.creep_solution_3d`);
+    1 for the linear theory (full stick by assumption). With N = 0 (no contact) the forces are
+    0 and the stick measures 1.
+
+    Per step the effect calls the *scalar paths* (plain floats, ``math`` module; they repeat the
+    public functions' arithmetic without numpy's per-call overhead and without their input
+    check, which the slave has made: finite inputs, N >= 0; a0, b0 > 0 from Hertz; mu is
+    checked here): ``railcontact._scalar.creep_solution_3d_scalar`` for the analytic source
+    (its table-driven test against :func:`~railcontact.creep3d.creep_solution_3d` is
+    tests/test_scalar.py), and the modified-strip table reader's
+    :meth:`~railcontact.strip_table.CreepTable.force_unchecked` and
+    :meth:`~railcontact.strip_table.CreepTable.stick_unchecked` (tests/test_tables.py).
+
+    Table (``method = "modified_strip"`` only, the theory the shipped table holds):
+    :meth:`railcontact.strip_table.CreepTable.force_unchecked` gives the forces in the step (the
+    table's one scalar implementation, without the input check the slave has already made);
+    the stick measures and the
+    validity flag are computed when first read after a step (:meth:`auxiliary`), as
+    :meth:`~railcontact.strip_table.CreepTable.creep_solution_3d` gives them, on the inputs of that
+    step, so an importer that reads only Fx and Fy does not pay for them. Out of the table's grid
+    (normalised creepage z beyond its last node) the reader holds F = 1, which is exact (full
+    sliding); the FMU logs a warning the first time this is seen (when the stick outputs are
+    evaluated). ``creep_table_error_estimate`` is :func:`table_error_estimate` of the table.
+    Kalker's exact theory (``method = "exact"``, table source only): the shipped table
+    ``creep_exact`` (:class:`railcontact.exact_table.ExactCreepTable`, the extrapolated exact
+    solver of :mod:`railcontact.reference.rolling3d` over a0/b0, nu and every creepage and
+    spin), the only method that gives the spin moment ``Mz`` and the Jacobian outputs
+    ``dFx_dxi_x`` ... ``dMz_dphi`` (0 for the others): one spline evaluation per step gives
+    forces, moment, stick area fraction and Jacobian together (:meth:`ExactCreepTable.step`);
+    ``stick_width_ratio`` and ``r_a0`` are the strip-theory estimates at the table's normalised
+    creepage. Beyond the table's a0/b0 range (0.1-10) or spin coordinate (20) the reader calls
+    the solver itself (milliseconds per step), so every input gets the exact theory.
+    With ``spin = false`` the spin input is ignored (treated as 0).
+
+    FASTSIM, Polach, FaStrip (``method = "fastsim" | "polach" | "fastrip"``, analytic source
+    only): the public :func:`~railcontact.creep3d.creep_solution_3d` each step (no scalar path;
+    FASTSIM and FaStrip loop over their 40 elements per strip). Polach's 2005 parameters come
+    from ``effects.creep.polach_*`` (:data:`railcontact.scene.POLACH_KEYS`) and his slip
+    velocity from the ``rolling_speed`` input.
+    """
+
+    name = "creep"
+
+    def __init__(self, scene, table_path=None, tables_dir=None, warn=None):
+        super().__init__()
+        opts = scene.effects["creep"]
+        self.method = opts["method"]
+        self.source = opts["source"]
+        self.use_spin = opts["spin"]
+        self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
+        self._warn = warn if warn is not None else (lambda key, msg: None)
+        self._aux_args = None
+        self._table = None
+        self._force = None          # the modified-strip table's forces (set by _table_setup)
+        self._exact = self.method == "exact"
+        self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
+                        in POLACH_KEYS.items()}
+        #: Output ``creep_table_error_estimate``: :func:`table_error_estimate` of the table in
+        #: use (read once here), :data:`NOT_ESTIMATED` for the analytic source.
+        self.table_error_estimate = NOT_ESTIMATED
+        # the forces of one source, chosen here (``step`` calls it when there is contact)
+        if self.source == "table":
+            self._table_setup(opts, table_path, tables_dir)
+            self._forces = self._exact_table     # (modified strip: self._force, in step)
+        elif self.method in creep3d.COMPARISON_METHODS:
+            self._forces = self._comparison
+        else:
+            self._forces = self._analytic
+
+    def _table_setup(self, opts, table_path, tables_dir):
+        if self.method not in ("modified_strip", "exact"):
+            raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
+                             f"with source = 'table' (the shipped creep tables); got "
+                             f"{self.method!r}")
+        if table_path is None and tables_dir is not None:
+            table_path = Path(tables_dir) / f"{opts['table']}.nc"
+        try:
+            if self._exact:
+                self._table = creep3d.load_exact_table(table_path)
+            else:
+                from .. import strip_table      # (its spline: loaded only by a table scene)
+
+                self._table = strip_table.CreepTable.from_file(table_path)
+        except (OSError, ValueError, AttributeError) as exc:
+            raise EffectUnavailable(f"effect creep (table {opts['table']}) not available "
+                                    f"in this build: {exc}") from None
+        self.table_error_estimate = table_error_estimate(self._table)
+        if self._exact:
+            # one evaluation at build (a round contact, moderate creepage; its result unused):
+            # the reader's compiled kernels are loaded now, not in the first step
+            try:
+                self._table.step_values(1e-4, 1e-4, 0.1, 1e5, 6e-3, 6e-3, self._e, self._nu,
+                                        0.3)
+            except ValueError:
+                pass            # (a scene outside the table's range: the step will say so)
+        else:
+            # The slave has range-checked every input (finite, N >= 0) and a0, b0 come from
+            # Hertz: the reader's scalar path without its own input check
+            self._force = self._table.force_unchecked
+            self._stick = self._table.stick_unchecked
+            self._z_max = float(self._table.table.axes[0]["nodes"][-1])
+
+    def step(self, c):
+        self.calls += 1
+        c.creep_table_error_estimate = self.table_error_estimate
+        if c.normal_force > 0.0:
+            args = (c.creepage_longitudinal, c.creepage_lateral,
+                    c.spin if self.use_spin else 0.0, c.normal_force, c.a0, c.b0, self._e,
+                    self._nu, c.friction_coefficient)
+            if self._force is None:
+                self._forces(c, args)
+            else:       # modified-strip table: the forces now, the stick measures when read
+                c.Fx, c.Fy = self._force(*args)
+                self._aux_args = args
+            return
+        c.Fx = c.Fy = 0.0                              # no contact
+        c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
+        c.creep_within_validity = True
+        c.Mz = 0.0
+        self._aux_args = None
+
+    def _comparison(self, c, args):
+        # FASTSIM, Polach, FaStrip: the public function (no scalar path; it checks inputs)
+        res = creep3d.creep_solution_3d(*args, self.method, **self._options(c))
+        c.Fx, c.Fy = float(res.tx), float(res.ty)
+        c.stick_area_fraction = float(res.stick_area_fraction)
+        c.stick_width_ratio = float(res.stick_width_ratio)
+        c.r_a0 = 1.0 - min(float(res.normalised_creepage), 1.0)
+        c.creep_within_validity = bool(res.within_validity)
+
+    def _analytic(self, c, args):
+        # scalar path; outside its assumptions the public function (it names the input)
+        mu = args[8]
+        solve = (creep_solution_3d_scalar if 0.0 <= mu < math.inf and c.a0 > 0.0
+                 and c.b0 > 0.0 else creep3d.creep_solution_3d)
+        res = solve(*args, self.method)
+        c.Fx = float(res.tx)
+        c.Fy = float(res.ty)
+        c.stick_area_fraction = float(res.stick_area_fraction)
+        c.stick_width_ratio = float(res.stick_width_ratio)
+        c.r_a0 = 1.0 if self.method == "linear" else 1.0 - min(float(
+            res.normalised_creepage), 1.0)
+        c.creep_within_validity = bool(res.within_validity)
+
+    def _exact_table(self, c, args):
+        # one evaluation: forces, moment, stick area, normalised creepage, Jacobian
+        values = self._table.step_values(*args)
+        if values is None:        # the reader's array path (beyond its grid etc.)
+            *values, jac = self._table.step(*args)
+            values += jac.ravel().tolist()
+        c.Fx, c.Fy, c.Mz, stick, z = values[:5]
+        zc = z if z < 1.0 else 1.0
+        c.stick_area_fraction = stick
+        c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
+        c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
+        c.creep_within_validity = True
+        (c.dFx_dxi_x, c.dFx_dxi_y, c.dFx_dphi, c.dFy_dxi_x, c.dFy_dxi_y, c.dFy_dphi,
+         c.dMz_dxi_x, c.dMz_dxi_y, c.dMz_dphi) = values[5:]
+        self._aux_args = None
+
+    def _options(self, c):
+        """Method options: Polach's 2005 parameters, the slip velocity from rolling_speed."""
+        if self.method != "polach":
+            return {}
+        return dict(self._polach, rolling_speed=max(getattr(c, "rolling_speed", 0.0), 0.0))
+
+    def auxiliary(self, c):
+        """Fill the stick measures and the validity flag of the last table step (lazily)."""
+        # (nothing to do after the first read of a step: Mz and the stick measures of this step
+        # are already set, by step (N = 0, analytic source) or by the previous call)
+        args, self._aux_args = self._aux_args, None
+        if args is None:
+            return
+        # scalar path of the reader (inputs as checked for the step; see step)
+        stick, z = self._stick(*args)
+        zc = z if z < 1.0 else 1.0
+        c.stick_area_fraction = stick
+        c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
+        c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
+        c.creep_within_validity = spin_coefficient_scalar(
+            args[0], args[1], args[2], args[4], args[5]) <= 1.0
+        if z > self._z_max:
+            self._warn("creep-table-range",
+                       f"creep table {self._table.table.path.name}: normalised creepage "
+                       f"z = {z:.4g} beyond the grid (last node {self._z_max:g}); the reader "
+                       f"holds F = 1 there, which is exact (full sliding)")
+
+    def get_state(self):
+        return {"calls": self.calls,
+                "aux_args": None if self._aux_args is None else list(self._aux_args)}
+
+    def set_state(self, state):
+        self.calls = int(state["calls"])
+        args = state.get("aux_args")
+        self._aux_args = None if args is None else tuple(args)
+
+
+class Creep2D(Effect):
+    r"""Carter's 2-D creep force on a line contact (``effects.creep.method = "carter"``).
+
+    :func:`railcontact.carter.carter_creep_force` for the load per unit length
+    ``N / contact_width`` and the equivalent radius R, times the contact width;
+    ``r_a0 = a*/a0`` from :func:`railcontact.carter.carter_stick_ratio` (Eq. (2.51)), which is
+    also the stick fraction of the contact length. The 2-D theory has no lateral force: Fy = 0
+    and ``creep_within_validity`` is False while the lateral creepage or the spin is not zero.
+    """
+
+    name = "creep"
+
+    def __init__(self, scene, **_):
+        super().__init__()
+        if scene.effects["creep"]["source"] != "analytic":
+            raise EffectUnavailable("effect creep (table) not available in this build for "
+                                    "method 'carter' (no Carter table is shipped; the closed "
+                                    "form is exact)")
+        # (carter_creep_force, carter_stick_ratio) in one call on plain floats (their float
+        # twin; its inputs are range-checked by the scene and the slave)
+        self._scalar = carter_scalar
+        geo = scene.geometry
+        self._radius, self._width = geo["radius"], geo["contact_width"]
+        self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
+
+    def step(self, c):
+        self.calls += 1
+        c.Fy = 0.0
+        c.creep_within_validity = c.creepage_lateral == 0.0 and c.spin == 0.0
+        if c.normal_force <= 0.0:
+            c.Fx = 0.0
+            c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
+            return
+        n_line = c.normal_force / self._width
+        force, c.r_a0 = self._scalar(c.creepage_longitudinal, n_line, self._radius, self._e,
+                                     self._nu, c.friction_coefficient)
+        fx = force * self._width
+        mu_n = c.friction_coefficient * c.normal_force
+        if abs(fx) > mu_n:       # (subnormal N: (mu N / w) w rounds a few ulp above mu N)
+            fx = math.copysign(mu_n, fx)
+        c.Fx = fx
+        c.stick_area_fraction = c.r_a0
+        c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
+
+

@@ -1,0 +1,82 @@
+"""The table ``corrugation_response`` as the corrugation and wear effects read it: one
+harmonic's linearised response coefficients per call, the analytic closed forms outside its grid.
+"""
+
+from __future__ import annotations
+
+import operator
+
+import numpy as np
+
+from .. import corrugation
+from ..wear import wear_coefficients
+from .base import EffectUnavailable, load_table
+
+__all__ = ["RESPONSE_VARIABLES", "ResponseTable"]
+
+
+#: Variables of the table ``corrugation_response`` the corrugation and wear effects read, in the
+#: order :class:`ResponseTable` returns them.
+RESPONSE_VARIABLES = ("half_width_real", "patch_shift_imag", "stick_half_width_real",
+                       "stick_half_width_imag", "tangential_force_real",
+                       "tangential_force_imag", "wear_real", "wear_imag")
+
+
+class ResponseTable:
+    """The linearised first-harmonic response coefficients of one harmonic, from the table
+    ``corrugation_response`` (:func:`railcontact.wear.linear_response`, wear model
+    "material_point"), with the analytic closed forms outside its grid.
+
+    ``coefficients(a0/L, r_a0)`` returns the complex ``(c_a, c_Delta, c_a*, c_T, w)`` of
+    :func:`railcontact.corrugation.normal_response`, :func:`~railcontact.corrugation.
+    stick_zone_response`, :func:`~railcontact.corrugation.tangential_force_response` and
+    :func:`railcontact.wear.wear_coefficients` (``w``; None unless ``wear``). The table's axes
+    have ``out_of_range = "error"`` (a0/L in [0.01, 1], r_a0 in [0, 1]): outside them the
+    reader raises, so this falls back to the analytic functions for that harmonic and calls
+    ``warn("corrugation-table-range", message)`` (the FMU logs it once). Never NaN.
+    """
+
+    def __init__(self, tables_dir, effect, warn):
+        self.table = load_table("corrugation_response", tables_dir, effect)
+        names = self.table.variables
+        missing = [v for v in RESPONSE_VARIABLES if v not in names]
+        if missing:
+            raise EffectUnavailable(f"effect {effect} (table) not available in this build: "
+                                    f"{self.table.path.name} lacks {missing}")
+        self._cols = [names.index(v) for v in RESPONSE_VARIABLES]
+        # the eight values as Python floats from the spline's row in one call (per step)
+        self._pick = operator.itemgetter(*self._cols)
+        (self._lo, self._hi), (self._r_lo, self._r_hi) = [
+            (float(a["nodes"][0]), float(a["nodes"][-1])) for a in self.table.axes]
+        self._evaluate = self.table.spline.evaluate_unchecked
+        self._warn = warn if warn is not None else (lambda key, msg: None)
+        acc = self.table.accuracy()
+        #: Recorded max error of each variable read (name -> float), from the file.
+        self.max_abs_error = {v: acc[v]["max_abs_error"] for v in RESPONSE_VARIABLES}
+
+    def coefficients_list(self, ratios, r, wear=True):
+        """:meth:`coefficients` of every harmonic ``a0/L`` in ``ratios`` at one ``r``: one
+        spline evaluation for all of them when all are inside the grid (the FMU's step)."""
+        if (self._r_lo <= r <= self._r_hi
+                and all(self._lo <= ratio <= self._hi for ratio in ratios)):
+            rows = self._evaluate(np.array([(ratio, r) for ratio in ratios])).tolist()
+            return [self._complex(row, wear) for row in rows]
+        return [self.coefficients(ratio, r, wear) for ratio in ratios]
+
+    def coefficients(self, ratio, r, wear=True):
+        if self._lo <= ratio <= self._hi and self._r_lo <= r <= self._r_hi:
+            return self._complex(self._evaluate(np.array([(ratio, r)]))[0].tolist(), wear)
+        self._warn("corrugation-table-range",
+                   f"corrugation table {self.table.path.name}: a0/L = {ratio:.4g} outside the "
+                   f"table's grid [{self._lo:g}, {self._hi:g}] (the reader raises there); the "
+                   "analytic closed forms of the linear theory are used for such harmonics")
+        cd, ca = corrugation.normal_response(ratio)
+        w = complex(wear_coefficients(ratio, r, "material_point")) if wear else None
+        return (complex(ca), complex(cd), complex(corrugation.stick_zone_response(ratio, r)),
+                complex(corrugation.tangential_force_response(ratio, r)), w)
+
+    def _complex(self, row, wear):
+        """The spline's row of the eight variables as ``(c_a, c_Delta, c_a*, c_T, w)``."""
+        hw, ps, sr, si, tr, ti, wr, wi = self._pick(row)
+        return (complex(hw, 0.0), complex(0.0, ps), complex(sr, si), complex(tr, ti),
+                complex(wr, wi) if wear else None)
