@@ -7,7 +7,8 @@ whole error against the exact theory). Prints figures by a/b and spin class; ass
 Random cases: a0/b0 log-uniform in [0.1, 10], nu uniform in [0, 0.5], creepage direction
 uniform on the circle, |v| / sqrt(1 + tau^2) (|v| the Kalker-weighted creepage over the
 saturation creepage; the table's creepage coordinate measures |v| against sqrt(1 + tau^2), so
-large spin meets creepages as large as its own slip) log-uniform in [0.01, 5], spin
+large spin meets creepages as large as its own slip) log-uniform in [0.01, 5] (three
+quarters of the cases) or in [5, 100] (far past saturation: the rest), spin
 coordinate tau log-uniform in [0.01, 20] with a random sign (a third of the
 cases without spin). The reference is creep_force_3d(method="exact", grid=(40, 20),
 extrapolate=True, grid_shifts=1, tolerance=1e-4), the solver the table was built from.
@@ -39,7 +40,8 @@ TABLE_SETTING = dict(grid=(40, 20), extrapolate=True, grid_shifts=1, tolerance=1
 def random_cases(n, rng):
     g = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
     nu = rng.uniform(0.0, 0.5, n)
-    rho = np.exp(rng.uniform(np.log(0.01), np.log(5.0), n))
+    rho = np.where(rng.random(n) < 0.25, np.exp(rng.uniform(np.log(5.0), np.log(100.0), n)),
+                   np.exp(rng.uniform(np.log(0.01), np.log(5.0), n)))
     theta = rng.uniform(-np.pi, np.pi, n)
     tau = np.exp(rng.uniform(np.log(0.01), np.log(20.0), n)) * rng.choice([-1.0, 1.0], n)
     tau[rng.random(n) < 1.0 / 3.0] = 0.0

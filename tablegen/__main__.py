@@ -50,6 +50,10 @@ def main(argv=None):
                    help="where finished chunks are kept (resume after a failure)")
     b.add_argument("--progress", dest="progress", action="store_true", default=None)
     b.add_argument("--no-progress", dest="progress", action="store_false")
+    b.add_argument("--reuse-nodes", default=None, metavar="FILE",
+                   help="take the node values of an earlier build of the same table (same "
+                        "method and nodes) from FILE; recompute only analytic limits and the "
+                        "check points")
     c = sub.add_parser("check", help="re-measure a table file's accuracy on fresh points and "
                                      "update its attributes")
     c.add_argument("--only", action="append", metavar="NAME", required=True)
@@ -99,7 +103,8 @@ def main(argv=None):
             continue
         res = build_table(name, args.resolution, output_dir=args.output_dir,
                           scheduler=args.scheduler, workers=args.workers, workdir=args.workdir,
-                          progress=args.progress, command=command)
+                          progress=args.progress, command=command,
+                          reuse_nodes=args.reuse_nodes)
         acc = ", ".join(f"{v}: max {a['max_abs_error']:.2e} rms {a['rms_error']:.2e}"
                         for v, a in res["accuracy"].items())
         print(f"{name}: {res['path']} ({res['size_bytes'] / 1024:.1f} KiB, "

@@ -109,8 +109,59 @@ def _run(spec, tasks, workdir, scheduler, workers, progress):
         bar.close()
 
 
+def _reuse_node_values(spec, path, points, tasks):
+    """Fill the grid chunk files ``tasks`` from the node values of an earlier build of the same
+    table (same name and ``method``, axes holding every point), recomputing only the points
+    ``spec.analytic_points`` marks; returns the attributes that record it."""
+    import netCDF4  # noqa: PLC0415
+
+    path = Path(path)
+    with netCDF4.Dataset(path) as ds:
+        attrs = {k: ds.getncattr(k) for k in ds.ncattrs()}
+        if attrs.get("table_name") != spec.name or attrs.get("method") != spec.method:
+            raise ValueError(f"reuse_nodes must be a file of table {spec.name!r} built with the "
+                             f"same method ({spec.method!r}); got {path} (table "
+                             f"{attrs.get('table_name')!r}, method {attrs.get('method')!r})")
+        axis_names = attrs["table_axes"].split()
+        index = []
+        for k, name in enumerate(axis_names):
+            nodes = np.asarray(ds[name][:], dtype=float)
+            j = np.abs(points[:, k][:, None] - nodes[None, :]).argmin(axis=1)
+            if not np.allclose(nodes[j], points[:, k], rtol=0.0, atol=1e-12):
+                raise ValueError(f"reuse_nodes: {path} has no node at some grid points of axis "
+                                 f"{name!r} (the grid changed since that build; build anew)")
+            index.append(j)
+        values = np.stack([np.asarray(ds[v.name][:], dtype=float)[tuple(index)]
+                           for v in spec.variables], axis=-1)
+    analytic = (np.asarray(spec.analytic_points(points), dtype=bool)
+                if spec.analytic_points is not None else np.zeros(len(points), dtype=bool))
+    start = 0
+    for fname, pts in tasks:
+        rows = slice(start, start + len(pts))
+        start += len(pts)
+        if fname.exists():
+            continue
+        chunk = values[rows].copy()
+        redo = analytic[rows]
+        if redo.any():
+            chunk[redo] = evaluate_chunk(spec.name, pts[redo])
+        np.save(fname, chunk)
+    info = {"build_reused_nodes": (
+        f"{int((~analytic).sum())} of {len(points)} points' node values taken from an earlier "
+        f"build of this table with the same method ({path.name}, source {attrs.get('source')}, "
+        f"history {attrs.get('history')!r}; stored in "
+        f"{'float32' if spec.node_values_float32 else 'float64'}), "
+        f"{int(analytic.sum())} analytic points recomputed; the check points are computed "
+        "anew")}
+    for key in ("build_seconds", "solver_source_sha1", "build_chunks_reused"):
+        if key in attrs:
+            info[f"reused_nodes_{key}"] = attrs[key]
+    return info
+
+
 def build_table(name, resolution="default", output_dir=None, scheduler=None, workers=None,
-                workdir=None, progress=None, command=None, keep_chunks=False):
+                workdir=None, progress=None, command=None, keep_chunks=False,
+                reuse_nodes=None):
     """Build table ``name`` and write ``<output_dir>/<name>.nc``.
 
     Parameters
@@ -133,6 +184,12 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
         Recorded in the file's ``history``.
     keep_chunks : bool
         Keep the chunk files after success.
+    reuse_nodes : path-like, optional
+        An earlier build of the same table (same ``method``, axes holding every grid point):
+        its node values are taken instead of computed, except at the points
+        ``spec.analytic_points`` marks (limits computed without the solver), which are
+        recomputed; the check points are computed anew. For a fix in an analytic limit
+        without rerunning hours of solves; recorded in the file's ``build_reused_nodes``.
 
     Returns
     -------
@@ -160,11 +217,13 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
              for i, (a, b) in enumerate(_chunks(len(points), spec.chunk_size))]
     tasks += [(work / f"check_{i:06d}.npy", check[a:b])
               for i, (a, b) in enumerate(_chunks(len(check), spec.chunk_size))]
-    reused = sum(f.exists() for f, _ in tasks)
+    n_grid_chunks = len(_chunks(len(points), spec.chunk_size))
+    reuse_info = ({} if reuse_nodes is None else
+                  _reuse_node_values(spec, reuse_nodes, points, tasks[:n_grid_chunks]))
+    reused = sum(f.exists() for f, _ in tasks[n_grid_chunks if reuse_info else 0:])
     t0 = time.perf_counter()
     _run(spec, tasks, work, scheduler, workers, progress)
     seconds = time.perf_counter() - t0
-    n_grid_chunks = len(_chunks(len(points), spec.chunk_size))
     grid_vals = np.concatenate([np.load(f) for f, _ in tasks[:n_grid_chunks]])
     check_vals = np.concatenate([np.load(f) for f, _ in tasks[n_grid_chunks:]])
     values, axes, knots, coefs, spline = fit_grid_values(spec, axes, grid_vals, assemble)
@@ -183,7 +242,8 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
             "build_chunks_reused": (f"{reused} of {len(tasks)} chunks were computed by an "
                                     "earlier run (resumed build; build_seconds is this run's "
                                     "time only)") if reused else "none (one run)",
-            "build_scheduler": "local cluster" if scheduler is None else str(scheduler)}
+            "build_scheduler": "local cluster" if scheduler is None else str(scheduler),
+            **reuse_info}
     write_table(path, spec, axes, knots, values, coefs, accuracy,
                 command or f"python -m tablegen build --only {name} --resolution {resolution}",
                 info)

@@ -134,6 +134,10 @@ class TableSpec:
         called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
         to the values on the whole grid, shape (n_var, n_1, ..., n_D). Default: every grid
         point is computed.
+    analytic_points : callable, optional
+        ``analytic_points(points) -> bool mask`` of the points that ``function`` answers
+        without its expensive solver (limits). A build that reuses an earlier file's node
+        values (``build_table(reuse_nodes=...)``) recomputes only these.
     """
 
     name: str
@@ -153,6 +157,7 @@ class TableSpec:
     build_attributes: Callable | None = None
     reduce: Callable | None = None
     node_values_float32: bool = False
+    analytic_points: Callable | None = None
 
     def available(self):
         """``None`` if buildable, else the reason (a module that does not import)."""

@@ -260,6 +260,42 @@ def _exact_reduce(axes):
     return points, assemble
 
 
+def exact_full_sliding_limit(points):
+    """Table values at s = +-1 (infinite creepage): the force is mu N against the *physical*
+    creepage (xi_x, xi_y), the moment and the stick area vanish.
+
+    The spin's rigid slip is negligible beside an infinite creepage, so every element slides
+    along (xi_x, xi_y) = w_sat (v_x / C11, v_y / C22) (the spin part of v_y is finite): the
+    direction of v turned by Kalker's weights, not v itself (the two agree only when C11 =
+    C22 or v is along an axis; at a0/b0 = 0.1 they differ by up to 17 degrees). The earlier
+    table set (f_par, f_perp) = (1, 0) there and erred by up to 1.4 % of mu N near full
+    sliding. Checked against the solver at large creepage in tests/test_exact_table.py.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 5)
+        Table points (ln(a0/b0), nu, s, theta, tau) with s = +-1.
+
+    Returns
+    -------
+    ndarray, shape (n, 4)
+        (f_par, f_perp, moment ratio, stick fraction).
+    """
+    from railcontact.kalker import kalker_coefficients  # noqa: PLC0415
+
+    points = np.asarray(points, dtype=float)
+    c = kalker_coefficients(np.exp(points[:, 0]), points[:, 1])
+    theta = points[:, 3]
+    ux = np.sign(points[:, 2]) * np.cos(theta) / c.c11
+    uy = np.sign(points[:, 2]) * np.sin(theta) / c.c22
+    norm = np.hypot(ux, uy)
+    ux, uy = ux / norm, uy / norm
+    zero = np.zeros(len(points))
+    # T / (mu N) = -(ux, uy) = -(f_par e + f_perp e_perp)
+    return np.column_stack([ux * np.cos(theta) + uy * np.sin(theta),
+                            -ux * np.sin(theta) + uy * np.cos(theta), zero, zero])
+
+
 def exact_creep_function(points):
     """Exact-theory values at table points (n, 5) in the quarter s >= 0, |theta| <= pi/2,
     tau >= 0: (f_par, f_perp, spin moment ratio, stick area fraction); see
@@ -270,7 +306,7 @@ def exact_creep_function(points):
     extrapolates once (Richardson, first order in the rolling-direction element size); each
     point starts from the previous point's solution when the contact is the same (only the
     number of sweeps changes). At s = 1 (infinite creepage) the values are the full-sliding
-    limit (1, 0, 0, 0).
+    limit, :func:`exact_full_sliding_limit` (no solver).
     """
     import warnings  # noqa: PLC0415
 
@@ -281,8 +317,8 @@ def exact_creep_function(points):
 
     points = np.asarray(points, dtype=float)
     out = np.empty((len(points), 4))
-    finite = points[:, 2] < 1.0
-    out[~finite] = (1.0, 0.0, 0.0, 0.0)
+    finite = np.abs(points[:, 2]) < 1.0
+    out[~finite] = exact_full_sliding_limit(points[~finite])
     phys = exact_table_inverse(*np.where(finite[:, None], points[:, :5], 0.0).T,
                                contact=REFERENCE_CONTACT)
     # the discrete problem is exactly similar in (mu, creepages, spin) -> lambda (mu,
@@ -340,16 +376,27 @@ def _exact_provenance():
                                   "end of the build)"}
 
 
+def _exact_analytic_points(points):
+    """The points answered without the solver: s = +-1 (:func:`exact_full_sliding_limit`)."""
+    return np.abs(np.asarray(points, dtype=float)[:, 2]) >= 1.0
+
+
 def _exact_check(axes, n, rng):
     """Off-node points spread over the computed quarter (the rest follows by symmetry):
-    uniform in ln g, nu, theta; s uniform up to rho = 5; tau uniform in the node index."""
+    uniform in ln g, nu, theta; s uniform up to rho = 5 for three quarters of the points and
+    rho log-uniform in 5-100 for the rest (far past saturation, where the force turns to the
+    physical creepage); tau uniform in the node index."""
     from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
 
     g, nu, s, theta, tau = (a.nodes for a in axes)
     tau_q = tau[tau >= 0.0]
+    far = rng.random(n) < 0.25
+    s_pts = np.where(far, creepage_coordinate(np.exp(rng.uniform(np.log(5.0), np.log(100.0),
+                                                                 n))),
+                     rng.uniform(0.0, creepage_coordinate(5.0), n))
     pts = np.column_stack([
         rng.uniform(g[0], g[-1], n), rng.uniform(nu[0], nu[-1], n),
-        rng.uniform(0.0, creepage_coordinate(5.0), n),     # |v| / sqrt(1 + tau^2) <= 5
+        s_pts,                                   # |v| / sqrt(1 + tau^2) <= 100
         rng.uniform(-0.5 * np.pi, 0.5 * np.pi, n),
         np.interp(rng.uniform(0.0, len(tau_q) - 1.0, n), np.arange(len(tau_q)), tau_q)])
     return pts[np.lexsort((pts[:, 1], pts[:, 0]))]   # contact by contact (solver caches)
@@ -386,6 +433,7 @@ register(TableSpec(
             "scale 1.08, tolerance 1e-6, extrapolated 2 F(80 x 20) - F(40 x 20), on a0 b0 = "
             "36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3"),
     check_points=_exact_check,
+    analytic_points=_exact_analytic_points,
     n_check={"coarse": 100, "default": 1000, "fine": 4000},
     chunk_size=24,
     requires=("railcontact.reference.rolling3d",),

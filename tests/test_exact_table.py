@@ -421,6 +421,57 @@ def test_extreme_inputs_give_an_answer_or_a_value_error(table):
         assert math.hypot(sol.tx, sol.ty) <= mu_n * (1 + 1e-12)
 
 
+def _solve_similar(g, theta, rho, tau=0.0, nu=0.28):
+    """The table's solver at table coordinates (mu lowered with the creepages where they
+    exceed the solver's domain: T / (mu N) is unchanged, the discrete problem is similar)."""
+    from railcontact import creep_force_3d  # noqa: PLC0415
+
+    p = exact_table_inverse(math.log(g), nu, creepage_coordinate(rho, tau), theta, tau,
+                            contact=REFERENCE_CONTACT)
+    lam = 0.5 / max(abs(float(p["creepage_longitudinal"])), abs(float(p["creepage_lateral"])),
+                    0.5)
+    scaled = ("creepage_longitudinal", "creepage_lateral", "spin", "friction_coefficient")
+    args = [float(p[k]) * (lam if k in scaled else 1.0) for k in (
+        "creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+        "youngs_modulus", "poisson_ratio", "friction_coefficient")]
+    sol = creep_force_3d(*args, method="exact", grid=(40, 20), extrapolate=True,
+                         grid_shifts=1, tolerance=1e-4)
+    return args, sol, args[3] * args[8]
+
+
+@pytest.mark.parametrize("g,theta_deg", [(0.1, 30.0), (0.2, 60.0), (5.0, -120.0),
+                                         (10.0, 30.0)])
+def test_full_sliding_limit_against_the_solver(g, theta_deg):
+    """At infinite creepage the force opposes the physical creepage (xi_x, xi_y), not the
+    Kalker-weighted v: tablegen's s = 1 node values against the solver at rho = 100 (the
+    earlier table put the force along -v there and erred by up to 14 % of mu N at a/b = 0.1)."""
+    from tablegen.specs import exact_full_sliding_limit  # noqa: PLC0415
+
+    theta = math.radians(theta_deg)
+    _, sol, mu_n = _solve_similar(g, theta, 100.0)
+    f_par, f_perp, moment, stick = exact_full_sliding_limit(
+        np.array([[math.log(g), 0.28, 1.0, theta, 0.0]]))[0]
+    c, s = math.cos(theta), math.sin(theta)
+    fx, fy = -(f_par * c - f_perp * s), -(f_par * s + f_perp * c)
+    assert math.hypot(fx, fy) == pytest.approx(1.0, abs=1e-12)
+    assert math.hypot(sol.tx / mu_n - fx, sol.ty / mu_n - fy) < 1e-3
+    assert moment == 0.0 and stick == 0.0
+    # the double cover: s = -1 at theta + pi is the same creepage
+    back = exact_full_sliding_limit(np.array([[math.log(g), 0.28, -1.0, theta + math.pi, 0.0]]))
+    np.testing.assert_allclose(back[0, :2], [-f_par, -f_perp], atol=1e-12)
+
+
+@needs_table
+@pytest.mark.parametrize("g,theta_deg,rho", [(0.1, 30.0, 10.0), (0.2, 60.0, 30.0),
+                                             (10.0, -120.0, 100.0)])
+def test_table_at_large_creepage_against_the_solver(table, g, theta_deg, rho):
+    """Far past saturation the table follows the solver's turn of the force towards the
+    physical creepage (measured 0.001-0.03 % of mu N)."""
+    args, sol, mu_n = _solve_similar(g, math.radians(theta_deg), rho)
+    f = table.creep_force_3d(*args)
+    assert math.hypot(f.tx - sol.tx, f.ty - sol.ty) / mu_n < 2e-3
+
+
 @needs_table
 def test_against_contacts_tractcurv(table):
     """CONTACT's creep curve (tractcurv series 1, a/b = 0.5, 48x44 elements; CONTACT's own

@@ -199,3 +199,42 @@ def test_float32_node_values_are_declared_and_read(tmp_path, monkeypatch):
     a, b = Table.from_file(ref["path"]), Table.from_file(res["path"])
     pts = np.array([[0.3, 0.9], [1.1, 1.7]])
     np.testing.assert_array_equal(a.spline.evaluate(pts), b.spline.evaluate(pts))
+
+
+def test_reuse_nodes_recomputes_only_the_analytic_points(tmp_path, monkeypatch):
+    """``reuse_nodes``: node values come from an earlier file of the same table, the points
+    the spec marks analytic and the check points are computed, and the new file equals a
+    fresh build; a file of another table or another grid is refused by name."""
+    fresh = build_table("selftest", "coarse", output_dir=tmp_path / "fresh",
+                        scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
+    spec = REGISTRY["selftest"]
+    calls = []
+
+    def counting(points):
+        calls.append(np.asarray(points).copy())
+        return selftest_function(points)
+
+    monkeypatch.setattr(spec, "function", counting)
+    monkeypatch.setattr(spec, "analytic_points", lambda p: np.asarray(p)[:, 0] >= 1.5)
+    res = build_table("selftest", "coarse", output_dir=tmp_path / "new", scheduler="synchronous",
+                      workdir=tmp_path / "w1", progress=False, reuse_nodes=fresh["path"])
+    axes, points = spec.grid("coarse")
+    n_analytic = int(np.count_nonzero(points[:, 0] >= 1.5))
+    n_check = spec.n_check["coarse"]
+    computed = np.concatenate(calls)
+    assert len(computed) == n_analytic + n_check
+    assert np.all(computed[:n_analytic, 0] >= 1.5)
+    old, new = Table.from_file(fresh["path"]), Table.from_file(res["path"])
+    pts = np.column_stack([np.linspace(0.0, 2.0, 41), np.linspace(0.5, 2.0, 41)])
+    np.testing.assert_allclose(new.spline.evaluate(pts), old.spline.evaluate(pts), rtol=0,
+                               atol=1e-12)
+    import netCDF4  # noqa: PLC0415
+    with netCDF4.Dataset(res["path"]) as ds:
+        note = ds.getncattr("build_reused_nodes")
+    assert f"{len(points) - n_analytic} of {len(points)}" in note
+    assert f"{n_analytic} analytic points recomputed" in note
+
+    monkeypatch.setattr(spec, "method", "another solver")
+    with pytest.raises(ValueError, match="reuse_nodes must be a file of table 'selftest'"):
+        build_table("selftest", "coarse", output_dir=tmp_path / "x", scheduler="synchronous",
+                    workdir=tmp_path / "w2", progress=False, reuse_nodes=fresh["path"])

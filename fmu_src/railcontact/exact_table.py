@@ -32,7 +32,8 @@ instead covers every sign, and computes only a quarter with the solver:
 * ``s`` is signed: the point (-s, theta + pi) is the same creepage as (s, theta), with the frame
   components negated. Fitting that double cover makes every straight line through v = 0 a
   C2 curve of the spline (the polar origin is not an end of the grid);
-* ``s`` reaches 1 (|v| = infinity), where the force is mu N along -v and the moment and the
+* ``s`` reaches 1 (|v| = infinity), where the force is mu N against the physical creepage
+  (xi_x, xi_y), a direction proportional to (v_x / C11, v_y / C22), and the moment and the
   stick area vanish (full sliding with the spin negligible against the creepage), so every
   finite creepage is inside the grid; the saturation near rho = 1 has crowded nodes.
 * ``s`` measures the creepage against ``w = sqrt(1 + tau^2)``: with large spin the force turns
