@@ -1171,7 +1171,8 @@ def answers(fams, series, amp, contact_errors):
                      "for budgets between the strip theories' error (~1e-2) and the table's own "
                      "(its 40x20 node solutions and its node spacing); below that only the "
                      "exact theory itself (with Richardson) is accurate enough, at 0.1-1 s "
-                     "per call. Outside its grid (e.g. very large spin) it raises.")
+                     "per call. Beyond its axes (a0/b0 outside 0.1-10, spin coordinate above "
+                     "20) the solver answers (load_exact_table).")
     else:
         lines.append("* The exact-theory table (not built here) is where tables matter most: "
                      "the exact theory costs milliseconds to seconds per call.")
