@@ -3,7 +3,6 @@ at the rail position, from the closed forms or the table ``corrugation_response`
 
 from __future__ import annotations
 
-import cmath
 import math
 
 from .. import corrugation
@@ -148,16 +147,21 @@ class Corrugation(Effect):
             depth = kw * mu * mu * n_line * a0 / big_r * (1 - r) ** 2 * (1 + r)
             w_scale = kw * mu * mu * n_line / a0
         scale_t = mu / self._comp
-        coefficients = self._table.coefficients_list([a0 / lam for lam in self.wavelengths], r,
-                                                     wear is not None)
-        for (ca, cd, _, ct, cw), km, zam, zbm in zip(coefficients, k, za, zb):
-            zc = complex(zam, zbm) * cmath.exp(-1j * km * x)
-            krz = km * big_r * zc
-            a += (ca * krz).real
-            d += (cd * krz).real
-            t += scale_t * (ct * zc).real
+        rows = self._table.rows([a0 / lam for lam in self.wavelengths], r)
+        # in real arithmetic: z = (Z_A + i Z_B) e^{-i k x} = z_r + i z_i; the response
+        # coefficients are c_a = hw, c_Delta = i ps, c_T = tr + i ti, w = wr + i wi, and each
+        # term is Re(c z) (Eqs. (4.36)-(4.71), (4.94)-(4.95))
+        for (hw, ps, _, _, tr, ti, wr, wi), km, zam, zbm in zip(rows, k, za, zb):
+            ckx = math.cos(km * x)
+            skx = math.sin(km * x)
+            z_r = zam * ckx + zbm * skx
+            z_i = zbm * ckx - zam * skx
+            kr = km * big_r
+            a += hw * kr * z_r
+            d -= ps * kr * z_i
+            t += scale_t * (tr * z_r - ti * z_i)
             if wear is not None:
-                depth += w_scale * (cw * zc).real
+                depth += w_scale * (wr * z_r - wi * z_i)
         c.contact_half_width = a
         c.patch_shift = d
         xi_signed = c.creepage_longitudinal

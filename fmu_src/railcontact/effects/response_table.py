@@ -49,6 +49,7 @@ class ResponseTable:
         (self._lo, self._hi), (self._r_lo, self._r_hi) = [
             (float(a["nodes"][0]), float(a["nodes"][-1])) for a in self.table.axes]
         self._evaluate = self.table.spline.evaluate_unchecked
+        self._points = np.empty((0, 2))     # the harmonics' (a0/L, r) of one step (rows)
         self._warn = warn if warn is not None else (lambda key, msg: None)
         acc = self.table.accuracy()
         #: Recorded max error of each variable read (name -> float), from the file.
@@ -62,6 +63,28 @@ class ResponseTable:
             rows = self._evaluate(np.array([(ratio, r) for ratio in ratios])).tolist()
             return [self._complex(row, wear) for row in rows]
         return [self.coefficients(ratio, r, wear) for ratio in ratios]
+
+    def rows(self, ratios, r):
+        """The eight real coefficients of :data:`RESPONSE_VARIABLES` (floats) of every
+        harmonic ``a0/L`` in ``ratios`` at one ``r``: one spline evaluation for all when all are
+        inside the grid (the FMU's step, no complex objects); outside it, the closed forms of
+        :meth:`coefficients` in the same order."""
+        if (self._r_lo <= r <= self._r_hi
+                and all(self._lo <= ratio <= self._hi for ratio in ratios)):
+            pts = self._points
+            if pts.shape[0] != len(ratios):
+                pts = self._points = np.empty((len(ratios), 2))
+            for i, ratio in enumerate(ratios):
+                pts[i, 0] = ratio
+                pts[i, 1] = r
+            pick = self._pick
+            return [pick(row) for row in self._evaluate(pts).tolist()]
+        out = []
+        for ratio in ratios:
+            ca, cd, cs, ct, cw = self.coefficients(ratio, r, True)
+            out.append((ca.real, cd.imag, cs.real, cs.imag, ct.real, ct.imag, cw.real,
+                        cw.imag))
+        return out
 
     def coefficients(self, ratio, r, wear=True):
         if self._lo <= ratio <= self._hi and self._r_lo <= r <= self._r_hi:
