@@ -2,7 +2,7 @@
 at the table's setting (interpolation error), and CONTACT's 21 converged cases (the table's
 whole error against the exact theory). Prints figures by a/b and spin class; asserts nothing.
 
-    python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7]
+    python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7] [--theta-scans]
 
 Random cases: a0/b0 log-uniform in [0.1, 10], nu uniform in [0, 0.5], creepage direction
 uniform on the circle, |v| / sqrt(1 + tau^2) (|v| the Kalker-weighted creepage over the
@@ -79,10 +79,36 @@ def contact_converged():
     return out
 
 
+#: (a0/b0, nu, s, tau) of the 1-D scans over the creepage angle: the worst random cases and
+#: their neighbours (large spin with very long or very wide ellipses)
+THETA_SCANS = [(9.21, 0.29, 0.423, -3.08), (0.23, 0.22, 0.612, -3.53), (7.43, 0.04, 0.624, 5.07),
+               (8.25, 0.49, 0.617, 12.0), (0.15, 0.47, 0.945, 0.60), (0.40, 0.10, 0.679, 11.27),
+               (1.0, 0.28, 0.6, 3.0), (0.5, 0.28, 0.5, 5.0), (1.0, 0.28, 0.6, 0.0)]
+
+
+def theta_scans(table):
+    """Max error of (f_par, f_perp) along the creepage angle (every 2.5 degrees) at fixed
+    (a0/b0, nu, s, tau): random cases rarely land on the narrow turns of the force's direction
+    that large spin makes near theta = 0 (a0/b0 < 1) or +-90 degrees (a0/b0 > 1)."""
+    print("\n== 1-D scans over the creepage angle (every 2.5 deg), against the solver ==")
+    theta = np.radians(np.arange(-180.0, 180.0, 2.5))
+    for g, nu, s, tau in THETA_SCANS:
+        pts = np.column_stack([np.full_like(theta, math.log(g)), np.full_like(theta, nu),
+                               np.full_like(theta, s), theta, np.full_like(theta, tau)])
+        ref = exact_creep_function(pts)
+        got = table.table.spline.evaluate(np.ascontiguousarray(pts), check=False)
+        err = np.hypot(got[:, 0] - ref[:, 0], got[:, 1] - ref[:, 1])
+        i = int(np.argmax(err))
+        print(f"  a/b {g:5.2f} nu {nu:4.2f} s {s:5.3f} tau {tau:6.2f}: max {err.max() * 100:6.2f} % "
+              f"of mu N at theta = {math.degrees(theta[i]):6.1f} deg")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=7)
+    ap.add_argument("--theta-scans", action="store_true",
+                    help="also scan the creepage angle at the worst-known cases (~1 min)")
     opts = ap.parse_args(argv)
     table = load_exact_table()
     print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
@@ -135,6 +161,8 @@ def main(argv=None):
         if np.any(sel):
             print(f"  {name:18s} n = {int(sel.sum()):4d}: max {err[sel].max() * 100:.3f} %, "
                   f"RMS {math.sqrt(np.mean(err[sel]**2)) * 100:.3f} %")
+    if opts.theta_scans:
+        theta_scans(table)
 
 
 if __name__ == "__main__":
