@@ -1,6 +1,9 @@
 #!/usr/bin/env python
 r"""What accuracy costs in time: every way railcontact computes the same quantity, measured in one run.
 
+Why one script of about 1,340 lines: it measures every model family in one run and writes one
+report, so the families' timings share one machine load.
+
     python benchmarks/accuracy_vs_time.py            # default run (< 10 min on 2 cores)
     python benchmarks/accuracy_vs_time.py --quick    # < 1 min, a few points per family (CI)
     python benchmarks/accuracy_vs_time.py --out DIR  # write DIR/accuracy_vs_time.md, DIR/figures/

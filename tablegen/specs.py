@@ -1,5 +1,8 @@
 """The built-in table specifications (registered on import).
 
+Why one module of about 880 lines: it holds every registered table specification (axes, point
+function, check points and attributes of each shipped table), one block per table.
+
 Each spec's point function maps table coordinates to the tabulated variables by calling the
 direct model in :mod:`railcontact`; the coordinate conversions live in
 :mod:`railcontact.tables` next to the readers that invert them.

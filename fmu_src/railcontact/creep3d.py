@@ -1,5 +1,10 @@
 r"""Creep forces of the 3-D Hertzian rolling contact: linear theory, SHE, strip and modified strip.
 
+Why one module of about 900 lines: it is Secs. 2.5-2.6 of the thesis; the four closed-form
+theories share the ellipse normalisation, the validation and the result types, and the exact
+solver, the exact table and the comparison methods are reached through thin dispatchers (their
+code lives in reference/rolling3d.py, exact_table.py, fastsim.py and polach.py).
+
 Package convention (see :mod:`railcontact`): forces act on the wheel and oppose the creepage,
 ``T_x = -G a0 b0 C11 xi_x`` in the linear regime, with ``G = E / (2 (1 + nu))``.
 

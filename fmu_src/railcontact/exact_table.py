@@ -1,5 +1,9 @@
 """Coordinates of the exact-theory creep table (``tables/creep_exact.nc``).
 
+Why one module of about 870 lines: the coordinates, the compiled reader kernels and the reader
+class change together (the kernels read the per-contact buffer that the class fills, and both
+follow the coordinates' definition and the file's attributes).
+
 The steady rolling problem of Kalker's exact theory with Hertzian pressure depends on the
 inputs only through a0/b0, Poisson's ratio and three normalised creepages (scale invariance of
 the half-space equations; J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,

@@ -1,5 +1,9 @@
 r"""Velocity-dependent friction in 2-D steady rolling (Nielsen 1998, Ch. 5, Eqs. (5.2)-(5.17)).
 
+Why one module of about 1,150 lines: it is Ch. 5 of the thesis (the friction laws, Ohyama's
+step law in closed form, the smooth law's iteration, its peak and saturation creepage), whose
+parts share one set of normalised variables.
+
 Friction laws
 -------------
 A friction law is any vectorised callable ``mu(s)`` of the dimensionless slip magnitude

@@ -1,5 +1,8 @@
 r"""Non-steady 2-D rolling with an oscillating tangential force (Nielsen 1998, Ch. 7).
 
+Why one module of about 800 lines: it is Ch. 7 of the thesis (the transfer functions, their
+closed forms and the time-domain relaxation the FMU uses), which share one normalisation.
+
 A cylinder rolls at constant speed ``V`` and normal load ``N`` while the tangential force
 oscillates. The stick zone carries a displacement field frozen in the material,
 ``U_x(x + V t)`` (7.5), (7.24), whose gradient is

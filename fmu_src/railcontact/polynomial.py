@@ -1,5 +1,9 @@
 r"""The polynomial approach to 2-D contact (Nielsen 1998, Ch. 3 and Appendix D).
 
+Why one module of about 1,060 lines: it is Ch. 3 of the thesis, the polynomial approach (the
+transform matrices, the series and the solutions built on them); its parts share the matrices
+and their validation.
+
 A stress that is a *polynomial form* on ``|x| < a``,
 
 .. math::  p(x) = \frac{\sum_{n=0}^{N} B_n x^n}{\sqrt{a^2 - x^2}},

@@ -1,5 +1,9 @@
 r"""Scenes: which effects a WheelRailContact run switches on, and the input signals that drive it.
 
+Why one module of about 980 lines: the scene schema is one table of keys, ranges and messages
+per effect, and the effect registry EFFECTS that both scene validation and the FMU pipeline
+read; most of its length is those tables and the error messages that name each key.
+
 A scene is a small TOML file (``examples/scenes/*.toml``) read with :mod:`tomllib`. It names the
 material, the contact geometry, the friction coefficient, the effects that are on (and for each
 whether the answer comes from the analytic solver or from a shipped table) and, for

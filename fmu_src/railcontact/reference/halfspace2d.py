@@ -1,5 +1,9 @@
 r"""Discretised 2-D elastic half-space solver (plane strain): the project's "exact theory" in 2-D.
 
+Why one module of about 1,430 lines: the 2-D reference solver's normal and steady-rolling
+tangential problems (any gap, any friction law) share one discretisation: the influence
+coefficients, the element grid and the active-set iterations.
+
 Normal contact (frictionless / quasi-identical, Nielsen Sec. 2.3.2, Eqs. (2.3)-(2.8)) and steady
 rolling tangential contact (Sec. 2.3.3, Eqs. (2.18), (2.20)-(2.22)) of two elastic bodies with the
 same Young's modulus ``E`` and Poisson ratio ``nu`` (quasi-identical, so the normal and tangential

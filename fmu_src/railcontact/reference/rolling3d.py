@@ -1,5 +1,9 @@
 r"""Three-dimensional exact steady rolling contact (Kalker's discretised theory) with spin.
 
+Why one module of about 1,190 lines: the 3-D reference solver's influence coefficients, normal
+problem, line-block sweeps, grid shifts and Richardson steps share the grid data structures and
+caches.
+
 The project's 3-D "exact theory": quasi-identical elastic half-spaces, a Hertzian normal problem
 solved numerically on the grid, and the frictional steady rolling problem with longitudinal and
 lateral creepage and spin, discretised with piecewise-constant tractions (Kalker 1990, ch. 5).
