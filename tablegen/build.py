@@ -220,7 +220,8 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     n_grid_chunks = len(_chunks(len(points), spec.chunk_size))
     reuse_info = ({} if reuse_nodes is None else
                   _reuse_node_values(spec, reuse_nodes, points, tasks[:n_grid_chunks]))
-    reused = sum(f.exists() for f, _ in tasks[n_grid_chunks if reuse_info else 0:])
+    # (grid chunks filled from reuse_nodes are not "computed by an earlier run")
+    reused = sum(f.exists() for f, _ in tasks[0 if reuse_nodes is None else n_grid_chunks:])
     t0 = time.perf_counter()
     _run(spec, tasks, work, scheduler, workers, progress)
     seconds = time.perf_counter() - t0

@@ -320,7 +320,7 @@ def exact_creep_function(points):
 
     points = np.asarray(points, dtype=float)
     out = np.empty((len(points), 4))
-    finite = np.abs(points[:, 2]) < 1.0
+    finite = ~_exact_analytic_points(points)
     out[~finite] = exact_full_sliding_limit(points[~finite])
     phys = exact_table_inverse(*np.where(finite[:, None], points[:, :5], 0.0).T,
                                contact=REFERENCE_CONTACT)

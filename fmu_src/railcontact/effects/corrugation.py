@@ -119,6 +119,7 @@ class Corrugation(Effect):
         self._table = ResponseTable(tables_dir, "corrugation", warn)
         self._comp = 4.0 * (1.0 - self._nu ** 2) / (math.pi * self._e)
         self._k = [2.0 * math.pi / lam for lam in self.wavelengths]
+        self._kr = [km * self._radius for km in self._k]      # k R of each harmonic
         self._checked_surface = None, None    # the amplitude lists (4.2) was checked for
         # no series is summed at run time unless the wear effect's own coefficients are
         # analytic (growth rate, evolution)
@@ -147,16 +148,15 @@ class Corrugation(Effect):
             depth = kw * mu * mu * n_line * a0 / big_r * (1 - r) ** 2 * (1 + r)
             w_scale = kw * mu * mu * n_line / a0
         scale_t = mu / self._comp
-        rows = self._table.rows([a0 / lam for lam in self.wavelengths], r)
+        rows = self._table.rows([a0 / lam for lam in self.wavelengths], r, wear is not None)
         # in real arithmetic: z = (Z_A + i Z_B) e^{-i k x} = z_r + i z_i; the response
         # coefficients are c_a = hw, c_Delta = i ps, c_T = tr + i ti, w = wr + i wi, and each
         # term is Re(c z) (Eqs. (4.36)-(4.71), (4.94)-(4.95))
-        for (hw, ps, _, _, tr, ti, wr, wi), km, zam, zbm in zip(rows, k, za, zb):
+        for (hw, ps, _, _, tr, ti, wr, wi), km, kr, zam, zbm in zip(rows, k, self._kr, za, zb):
             ckx = math.cos(km * x)
             skx = math.sin(km * x)
             z_r = zam * ckx + zbm * skx
             z_i = zbm * ckx - zam * skx
-            kr = km * big_r
             a += hw * kr * z_r
             d -= ps * kr * z_i
             t += scale_t * (tr * z_r - ti * z_i)

@@ -57,18 +57,15 @@ class ResponseTable:
 
     def coefficients_list(self, ratios, r, wear=True):
         """:meth:`coefficients` of every harmonic ``a0/L`` in ``ratios`` at one ``r``: one
-        spline evaluation for all of them when all are inside the grid (the FMU's step)."""
-        if (self._r_lo <= r <= self._r_hi
-                and all(self._lo <= ratio <= self._hi for ratio in ratios)):
-            rows = self._evaluate(np.array([(ratio, r) for ratio in ratios])).tolist()
-            return [self._complex(row, wear) for row in rows]
-        return [self.coefficients(ratio, r, wear) for ratio in ratios]
+        spline evaluation for all of them when all are inside the grid (see :meth:`rows`)."""
+        return [self._complex(row, wear) for row in self.rows(ratios, r, wear)]
 
-    def rows(self, ratios, r):
+    def rows(self, ratios, r, wear=True):
         """The eight real coefficients of :data:`RESPONSE_VARIABLES` (floats) of every
         harmonic ``a0/L`` in ``ratios`` at one ``r``: one spline evaluation for all when all are
         inside the grid (the FMU's step, no complex objects); outside it, the closed forms of
-        :meth:`coefficients` in the same order."""
+        :meth:`coefficients` in the same order (c_a is real and c_Delta imaginary there too;
+        the wear pair is 0 unless ``wear``)."""
         if (self._r_lo <= r <= self._r_hi
                 and all(self._lo <= ratio <= self._hi for ratio in ratios)):
             pts = self._points
@@ -81,14 +78,16 @@ class ResponseTable:
             return [pick(row) for row in self._evaluate(pts).tolist()]
         out = []
         for ratio in ratios:
-            ca, cd, cs, ct, cw = self.coefficients(ratio, r, True)
+            ca, cd, cs, ct, cw = self.coefficients(ratio, r, wear)
+            cw = cw if wear else 0j
             out.append((ca.real, cd.imag, cs.real, cs.imag, ct.real, ct.imag, cw.real,
                         cw.imag))
         return out
 
     def coefficients(self, ratio, r, wear=True):
         if self._lo <= ratio <= self._hi and self._r_lo <= r <= self._r_hi:
-            return self._complex(self._evaluate(np.array([(ratio, r)]))[0].tolist(), wear)
+            return self._complex(self._pick(self._evaluate(np.array([(ratio, r)]))[0].tolist()),
+                                 wear)
         self._warn("corrugation-table-range",
                    f"corrugation table {self.table.path.name}: a0/L = {ratio:.4g} outside the "
                    f"table's grid [{self._lo:g}, {self._hi:g}] (the reader raises there); the "
@@ -98,8 +97,9 @@ class ResponseTable:
         return (complex(ca), complex(cd), complex(corrugation.stick_zone_response(ratio, r)),
                 complex(corrugation.tangential_force_response(ratio, r)), w)
 
-    def _complex(self, row, wear):
-        """The spline's row of the eight variables as ``(c_a, c_Delta, c_a*, c_T, w)``."""
-        hw, ps, sr, si, tr, ti, wr, wi = self._pick(row)
+    @staticmethod
+    def _complex(row, wear):
+        """The eight real coefficients (see :meth:`rows`) as ``(c_a, c_Delta, c_a*, c_T, w)``."""
+        hw, ps, sr, si, tr, ti, wr, wi = row
         return (complex(hw, 0.0), complex(0.0, ps), complex(sr, si), complex(tr, ti),
                 complex(wr, wi) if wear else None)
