@@ -16,25 +16,33 @@ C and O agree to 0.13 % (0.04 % for a/b <= 1 without spin). CONTACT's published 
 are printed beside (those are one case, a/b = 0.5, against CONTACT's finest grid, timed on
 another machine, not over these 21 cases).
 
-Measured (tolerance 1e-4 unless stated; 2-core machine shared with a load of 3-7; ms cold /
-warm, max / rms % of mu N against C; against O):
-20x10 17 / 2.2, 2.19 / 1.55; 2.29 / 1.58
-40x20 22 / 7.9, 0.86 / 0.61; 0.93 / 0.64
-80x40 109 / 66, 0.57 / 0.37; 0.67 / 0.41
-R 30x20->60x20 37 / 16, 0.45 / 0.19; 0.34 / 0.16
-R 40x20->80x20 56 / 24, 0.33 / 0.19; 0.44 / 0.22
-S2 R 30x20->60x20 77 / 33, 0.17 / 0.07; 0.18 / 0.08
-default (S2 R 30x20->60x20, tolerance 1e-3) 65 / 22, 0.17 / 0.07; 0.18 / 0.08
-S2 R 40x20->80x20 104 / 44, 0.18 / 0.07; 0.19 / 0.07
-R 24x20->48x20 27 / 11, 0.70 / 0.36; 0.57 / 0.31 (S2: 56 / 21, 0.21 / 0.12; 0.28 / 0.15)
-R 32x20->64x20 38 / 15, 0.69 / 0.30; 0.59 / 0.25 (S2: 76 / 30, 0.26 / 0.09; 0.18 / 0.08)
-o2 20x10 6.1 / 1.8, 1.99 / 0.75; 1.86 / 0.71
-o2 30x10 8.1 / 2.4, 1.08 / 0.41; 1.09 / 0.37
-o2 40x20 22 / 8.3, 1.46 / 0.55; 1.33 / 0.50
-o2 50x20 28 / 11, 1.02 / 0.42; 0.89 / 0.38
-o2 60x20 34 / 14, 0.71 / 0.23; 0.58 / 0.19
-o2 80x20 46 / 22, 0.63 / 0.21; 0.50 / 0.17
-o2 80x40 113 / 74, 0.52 / 0.20; 0.39 / 0.16
+Measured 2026-11-26 (tolerance 1e-4 unless stated ("t1e-3"); one core of a 2-core machine,
+least of 3 runs per case; ms cold (set-up for a new contact shape: influence coefficients,
+normal problem) / warm (set-up cached: a creep curve, a table build, a new load on a known
+shape a0/b0), max / rms % of mu N against C; against O):
+o2 20x10 t1e-3 4.6 / 1.3, 1.99 / 0.75; 1.86 / 0.71
+o2 30x14 t1e-3 9.4 / 3.8, 0.58 / 0.22; 0.45 / 0.19 (a lucky grid: o2 40x16 t1e-3 14 / 5.2, 1.67 %)
+S2 R 24x16->48x16 t1e-3 27 / 14, 0.26 / 0.12; 0.27 / 0.10
+20x10 4.9 / 1.5, 2.19 / 1.55; 2.29 / 1.58
+40x20 19 / 9.0, 0.86 / 0.61; 0.93 / 0.64
+80x40 113 / 81, 0.57 / 0.37; 0.67 / 0.41
+R 30x20->60x20 35 / 19, 0.45 / 0.19; 0.34 / 0.16
+R 40x20->80x20 51 / 27, 0.33 / 0.19; 0.44 / 0.22
+S2 R 30x20->60x20 53 / 37, 0.17 / 0.07; 0.18 / 0.08
+default (S2 R 30x20->60x20, tolerance 1e-3) 46 / 27, 0.17 / 0.07; 0.18 / 0.08
+S2 R 40x20->80x20 88 / 60, 0.18 / 0.07; 0.19 / 0.07
+R 24x20->48x20 28 / 15, 0.70 / 0.36; 0.57 / 0.31 (S2: 44 / 28, 0.21 / 0.12; 0.28 / 0.15)
+R 32x20->64x20 39 / 20, 0.69 / 0.30; 0.59 / 0.25 (S2: 61 / 39, 0.26 / 0.09; 0.18 / 0.08)
+o2 30x10 7.4 / 2.1, 1.08 / 0.41; 1.09 / 0.37
+o2 40x20 19 / 9.0, 1.46 / 0.55; 1.33 / 0.50
+o2 60x20 33 / 17, 0.71 / 0.23; 0.58 / 0.19
+o2 80x40 132 / 103, 0.52 / 0.20; 0.39 / 0.16
+(This machine ran about 20 % slower than on 2026-11-25, when 40x20 took 7.9 ms warm: the
+solver's warm time is unchanged in an A/B run of both versions.) Warm, the frontier is under
+CONTACT's published points at every cost (1.6 ms 2.6 %, 9.7 ms 1.0 %, 38 ms 0.36 %,
+111 ms 0.18 %: per case of a table build, where the set-up is shared by many cases); with the
+set-up of a new shape included it is under them at 9.7, 38 and 111 ms, not at 1.6 ms (the
+cheapest point then costs 4.6 ms).
 
 Run:  python benchmarks/bench_rolling3d.py [--tolerance 1e-4] [--only default "40x20"]
       python benchmarks/bench_rolling3d.py --make-reference   (about 30 min CPU)
@@ -98,6 +106,9 @@ CONTACT_FRONTIER = [("11x11", 1.6, 2.6), ("25x25", 9.7, 1.0), ("35x35", 38.0, 0.
 # first grid starts from the first shift's solution). tolerance: this setting's own (the
 # default setting of creep_force_3d(method="exact") stops at 1e-3).
 SETTINGS = [
+    ("o2 20x10 t1e-3", [(20, 10)], [1.0], 2, 1, 1e-3),  # the cheap point (CONTACT's 11x11)
+    ("o2 30x14 t1e-3", [(30, 14)], [1.0], 2, 1, 1e-3),  # beside CONTACT's 25x25
+    ("S2 R 24x16->48x16 t1e-3", [(24, 16), (48, 16)], [-1.0, 2.0], 1, 2, 1e-3),  # its 35x35
     ("20x10", [(20, 10)], [1.0], 1),
     ("40x20", [(40, 20)], [1.0], 1),
     ("80x40", [(80, 40)], [1.0], 1),
@@ -196,7 +207,7 @@ def make_reference(tolerance=1e-7):
         fh.write("\n".join(lines) + "\n")
 
 
-def frontier(tolerance=1e-4, settings=SETTINGS, cold=True):
+def frontier(tolerance=1e-4, settings=SETTINGS, cold=True, repeat=3):
     """Print ms per case and max / RMS error [% mu N] per setting against the converged values
     (CONTACT's rows Richardson-extrapolated, and the own fine-grid values if present)."""
     from railcontact.reference import rolling3d
@@ -224,13 +235,16 @@ def frontier(tolerance=1e-4, settings=SETTINGS, cold=True):
         for row, fx_ref, fy_ref in cases:
             args = _args(row)
             mu_n = args["friction_coefficient"] * args["normal_load"]
-            for _ in range(2):  # first pass cold (set-up included), second warm
+            # passes 0..repeat-1 cold (set-up included), then repeat warm; the least time of
+            # each kind (the machine is shared: the minimum is the cost, the rest is noise)
+            best = [float("inf"), float("inf")]
+            for _ in [0] * repeat + [1] * repeat:
                 if _ == 0 and cold:
-                    rolling3d._normal_solution.cache_clear()
-                    rolling3d._kernels.cache_clear()
+                    rolling3d.clear_setup_cache()
                 t0 = time.process_time()
                 fx = fy = 0.0
                 first = None
+                last = []
                 for offset in offsets:
                     r = first
                     for k, ((mx, my), w) in enumerate(zip(grids, weights)):
@@ -244,15 +258,13 @@ def frontier(tolerance=1e-4, settings=SETTINGS, cold=True):
                                              grid_shift=offset)
                         if k == 0:
                             first = r
+                        last.append(r)
                         fx += w * r.tx / mu_n / n_shift
                         fy += w * r.ty / mu_n / n_shift
-                        if _ == 1:
-                            sweeps += r.iterations
-                dt = time.process_time() - t0
-                if _ == 0:
-                    cpu += dt
-                else:
-                    cpu_warm += dt
+                best[_] = min(best[_], time.process_time() - t0)
+            sweeps += sum(r.iterations for r in last)
+            cpu += best[0]
+            cpu_warm += best[1]
             errs.append(max(abs(fx - fx_ref), abs(fy - fy_ref)))
             o = own.get((row["a_over_b"], row["case"]))
             if o is not None:
@@ -286,7 +298,7 @@ def main():
         make_reference()
         return
     if not opts.detail:
-        frontier(opts.tolerance,
+        frontier(opts.tolerance, repeat=opts.repeat,
                  settings=[st for st in SETTINGS if not opts.only or st[0] in opts.only])
         return
     print(f"{'a/b':>4} {'case':<13} {'grid':<14} {'cpu [ms]':>9} {'wall [ms]':>9} {'sweeps':>6} "
@@ -312,8 +324,7 @@ def main():
     # the cold cost: influence matrices + normal problem, once per grid and contact
     from railcontact.reference import rolling3d
 
-    rolling3d._normal_solution.cache_clear()
-    rolling3d._kernels.cache_clear()
+    rolling3d.clear_setup_cache()
     row = _cases("default")[0]
     for mx, my, _ in GRIDS[:4]:
         t0 = time.process_time()

@@ -21,8 +21,10 @@ from scipy import integrate, optimize
 
 from railcontact.reference.rolling3d import (
     RollingConvergenceError,
+    clear_setup_cache,
     hertz_curvatures,
     influence_coefficients_3d,
+    solve_normal_3d,
     solve_rolling_3d,
 )
 
@@ -622,6 +624,40 @@ def test_grid_shift_moves_the_grid_and_keeps_the_discrete_problem():
         solve_rolling_3d(1e-3, 0, 0, **case, grid_shift=0.6)
 
 
+def _direct_normal_solution(res, normal_load, youngs_modulus, poisson_ratio, a0, b0):
+    # the discrete normal problem of this grid solved from scratch: its own influence
+    # coefficients and Hertz curvatures, no cache, no scaling, no mirror
+    x, y = res.x, res.y
+    dx, dy = x[1] - x[0], y[1] - y[0]
+    mx, my = x.size, y.size
+    ox, oy = np.meshgrid(np.arange(-mx + 1, mx) * dx, np.arange(-my + 1, my) * dy,
+                         indexing="ij")
+    shear = youngs_modulus / (2 * (1 + poisson_ratio))
+    azz = influence_coefficients_3d(ox, oy, dx, dy, shear, poisson_ratio)[3]
+    a_curv, b_curv, _ = hertz_curvatures(a0, b0, normal_load, youngs_modulus, poisson_ratio)
+    h = a_curv * x[:, None] ** 2 + b_curv * y[None, :] ** 2
+    return solve_normal_3d(h, azz, normal_load, dx * dy, tolerance=1e-13)
+
+
+def test_cached_set_up_is_the_direct_normal_solution():
+    # The solver keeps one normalised set-up per shape a0/b0 and grid, scales it to each
+    # contact's size, load and material, solves the grid moved +s as the mirror image of the
+    # one moved -s, and starts a new shape from the nearest one solved: each must give the
+    # discrete normal solution of the contact's own grid.
+    clear_setup_cache()
+    contacts = [(1e5, 210e9, 0.28, 6e-3, 4e-3),      # first: solved
+                (8e5, 180e9, 0.5, 12e-3, 8e-3),      # same shape, other size, load, material
+                (5e4, 210e9, 0.0, 6.3e-3, 4e-3)]     # a shape 5 % away: started from it
+    for normal_load, e, nu, a0, b0 in contacts:
+        for shift in (-0.25, 0.25):
+            res = solve_rolling_3d(5e-4, 0, 0, normal_load, a0, b0, e, nu, 0.3, mx=30, my=20,
+                                   grid_shift=shift)
+            pn, approach = _direct_normal_solution(res, normal_load, e, nu, a0, b0)
+            assert np.abs(res.pn - pn).max() < 1e-8 * pn.max()
+            assert res.approach == pytest.approx(approach, rel=1e-9)
+            assert res.normal_load == pytest.approx(normal_load, rel=1e-12)
+
+
 def test_grid_shift_average_removes_the_edge_part_of_the_error():
     # one Richardson step 30x20 -> 60x20 on CONTACT's grid and averaged over the grids moved
     # -1/4 and +1/4 of an element, against the Richardson value of CONTACT's 120x60 and
@@ -646,3 +682,25 @@ def test_grid_shift_average_removes_the_edge_part_of_the_error():
         averaged = np.abs((richardson(-0.25) + richardson(0.25)) / 2 - want).max()
         print(a_over_b, case_name, f"{single * 100:.3f} -> {averaged * 100:.3f} % of mu N")
         assert averaged < bound < single
+
+
+def test_dense_products_on_small_grids_match_the_fft_products(monkeypatch):
+    # small contacts take the products B p and A p as dense matrix products, larger ones by
+    # FFT (the circulant embedding): the two must give the same discrete solution
+    from railcontact.reference import rolling3d
+
+    case = _hertz_case(0.5)
+    results = []
+    default_limit = rolling3d.DENSE_SLIP_MAX_ELEMENTS
+    for limit in (default_limit, 0):
+        monkeypatch.setattr(rolling3d, "DENSE_SLIP_MAX_ELEMENTS", limit)
+        clear_setup_cache()
+        with pytest.warns(RuntimeWarning, match="reaches the edge"):
+            results.append(solve_rolling_3d(1e-3, 5e-4, 0.4, **case, mx=16, my=8,
+                                            tolerance=1e-10))
+    dense, fft = results
+    assert dense.px.size <= default_limit  # 16x8 = 128 elements: the dense path
+    np.testing.assert_allclose(dense.pn, fft.pn, rtol=0, atol=1e-8 * fft.pn.max())
+    for name in ("tx", "ty"):
+        assert getattr(dense, name) == pytest.approx(getattr(fft, name), abs=1e-9 * 0.3 * 1e5)
+    clear_setup_cache()

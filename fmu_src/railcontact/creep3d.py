@@ -383,20 +383,32 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         the accuracy-per-cost frontier that meets 0.2 % of mu N: ``grid=(30, 20),
         extrapolate=True, grid_shifts=2, tolerance=1e-3``. Measured on one core over CONTACT's
         21 grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined
-        creepage, spin up to pure spin; ``benchmarks/bench_rolling3d.py``; 2-core machine
-        under a load of 3-6), ms per case with the set-up (influence coefficients, normal
-        problem) / with it cached for the contact, and the error max / RMS in % of mu N
-        against two estimates of the converged exact theory that agree to 0.13 %: C, the
-        Richardson value of CONTACT's 120x60 and 240x60 rows, and O, this solver on fine grids:
+        creepage, spin up to pure spin; ``benchmarks/bench_rolling3d.py``, least of 3 runs,
+        2026-11-26), ms per case with the set-up of a new shape a0/b0 (influence
+        coefficients, normal problem) / with it cached (further creepages, and a new load or
+        size on a known shape: the set-up is kept normalised per shape and scaled), and the
+        error max / RMS in % of mu N against two estimates of the converged exact theory
+        that agree to 0.13 %: C, the Richardson value of CONTACT's 120x60 and 240x60 rows,
+        and O, this solver on fine grids:
 
-        * default (30x20 -> 60x20, two grid shifts, tolerance 1e-3): 65 / 20-22 ms, C 0.17 / 0.07 %,
-          O 0.18 / 0.08 % (the largest at a0/b0 = 0.2, pure spin: the lateral element size);
-        * ``grid=(40, 20), extrapolate=False, grid_shifts=1``: 20-30 / 7-8 ms, C 0.86 / 0.61 %,
-          O 0.93 / 0.64 %; ``(80, 40)`` likewise: 96 / 59 ms, C 0.57 / 0.37 %;
-        * ``grid=(30, 20), grid_shifts=1`` (one Richardson step on one grid): 34-39 / 14-16 ms,
-          C 0.45 / 0.19 %; ``grid=(40, 20), grid_shifts=1``: 52-56 / 22-24 ms, C 0.33 / 0.19 %
+        * default (30x20 -> 60x20, two grid shifts, tolerance 1e-3): 46 / 27 ms,
+          C 0.17 / 0.07 %, O 0.18 / 0.08 % (the largest at a0/b0 = 0.2, pure spin: the
+          lateral element size);
+        * ``grid=(24, 16)``, two shifts, tolerance 1e-3: 27 / 14 ms, C 0.26 / 0.12 %;
+        * ``grid=(30, 14), extrapolate=False, grid_shifts=1, transport_order=2,
+          tolerance=1e-3``: 9.4 / 3.8 ms, C 0.58 / 0.22 % (other grids of this kind vary:
+          (40, 16) 1.67 %);
+        * ``grid=(20, 10), extrapolate=False, grid_shifts=1, transport_order=2,
+          tolerance=1e-3``: 4.6 / 1.3 ms, C 1.99 / 0.75 % (the patch reaches the edge rows of
+          the potential area: the solver warns);
+        * ``grid=(40, 20), extrapolate=False, grid_shifts=1``: 19 / 9.0 ms, C 0.86 / 0.61 %,
+          O 0.93 / 0.64 %; ``(80, 40)`` likewise: 113 / 81 ms, C 0.57 / 0.37 %;
+        * ``grid=(30, 20), grid_shifts=1`` (one Richardson step on one grid): 35 / 19 ms,
+          C 0.45 / 0.19 %; ``grid=(40, 20), grid_shifts=1``: 51 / 27 ms, C 0.33 / 0.19 %
           (the table ``creep_exact``'s setting).
 
+        CONTACT's published points (per case of a table build): 11x11 1.6 ms 2.6 %, 25x25
+        9.7 ms 1.0 %, 35x35 38 ms 0.36 %, 48x44 111 ms 0.18 %.
         A plain solve on one grid: ``extrapolate=False, grid_shifts=1``. From 32 x 16 elements
         a grid starts from a solve on half the elements (``coarse_start`` of the solver).
     extrapolate : bool, keyword-only

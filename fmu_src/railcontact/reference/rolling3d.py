@@ -1,6 +1,6 @@
 r"""Three-dimensional exact steady rolling contact (Kalker's discretised theory) with spin.
 
-Why one module of about 1,190 lines: the 3-D reference solver's influence coefficients, normal
+Why one module of about 1,340 lines: the 3-D reference solver's influence coefficients, normal
 problem, line-block sweeps, grid shifts and Richardson steps share the grid data structures and
 caches.
 
@@ -153,9 +153,8 @@ __all__ = [
     "solve_normal_3d",
     "influence_coefficients_3d",
     "hertz_curvatures",
+    "clear_setup_cache",
 ]
-
-
 
 
 @dataclass(frozen=True)
@@ -338,17 +337,37 @@ def _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio, transport_order=1):
 # ----------------------------------------------------------------------------------------------
 # Normal problem (Polonsky & Keer 1999, FFT products)
 # ----------------------------------------------------------------------------------------------
+#: contacts (and for the normal problem, grids) of at most this many elements take the
+#: products ``B p`` (``A p``) as dense products (O(n^2), the matrices cached per contact)
+#: instead of FFT products: on small grids the FFTs' fixed cost per call dominates
+#: (measured per product, FFT against dense: 16x8, nc = 92, 68 against 9 us; 20x10,
+#: nc = 140, 78 against 16 us; 30x20, nc = 404, 121 against 189 us; 40x20, nc = 540, 136
+#: against 383 us)
+DENSE_SLIP_MAX_ELEMENTS = 250
+
+
 class _Convolver:
+    """``u = A p`` on the whole grid for a Toeplitz kernel on offsets: FFT products of the
+    circulant embedding, or on grids of at most ``DENSE_SLIP_MAX_ELEMENTS`` elements a dense
+    product (the FFTs' fixed cost per call dominates there)."""
+
     def __init__(self, kernel, mx, my):
+        self.mx, self.my = mx, my
+        self.dense = None
+        if mx * my <= DENSE_SLIP_MAX_ELEMENTS:
+            i, j = np.divmod(np.arange(mx * my), my)
+            self.dense = kernel[i[:, None] - i[None, :] + mx - 1, j[:, None] - j[None, :] + my - 1]
+            return
         # circulant embedding of the Toeplitz kernel: size (2mx, 2my)
         emb = np.zeros((2 * mx, 2 * my))
         ix = np.arange(-mx + 1, mx) % (2 * mx)
         iy = np.arange(-my + 1, my) % (2 * my)
         emb[np.ix_(ix, iy)] = kernel
         self.khat = scipy.fft.rfft2(emb)
-        self.mx, self.my = mx, my
 
     def __call__(self, p):
+        if self.dense is not None:
+            return (self.dense @ p.ravel()).reshape(self.mx, self.my)
         out = scipy.fft.irfft2(scipy.fft.rfft2(p, s=(2 * self.mx, 2 * self.my)) * self.khat,
                                s=(2 * self.mx, 2 * self.my))
         return out[: self.mx, : self.my]
@@ -388,19 +407,21 @@ def solve_normal_3d(h, azz, normal_load, element_area, tolerance=1e-13, max_iter
     t = np.zeros_like(p)
     g_old = 1.0
     delta_flag = 0.0
-    for _ in range(max_iterations):
-        gap = conv(p) + h
+    u = conv(p)
+    for iteration in range(max_iterations):
+        gap = u + h
         act = p > 0
         gap = gap - gap[act].mean()
         g_new = float(np.sum(gap[act] ** 2))
         t = np.where(act, gap + delta_flag * (g_new / g_old) * t, 0.0)
         g_old = g_new
-        r = conv(t)
-        r = r - r[act].mean()
+        r_raw = conv(t)
+        r = r_raw - r_raw[act].mean()
         denom = float(np.sum(r[act] * t[act]))
         tau = float(np.sum(gap[act] * t[act])) / denom if denom != 0 else 0.0
         p_old = p
         p = np.where(act, p - tau * t, 0.0)
+        clipped = bool((p < 0.0).any())
         p = np.maximum(p, 0.0)
         overlap = (p == 0) & (gap < 0)
         if overlap.any():
@@ -408,10 +429,17 @@ def solve_normal_3d(h, azz, normal_load, element_area, tolerance=1e-13, max_iter
             p = np.where(overlap, p - tau * gap, p)
         else:
             delta_flag = 1.0
-        p *= normal_load / (p.sum() * element_area)
+        factor = normal_load / (p.sum() * element_area)
+        p *= factor
         err = float(np.abs(p - p_old).sum() * element_area / normal_load)
         if err < tolerance:
             break
+        if clipped or delta_flag == 0.0 or iteration % 16 == 15:
+            u = conv(p)
+        else:
+            # p = factor (p_old - tau t) exactly: the displacement follows by linearity, one
+            # FFT product per iteration instead of two once the active set has settled
+            u = factor * (u - tau * r_raw)
     else:  # pragma: no cover - defensive
         raise RollingConvergenceError(
             f"normal problem did not converge in max_iterations={max_iterations}; "
@@ -763,29 +791,109 @@ def _friction_table(friction_coefficient):
 NORMAL_TOLERANCE = 1e-10
 
 
+def clear_setup_cache():
+    """Forget every cached set-up (influence coefficients, normal solutions, line inverses),
+    e.g. to time a first call on a new contact."""
+    for cached in (_kernels, _unit_normal_solution, _unit_setup, _normal_solution):
+        cached.cache_clear()
+    _UNIT_STARTS.clear()
+
+
+def _shape_key(a0, b0):
+    """The contact's shape a0/b0 rounded to 12 significant digits: the key of the normalised
+    set-up (semi-axes from ``hertz_3d`` at another load have the same ratio to the last bits;
+    the rounding moves b0 by at most 5e-13 of itself)."""
+    return float(f"{a0 / b0:.12g}")
+
+
+#: normalised normal solutions kept per grid for warm starts of a new shape (the nearest
+#: a0/b0 solved on the same grid)
+_UNIT_STARTS = {}
+
+
+@lru_cache(maxsize=32)
+def _unit_normal_solution(mx, my, scale, ratio, grid_shift):
+    """The discrete Hertzian normal problem in normalised form: a0 = 1, b0 = 1/ratio,
+    G = 1, N = 1, nu = 0 (its solution does not depend on nu: the kernel is ``(1 - nu)/G``
+    times a geometric factor and so are the Hertz curvatures; E* = 1). Returns (pn, approach)
+    on the grid; a real contact of the same shape scales them (``_normal_solution``).
+    Started from the normalised solution of the nearest shape already solved on this grid,
+    else from the Hertz pressure at the element centres."""
+    if grid_shift > 0.0:
+        # the grid moved +s is the mirror image (x -> -x) of the grid moved -s:
+        # x_i(+s) = -x_(mx-1-i)(-s), and the normal problem is even in x (h and azz are), so
+        # its pressure is the mirrored one: one normal solve for the pair (grid_shifts=2)
+        pn, approach = _unit_normal_solution(mx, my, scale, ratio, -grid_shift)
+        pn = np.ascontiguousarray(pn[::-1])
+        pn.setflags(write=False)
+        return pn, approach
+    a0, b0 = 1.0, 1.0 / ratio
+    dx = 2.0 * scale * a0 / mx
+    dy = 2.0 * scale * b0 / my
+    x = -scale * a0 + (np.arange(mx) + 0.5 + grid_shift) * dx
+    y = -scale * b0 + (np.arange(my) + 0.5) * dy
+    azz = _kernels(mx, my, dx, dy, 1.0, 0.0, 1)[0]
+    a_curv, b_curv, _ = hertz_curvatures(a0, b0, 1.0, 2.0, 0.0)
+    h = a_curv * x[:, None] ** 2 + b_curv * y[None, :] ** 2
+    starts = _UNIT_STARTS.setdefault((mx, my, scale, grid_shift), {})
+    if starts:
+        # the nearest shape solved on this grid: the pressures differ smoothly with the shape
+        # (measured 30x20 and 60x20, a0/b0 1 -> 1.1: about half the iterations of the Hertz
+        # start)
+        near = min(starts, key=lambda r: abs(math.log(r / ratio)))
+        start = starts[near]
+    else:
+        # the Hertz pressure at the element centres: 25-35 % fewer iterations than a flat
+        # start (measured 40x20 and 60x20, a0/b0 = 0.2, 1, 5), same solution to 1e-12
+        start = np.sqrt(np.maximum(1.0 - (x[:, None] / a0) ** 2 - (y[None, :] / b0) ** 2, 0.0))
+        if not start.any():  # no element centre inside the ellipse: the flat start
+            start = None
+    pn, approach = solve_normal_3d(h, azz, 1.0, dx * dy, tolerance=NORMAL_TOLERANCE,
+                                   initial_pressure=start)
+    pn.setflags(write=False)
+    if len(starts) >= 16:
+        starts.pop(next(iter(starts)))
+    starts[ratio] = pn
+    return pn, approach
+
+
+@lru_cache(maxsize=32)
+def _unit_setup(mx, my, scale, ratio, poisson_ratio, transport_order):
+    """Tangential kernels and FFT products of the normalised contact (a0 = 1, G = 1)."""
+    dx = 2.0 * scale / mx
+    dy = 2.0 * scale / ratio / my
+    kern = _kernels(mx, my, dx, dy, 1.0, poisson_ratio, transport_order)
+    return kern, _SlipProduct(kern[1], kern[2], kern[3], mx, my)
+
+
 @lru_cache(maxsize=16)
 def _normal_solution(mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson_ratio,
                      transport_order=1, grid_shift=0.0):
+    """Grid, discrete normal solution, kernels and FFT products of one contact: the
+    normalised set-up of its shape (``_unit_normal_solution``, ``_unit_setup``; one per
+    a0/b0 and grid, and for the kernels nu) scaled to its size, load and material. Lengths
+    scale with a0, the pressure with N/a0^2, the normal kernel with a0/G, the slip kernels
+    with 1/G (the influence functions are 1/G times a length: Boussinesq-Cerruti), so a new
+    load or size on a known shape costs no solve (checked against the direct solve in
+    tests/test_reference_rolling3d.py)."""
     shear_modulus = youngs_modulus / (2.0 * (1.0 + poisson_ratio))
-    scale_x, scale_y = (scale, scale) if np.ndim(scale) == 0 else scale
-    dx = 2.0 * scale_x * a0 / mx
-    dy = 2.0 * scale_y * b0 / my
-    x = -scale_x * a0 + (np.arange(mx) + 0.5 + grid_shift) * dx
-    y = -scale_y * b0 + (np.arange(my) + 0.5) * dy
-    kern = _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio, transport_order)
-    a_curv, b_curv, _ = hertz_curvatures(a0, b0, normal_load, youngs_modulus, poisson_ratio)
-    h = a_curv * x[:, None] ** 2 + b_curv * y[None, :] ** 2
-    # started from the Hertz pressure at the element centres: 25-35 % fewer iterations than
-    # from a flat start (measured 40x20 and 60x20, a0/b0 = 0.2, 1, 5), same solution to 1e-12
-    hertz = np.sqrt(np.maximum(1.0 - (x[:, None] / a0) ** 2 - (y[None, :] / b0) ** 2, 0.0))
-    if not hertz.any():  # no element centre inside the ellipse: the flat start
-        hertz = None
-    pn, approach = solve_normal_3d(h, kern[0], normal_load, dx * dy,
-                                   tolerance=NORMAL_TOLERANCE, initial_pressure=hertz)
-    for arr in (x, y, pn):
+    ratio = _shape_key(a0, b0)
+    b0 = a0 / ratio
+    dx = 2.0 * scale * a0 / mx
+    dy = 2.0 * scale * b0 / my
+    x = -scale * a0 + (np.arange(mx) + 0.5 + grid_shift) * dx
+    y = -scale * b0 + (np.arange(my) + 0.5) * dy
+    pn_unit, approach_unit = _unit_normal_solution(mx, my, scale, ratio, grid_shift)
+    kern_unit, conv_unit = _unit_setup(mx, my, scale, ratio, poisson_ratio, transport_order)
+    estar = youngs_modulus / (2.0 * (1.0 - poisson_ratio ** 2))
+    pn = pn_unit * (normal_load / a0 ** 2)
+    # displacements (and the approach) scale with N / (a0 E*) (unit problem: N = a0 = E* = 1)
+    approach = approach_unit * normal_load / (a0 * estar)
+    kern = (kern_unit[0] * (a0 / shear_modulus),) + tuple(k / shear_modulus
+                                                          for k in kern_unit[1:])
+    conv = conv_unit.scaled(1.0 / shear_modulus)
+    for arr in (x, y, pn) + kern:
         arr.setflags(write=False)
-    # FFT products for the slip of given tractions (steady-state kernels bxx, bxy, byy)
-    conv = _SlipProduct(kern[1], kern[2], kern[3], mx, my)
     return x, y, dx, dy, pn, approach, kern, conv
 
 
@@ -807,6 +915,32 @@ class _SlipProduct:
         self.mx, self.my = mx, my
         self.transposed = tuple(np.ascontiguousarray(k.T) for k in (bxx, bxy, byy))
         self._inverses = {}
+        self._unit, self._factor = None, 1.0
+        self._dense = None
+
+    def scaled(self, factor):
+        """The same products for the kernels times ``factor`` (a contact of the same shape,
+        another material or size): shares the unit object's line inverses (divided by
+        ``factor``)."""
+        new = object.__new__(_SlipProduct)
+        new.shape, new.mx, new.my = self.shape, self.mx, self.my
+        new.hxx, new.hxy, new.hyy = (h * factor for h in (self.hxx, self.hxy, self.hyy))
+        new.transposed = tuple(k * factor for k in self.transposed)
+        new._inverses = {}
+        new._unit, new._factor = self, factor
+        new._dense = None
+        return new
+
+    def dense(self, cix, ciy):
+        """The slip kernels between the contact elements as three dense (nc, nc) matrices
+        ``(bxx, bxy, byy)[I, J] = b(x_I - x_J, y_I - y_J)``, cached for the last contact."""
+        key = (cix.tobytes(), ciy.tobytes())
+        if self._dense is None or self._dense[0] != key:
+            di = cix[:, None] - cix[None, :] + self.mx - 1
+            dj = ciy[:, None] - ciy[None, :] + self.my - 1
+            self._dense = (key,) + tuple(np.ascontiguousarray(k[dj, di])
+                                         for k in self.transposed)
+        return self._dense[1:]
 
     def line_inverses(self, lengths):
         """Inverses of the line matrices (the Toeplitz kernel of offsets along x in the same
@@ -815,6 +949,9 @@ class _SlipProduct:
         grid's contact are the same for every creepage); memory ``2 k n_max^2`` doubles for k
         distinct row lengths (about 2 MB at 80x40)."""
         key = tuple(int(v) for v in lengths)
+        if key not in self._inverses and self._unit is not None:
+            inv_x, inv_y, row_index = self._unit.line_inverses(lengths)
+            self._inverses = {key: (inv_x / self._factor, inv_y / self._factor, row_index)}
         if key not in self._inverses:
             tbxx, _, tbyy = self.transposed
             unique = sorted(set(key))
@@ -839,8 +976,14 @@ class _SlipProduct:
         return ux[: self.mx, : self.my], uy[: self.mx, : self.my]
 
 
+
+
 def _slip(conv, px, py, cix, ciy, mx, my, wx, wy):
-    """Slip ``w + B p`` of the contact elements by FFT products (O(n log n), not O(nc^2))."""
+    """Slip ``w + B p`` of the contact elements: by FFT products (O(n log n)), or on small
+    contacts by dense products (``DENSE_SLIP_MAX_ELEMENTS``)."""
+    if cix.shape[0] <= DENSE_SLIP_MAX_ELEMENTS:
+        bxx, bxy, byy = conv.dense(cix, ciy)
+        return wx + bxx @ px + bxy @ py, wy + bxy @ px + byy @ py
     pxa = np.zeros((mx, my))
     pya = np.zeros((mx, my))
     pxa[cix, ciy] = px
@@ -1021,8 +1164,10 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
 
     Solves the Hertzian normal problem numerically on the grid, then the frictional steady
     rolling problem with creepages and spin (see the module docstring for the method).
-    Influence matrices and the normal solution are cached per grid and material, so a batch of
-    creepage cases on one contact costs only the tangential iterations.
+    Influence matrices and the normal solution are cached per grid and shape a0/b0 in
+    normalised form (the kernels also per Poisson ratio) and scaled to each contact's size,
+    load and material, so a batch of creepage cases on one contact, or a new load on a known
+    shape, costs only the tangential iterations (``clear_setup_cache`` forgets them).
 
     Parameters
     ----------
@@ -1131,7 +1276,7 @@ def solve_rolling_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
     -0.329
 
     A creep curve: the influence matrices and the normal solution are computed once (cached
-    on grid, semi-axes, load and material), each further point costs the tangential sweeps only.
+    on grid and shape), each further point costs the tangential sweeps only.
 
     >>> [round(solve_rolling_3d(xi, 0.0, 0.0, 1e5, 6e-3, 5e-3, 210e9, 0.28, 0.3).tx / 3e4, 3)
     ...  for xi in (5e-4, 1e-3, 2e-3)]
