@@ -77,7 +77,8 @@ def exact_lookups(args):
     precomputed coordinates (the limit: no input checks, no physics)."""
     from numba import njit
 
-    from railcontact.exact_table import _spline_point, exact_table_coordinates
+    from railcontact._exact_kernels import spline_point as _spline_point
+    from railcontact.exact_table import exact_table_coordinates
     from railcontact.kalker import kalker_coefficients
 
     ex = ExactCreepTable.from_file()

@@ -1049,3 +1049,72 @@ def test_comparison_methods_through_the_fmu_equal_the_api(fmu_path, method):
     assert last["Fx"] == pytest.approx(float(want.tx), rel=1e-12)
     assert last["Fy"] == pytest.approx(float(want.ty), rel=1e-12)
     assert -0.3e5 < last["Fx"] < 0.0 < last["Fy"]
+
+
+_AOT_CHECK = r"""
+import json, sys
+from fmpy import extract
+import numpy as np
+
+unzip = extract(sys.argv[1], sys.argv[2])
+resources = f"{unzip}/resources"
+sys.path.insert(0, resources)
+module_name = open(f"{resources}/slavemodule.txt").read().strip()
+package = module_name + "_railcontact"
+import importlib
+module = importlib.import_module(module_name)
+out = {}
+for scene in ("velocity_friction_table", "creep_exact_table"):
+    slave = module.WheelRailContact(instance_name="aot", resources=resources)
+    slave.scene_file = scene
+    slave.enter_initialization_mode()
+    slave.exit_initialization_mode()
+    setters = {v.name: v.setter for v in slave.vars.values() if v.setter is not None}
+    getters = {v.name: v.getter for v in slave.vars.values() if v.getter is not None}
+    for name, value in (("normal_force", 8e4), ("creepage_longitudinal", 1e-3),
+                        ("creepage_lateral", 4e-4), ("spin", 0.3), ("rolling_speed", 30.0)):
+        setters[name](value)
+    slave.do_step(0.0, 1e-3)
+    out[scene] = [getters["Fx"](), getters["Fy"]()]
+out["numba_imported"] = "numba" in sys.modules
+compiled = importlib.import_module(f"{package}._compiled")
+out["aot"] = compiled.aot_module() is not None
+# the same kernels just in time (numba), on the same inputs
+exact = importlib.import_module(f"{package}.exact_table").ExactCreepTable.from_file()
+rng = np.random.default_rng(5)
+pairs = []
+for _ in range(200):
+    args = (float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)), float(rng.normal(0, 1.0)),
+            1e5, float(rng.uniform(3e-3, 8e-3)), 5e-3, 2.1e11, 0.28, 0.3)
+    pairs.append(exact.step_values(*args))
+compiled._AOT[:] = [None]                       # numba's kernels from here on
+jit = importlib.import_module(f"{package}.exact_table").ExactCreepTable.from_file()
+rng = np.random.default_rng(5)
+diff = 0.0
+for values in pairs:
+    args = (float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)), float(rng.normal(0, 1.0)),
+            1e5, float(rng.uniform(3e-3, 8e-3)), 5e-3, 2.1e11, 0.28, 0.3)
+    other = jit.step_values(*args)
+    scale = max(abs(v) for v in other)
+    diff = max(diff, max(abs(a - b) for a, b in zip(values, other)) / scale)
+out["exact_max_relative_difference"] = diff
+print("AOT", json.dumps(out))
+"""
+
+
+def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, tmp_path):
+    # The build compiles the table kernels ahead of time from their numba source
+    # (railcontact._compiled): a table scene then imports no numba, and the compiled copy
+    # gives the numba kernel's values (the exact table's scalar path with its Jacobian, 200
+    # random contacts, relative to the largest entry).
+    proc = subprocess.run([sys.executable, "-c", _AOT_CHECK, str(fmu_path),
+                           str(tmp_path / "x")], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    out = json.loads(proc.stdout.split("AOT ", 1)[1])
+    if not out["aot"]:
+        pytest.skip("the FMU was built without ahead-of-time kernels (no C compiler)")
+    assert out["numba_imported"] is False
+    assert all(np.isfinite(out[s]).all() and out[s][0] < 0 for s in
+               ("velocity_friction_table", "creep_exact_table"))
+    # (the ahead-of-time copy targets a generic CPU, numba's this one: the last bits may differ)
+    assert out["exact_max_relative_difference"] < 1e-12

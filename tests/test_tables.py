@@ -512,3 +512,55 @@ def test_tensor_spline_refuses_unknown_out_of_range():
         TensorSpline([axis], np.zeros((1, 5)), ["v"])
 
 
+
+
+def test_large_table_files_are_kept_decompressed_in_the_user_cache(tmp_path, monkeypatch):
+    # a file at least DECOMPRESSED_CACHE_MIN_BYTES long is read from netCDF and checked once,
+    # then read from the user cache, keyed by its content: the same arrays and attributes
+    from railcontact import tables
+
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setattr(tables, "DECOMPRESSED_CACHE_MIN_BYTES", 0)
+    source = tables.default_table_path("velocity_friction")
+    copy = tmp_path / "extraction" / source.name
+    copy.parent.mkdir()
+    shutil.copy(source, copy)
+    want_attrs, want_vars = tables._read_netcdf_file(source)
+    entries = tmp_path / "cache" / "tables"
+
+    def same(attrs, variables):
+        assert attrs.keys() == want_attrs.keys() and variables.keys() == want_vars.keys()
+        for key, value in want_attrs.items():
+            np.testing.assert_array_equal(attrs[key], value)
+        for key, (dims, values, var_attrs) in want_vars.items():
+            assert variables[key][0] == dims and variables[key][2].keys() == var_attrs.keys()
+            np.testing.assert_array_equal(variables[key][1], values)
+            assert variables[key][1].dtype == values.dtype
+
+    attrs, variables, store = tables._read_netcdf(copy)    # read, not yet checked: no entry
+    same(attrs, variables)
+    assert store is not None and not list(entries.glob("*.pickle"))
+    first = tables.Table.from_file(copy)                   # read, checked, then kept
+    assert len(list(entries.glob("*.pickle"))) == 1
+    real_read = tables._read_netcdf_file
+    calls = []
+    monkeypatch.setattr(tables, "_read_netcdf_file",
+                        lambda path: calls.append(path) or real_read(path))
+    attrs, variables, store = tables._read_netcdf(copy)    # from the cache
+    same(attrs, variables)
+    assert store is None and calls == []
+    again = tables.Table.from_file(copy)
+    point = [float(np.mean(a["nodes"][:2])) for a in first.axes]
+    np.testing.assert_array_equal(again.spline.evaluate(point), first.spline.evaluate(point))
+    assert calls == []
+    # a changed file is not served the old entry; a corrupt entry is read past and replaced
+    with open(copy, "ab") as fh:
+        fh.write(b"\0")
+    same(*tables._read_netcdf(copy)[:2])
+    assert calls == [copy]
+    for entry in entries.glob("*.pickle"):
+        entry.write_bytes(b"not a pickle")
+    tables.Table.from_file(copy)
+    assert calls == [copy, copy]
+    same(*tables._read_netcdf(copy)[:2])                   # the entry was rewritten
+    assert calls == [copy, copy]

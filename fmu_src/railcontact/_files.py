@@ -1,11 +1,29 @@
-"""Where this package's data files are now (also inside the FMU, after a re-extraction)."""
+"""Where this package's files are: its data files now (also inside the FMU, after a
+re-extraction), and its user cache directory (numba's compiled kernels, decompressed tables)."""
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
-__all__ = ["package_directory"]
+__all__ = ["package_directory", "user_cache_dir"]
+
+
+def user_cache_dir() -> Path:
+    """The package's user cache directory: ``$RAILCONTACT_CACHE_DIR`` or the platform's
+    (``%LOCALAPPDATA%\\railcontact\\Cache``, ``~/Library/Caches/railcontact``,
+    ``$XDG_CACHE_HOME/railcontact`` or ``~/.cache/railcontact``); created by its users on first
+    write."""
+    env = os.environ.get("RAILCONTACT_CACHE_DIR")
+    if env:
+        return Path(env)
+    if sys.platform.startswith("win"):
+        base = Path(os.environ.get("LOCALAPPDATA", Path.home() / "AppData" / "Local"))
+        return base / "railcontact" / "Cache"
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Caches" / "railcontact"
+    return Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "railcontact"
 
 
 def package_directory():

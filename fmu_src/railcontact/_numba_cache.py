@@ -25,26 +25,13 @@ Import this module before any ``@njit(cache=True)`` of the package is decorated.
 from __future__ import annotations
 
 import hashlib
-import os
-import sys
 from pathlib import Path
 
 from numba.core import caching
 
+from ._files import user_cache_dir
+
 _PACKAGE_DIR = Path(__file__).resolve().parent
-
-
-def user_cache_dir() -> Path:
-    """The package's user cache directory (created on first use by numba's locator)."""
-    env = os.environ.get("RAILCONTACT_CACHE_DIR")
-    if env:
-        return Path(env)
-    if sys.platform.startswith("win"):
-        base = Path(os.environ.get("LOCALAPPDATA", Path.home() / "AppData" / "Local"))
-        return base / "railcontact" / "Cache"
-    if sys.platform == "darwin":
-        return Path.home() / "Library" / "Caches" / "railcontact"
-    return Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "railcontact"
 
 
 class RailcontactCacheLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):

@@ -23,7 +23,7 @@ SPLINE_DEGREE = 3
 @njit(cache=True)
 def find_span(t, n_coef, x):
     """Index ``i`` with ``t[i] <= x < t[i+1]``, ``3 <= i <= n_coef - 1`` (x clamped to range)."""
-    lo = SPLINE_DEGREE
+    lo = np.int64(SPLINE_DEGREE)  # an int64, not a literal: numba.pycc types it strictly
     hi = n_coef  # t[n_coef] is the right end
     if x >= t[hi]:
         return hi - 1

@@ -19,6 +19,15 @@ from .kalker import A0_OVER_B0_MAX
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "spin_coefficient"]
 
+#: Weight of the spin in the exact table's creepage coordinate:
+#: ``w^2 = 1 + (SPIN_WEIGHT tau)^2`` (:mod:`railcontact.exact_table`; here so that its reader
+#: and its compiled kernels share it without either importing the other). [-]
+SPIN_WEIGHT = 1.0
+#: Below this combined creepage |v| the exact table's Jacobian is taken at
+#: |v| = JACOBIAN_RHO_MIN in the same direction (the polar coordinates divide by |v|; the
+#: Jacobian is continuous there). [-]
+JACOBIAN_RHO_MIN = 1e-6
+
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
 CreepForce3D.__doc__ = "Tangential creep force on the wheel, components tx, ty. [N]"
 

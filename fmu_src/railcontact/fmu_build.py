@@ -29,6 +29,9 @@ What goes into the FMU (``resources/``):
   ``examples/scenes/*.toml`` (``resources/scenes/``, selectable by name via ``scene_file``)
   with the data files they name (``examples/scenes/*.csv``, e.g. a roughness profile; a scene's
   relative file names resolve against ``resources/scenes/``);
+* the extension module ``_aot_kernels`` inside the package copy: the kernels the table scenes
+  call per step compiled ahead of time from their numba source (:mod:`railcontact._compiled`;
+  skipped with a message where no C compiler is found, and with ``--no-aot``);
 * ``requirements.txt`` for the host interpreter (PythonFMU FMUs run in the host's Python,
   which needs numpy and scipy; numba and netCDF4 for the table source).
 
@@ -60,7 +63,7 @@ SCENES = ROOT / "examples" / "scenes"
 MODEL_NAME = "WheelRailContact"
 REQUIREMENTS = "numpy>=1.26\nscipy>=1.13\nnumba>=0.59\nnetCDF4>=1.6\n"
 
-_IGNORE = shutil.ignore_patterns("__pycache__", "*.pyc", "*.pyo")
+_IGNORE = shutil.ignore_patterns("__pycache__", "*.pyc", "*.pyo", "_aot_kernels.*")
 
 
 def _check_sources():
@@ -123,7 +126,7 @@ def _rewrite_package(directory, package_name):
             path.write_text(new, encoding="utf-8")
 
 
-def _stage(stage, digest):
+def _stage(stage, digest, aot=True, log=None):
     module_name, package_name = bundle_names(digest)
     script = stage / f"{module_name}.py"
     text = SLAVE.read_text(encoding="utf-8")
@@ -133,6 +136,14 @@ def _stage(stage, digest):
     script.write_text(new, encoding="utf-8")
     shutil.copytree(PACKAGE, stage / package_name, ignore=_IGNORE)
     _rewrite_package(stage / package_name, package_name)
+    if aot:
+        # the kernels a table scene calls per step, compiled ahead of time from the same
+        # source (railcontact._compiled): the scene then imports no numba
+        from . import _compiled  # noqa: PLC0415
+
+        message = _compiled.build_aot(stage / package_name)
+        if log is not None:
+            log(message)
     # tables inside the package copy: railcontact.tables.default_table_path looks there
     (stage / package_name / "tables").mkdir(exist_ok=True)
     for table in TABLES.glob("*.nc"):
@@ -187,7 +198,7 @@ def _check_isolation(stage, digest):
                            + proc.stderr[-3000:])
 
 
-def build(dest=ROOT, validate=True):
+def build(dest=ROOT, validate=True, aot=True, log=None):
     """Build ``WheelRailContact.fmu`` into ``dest`` and return its path.
 
     Parameters
@@ -196,6 +207,12 @@ def build(dest=ROOT, validate=True):
         Output directory (created if needed).
     validate : bool
         Run :func:`fmpy.validation.validate_fmu` and the isolation check (default True).
+    aot : bool
+        Compile the kernels the table scenes call per step ahead of time into the bundled
+        package (:func:`railcontact._compiled.build_aot`: about 20 s; needs a C compiler, else
+        the FMU loads numba's kernels at run time). Default True.
+    log : callable, optional
+        Called with a line saying whether the kernels were compiled ahead of time.
 
     Raises
     ------
@@ -212,7 +229,7 @@ def build(dest=ROOT, validate=True):
     target = dest / f"{MODEL_NAME}.fmu"
     with tempfile.TemporaryDirectory(prefix="wrc_build_") as tmp:
         stage = Path(tmp)
-        script, project_files = _stage(stage, digest)
+        script, project_files = _stage(stage, digest, aot, log)
         if validate:
             _check_isolation(stage, digest)
         # a private folder beside the target: pythonfmu < 0.7 takes ``dest`` as a folder only,
@@ -260,8 +277,11 @@ def main(argv=None):
     parser.add_argument("--dest", default=str(ROOT), help="output directory (default: repo)")
     parser.add_argument("--no-validate", action="store_true",
                         help="skip the fmpy validation and the isolation check")
+    parser.add_argument("--no-aot", action="store_true",
+                        help="do not compile the table kernels ahead of time (the FMU then "
+                             "imports numba in its table scenes)")
     args = parser.parse_args(argv)
-    path = build(args.dest, validate=not args.no_validate)
+    path = build(args.dest, validate=not args.no_validate, aot=not args.no_aot, log=print)
     print(path)
     return 0
 

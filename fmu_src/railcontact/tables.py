@@ -43,6 +43,7 @@ References
 from __future__ import annotations
 
 import os
+import pickle
 import sys
 from pathlib import Path
 
@@ -191,24 +192,14 @@ _tensor_eval = None
 
 
 def _kernel():
-    """The compiled tensor-product evaluator (numba: imported and loaded on first use)."""
+    """The compiled tensor-product evaluator, loaded on first use: the FMU build's
+    ahead-of-time copy, else numba's (:mod:`railcontact._compiled`)."""
     global _tensor_eval
     if _tensor_eval is None:
-        from . import _spline_kernels  # noqa: PLC0415  (numba, its user cache)
+        from . import _compiled  # noqa: PLC0415  (numba, its user cache: only when needed)
 
-        assert _spline_kernels.SPLINE_DEGREE == SPLINE_DEGREE
-        _tensor_eval = _spline_kernels.tensor_eval
+        _tensor_eval = _compiled.tensor_eval()
     return _tensor_eval
-
-
-def __getattr__(name):
-    # find_span, the compiled span search (railcontact.exact_table's kernels call it), is
-    # imported from the kernel module on first access
-    if name == "find_span":
-        from ._spline_kernels import find_span  # noqa: PLC0415
-
-        return find_span
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _offsets(shape):
@@ -413,13 +404,63 @@ def default_table_path(name, directory=None):
         f"`python -m tablegen build --only {stem}` or set {TABLES_DIR_ENV}")
 
 
-def _read_netcdf(path):
-    """Read the whole file into plain numpy arrays/dicts (netCDF4 at load time only)."""
-    import netCDF4  # noqa: PLC0415  (load-time dependency only)
+#: Table files of at least this size [bytes] are kept decompressed in the user cache
+#: (:func:`_read_netcdf`): ``creep_exact.nc`` (17 MB, zlib) takes 0.27 s to decompress, netCDF4
+#: 0.1 s to import and the integrity check of :meth:`Table.from_file` 0.13 s; its cached copy
+#: about 0.04 s to hash and load.
+DECOMPRESSED_CACHE_MIN_BYTES = 1_000_000
 
+
+def _read_netcdf(path):
+    """Read the whole file into plain numpy arrays/dicts (netCDF4 at load time only):
+    ``(attrs, variables, store)``.
+
+    A file of at least :data:`DECOMPRESSED_CACHE_MIN_BYTES` is also kept, decompressed, in the
+    user cache (``<user cache>/tables/<BLAKE2b of the file's bytes>.pickle``, see
+    :func:`railcontact._files.user_cache_dir`; a pickle, trusted like numba's cache beside
+    it), keyed by its content: a copy at another place (a new FMU extraction) finds it, a
+    changed file does not. ``store`` is None when the arrays came from the cache (their file
+    passed :meth:`Table.from_file`'s integrity check when the entry was written), else a
+    function that writes the entry, for the caller to call once the content is checked. A
+    cache that cannot be read or written is skipped (the file is then read as usual).
+    """
     path = Path(path)
     if not path.is_file():
         raise TableFileError(f"table file {str(path)!r} does not exist")
+    cached = None
+    if path.stat().st_size >= DECOMPRESSED_CACHE_MIN_BYTES:
+        import hashlib  # noqa: PLC0415
+
+        from ._files import user_cache_dir  # noqa: PLC0415
+
+        cached = user_cache_dir() / "tables" / (
+            hashlib.blake2b(path.read_bytes(), digest_size=16).hexdigest() + ".pickle")
+        try:
+            with open(cached, "rb") as fh:
+                attrs, variables = pickle.load(fh)
+            return attrs, variables, None
+        except Exception:  # noqa: BLE001  (missing, truncated, another format: read the file)
+            pass
+    attrs, variables = _read_netcdf_file(path)
+
+    def store():
+        if cached is None:
+            return
+        try:
+            cached.parent.mkdir(parents=True, exist_ok=True)
+            part = cached.with_suffix(f".{os.getpid()}.part")
+            with open(part, "wb") as fh:
+                pickle.dump((attrs, variables), fh, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(part, cached)
+        except OSError:
+            pass
+
+    return attrs, variables, store
+
+
+def _read_netcdf_file(path):
+    import netCDF4  # noqa: PLC0415  (load-time dependency only)
+
     try:
         with netCDF4.Dataset(str(path), "r") as nc:
             nc.set_auto_mask(False)
@@ -526,7 +567,7 @@ class Table:
         """
         path = Path(path)
         where = f"table file {str(path)!r}"
-        attrs, ncvars = _read_netcdf(path)
+        attrs, ncvars, store = _read_netcdf(path)
         version = attrs.get("railcontact_table_format")
         if version is None:
             raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
@@ -595,6 +636,8 @@ class Table:
             coefs.append(np.asarray(coef, float))
             vattrs[name] = a
         table = cls(path, attrs, axes, var_names, vattrs, values, np.stack(coefs))
+        if store is None:    # from the user cache: this content passed the check below
+            return table
         # integrity: the stored spline reproduces the stored node values (every node, or for
         # large tables the corners and a fixed sample of 20,000: a load stays fast)
         n_nodes = int(np.prod(shape))
@@ -618,6 +661,7 @@ class Table:
             raise TableFileError(f"{where}: the stored spline coefficients do not reproduce "
                                  f"the node values (max relative misfit {bad.max():.3g}); the "
                                  "file is corrupt")
+        store()
         return table
 
     def __call__(self, variable, points, derivative=None):

@@ -1,0 +1,340 @@
+"""The compiled kernels of the exact-theory creep table (numba): one source for the scalar (FMU)
+path and the vectorised path of :class:`railcontact.exact_table.ExactCreepTable`.
+
+Internal module; the reader reaches these through :mod:`railcontact._compiled`, which uses the
+ahead-of-time compiled copies an FMU build makes (no numba import in the FMU's table scenes)
+and these otherwise. The coordinates and the buffer layout are those of
+:mod:`railcontact.exact_table` (its module docstring).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
+from ._spline_kernels import find_span
+from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
+
+__all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_batch",
+           "creep_batch", "HEAD"]
+
+
+@njit(cache=True)
+def cubic_basis(t, i, x, b, db, w):
+    """The four non-zero cubic B-splines at ``x`` in span ``i`` into ``b`` and their first
+    derivatives into ``db`` (Cox-de Boor; The NURBS Book, Algs. A2.2/A2.3); ``w`` (12,) is
+    scratch."""
+    # w[0:4] left, w[4:8] right, w[8:11] the degree-2 basis (for the derivative)
+    b[0] = 1.0
+    for j in range(1, 4):
+        w[j] = x - t[i + 1 - j]
+        w[4 + j] = t[i + j] - x
+        saved = 0.0
+        for r in range(j):
+            temp = b[r] / (w[5 + r] + w[j - r])
+            b[r] = saved + w[5 + r] * temp
+            saved = w[j - r] * temp
+        b[j] = saved
+        if j == 2:
+            w[8] = b[0]
+            w[9] = b[1]
+            w[10] = b[2]
+    # d/dx N_{i-3+r,3} = 3 (N_{i-3+r,2} / (t[i+r] - t[i-3+r]) - N_{i-2+r,2} / (t[i+r+1] - t[i-2+r]))
+    for r in range(4):
+        d = 0.0
+        if r >= 1:
+            d += w[7 + r] / (t[i + r] - t[i - 3 + r])
+        if r <= 2:
+            d -= w[8 + r] / (t[i + r + 1] - t[i - 2 + r])
+        db[r] = 3.0 * d
+
+
+@njit(cache=True, inline="always")
+def _poly_basis(t, poly, i, x, b, db):
+    """The four non-zero cubic B-splines at ``x`` in span ``i`` and their derivatives, from
+    the span's power-form coefficients ``poly[i]`` (see :func:`railcontact.exact_table.basis_polynomials`): Horner in
+    ``u = x - t[i]``, no division."""
+    u = x - t[i]
+    for r in range(4):
+        p0 = poly[i, r, 0]
+        p1 = poly[i, r, 1]
+        p2 = poly[i, r, 2]
+        p3 = poly[i, r, 3]
+        b[r] = ((p3 * u + p2) * u + p1) * u + p0
+        db[r] = (3.0 * p3 * u + 2.0 * p2) * u + p1
+
+
+@njit(cache=True, inline="always")
+def _accumulate(src, b2, d2, b3, d3, b4, d4, derivs, out):
+    """``out`` (4, 4) <- value and d/ds, d/dtheta, d/dtau (rows) of the four variables from
+    the 4 x 4 x 4 coefficient block ``src`` (s, theta, tau, variable) and the bases; only the
+    value row when not ``derivs``."""
+    for k in range(4):
+        for v in range(4):
+            out[k, v] = 0.0
+    for a in range(4):
+        for c in range(4):
+            w23 = b2[a] * b3[c]
+            if derivs:
+                w2d = d2[a] * b3[c]
+                w3d = b2[a] * d3[c]
+                for v in range(4):
+                    s_e = 0.0
+                    ds_e = 0.0
+                    for e in range(4):
+                        x = src[a, c, e, v]
+                        s_e += b4[e] * x
+                        ds_e += d4[e] * x
+                    out[0, v] += w23 * s_e
+                    out[1, v] += w2d * s_e
+                    out[2, v] += w3d * s_e
+                    out[3, v] += w23 * ds_e
+            else:
+                for v in range(4):
+                    s_e = 0.0
+                    for e in range(4):
+                        s_e += b4[e] * src[a, c, e, v]
+                    out[0, v] += w23 * s_e
+
+
+@njit(cache=True, inline="always")
+def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x0, x1, x2,
+                  x3, x4, derivs, out, work):
+    """Values and (``derivs``) first partials in (s, theta, tau) of the four variables at one
+    point.
+
+    ``coef`` (n0, n1, n2, n3, n4, 4): the file's coefficients, variable last; ``slab``
+    (n2, n3, n4, 4): the coefficients already summed over (ln g, nu) for one contact (used
+    when ``use_slab``; then ``coef``, ``t0``, ``t1``, ``x0``, ``x1`` are not read); ``t0`` ..
+    ``t4`` the knot vectors, ``p0`` .. ``p4`` their :func:`railcontact.exact_table.basis_polynomials`. ``out`` (4, 4):
+    rows value, d/ds, d/dtheta, d/dtau. ``work``: scratch of at least 320 floats.
+    """
+    b2 = work[12:16]
+    d2 = work[16:20]
+    b3 = work[20:24]
+    d3 = work[24:28]
+    b4 = work[28:32]
+    d4 = work[32:36]
+    i2 = find_span(t2, t2.shape[0] - 4, x2)
+    i3 = find_span(t3, t3.shape[0] - 4, x3)
+    i4 = find_span(t4, t4.shape[0] - 4, x4)
+    _poly_basis(t2, p2, i2, x2, b2, d2)
+    _poly_basis(t3, p3, i3, x3, b3, d3)
+    _poly_basis(t4, p4, i4, x4, b4, d4)
+    if use_slab:
+        _accumulate(slab[i2 - 3:i2 + 1, i3 - 3:i3 + 1, i4 - 3:i4 + 1], b2, d2, b3, d3, b4, d4,
+                    derivs, out)
+        return
+    b0 = work[36:40]
+    b1 = work[44:48]
+    db = work[52:56]
+    i0 = find_span(t0, t0.shape[0] - 4, x0)
+    i1 = find_span(t1, t1.shape[0] - 4, x1)
+    _poly_basis(t0, p0, i0, x0, b0, db)
+    _poly_basis(t1, p1, i1, x1, b1, db)
+    block = work[64:320].reshape((4, 4, 4, 4))
+    for a in range(4):
+        for c in range(4):
+            for e in range(4):
+                for v in range(4):
+                    block[a, c, e, v] = 0.0
+    for p in range(4):
+        for q in range(4):
+            w = b0[p] * b1[q]
+            for a in range(4):
+                for c in range(4):
+                    for e in range(4):
+                        for v in range(4):
+                            block[a, c, e, v] += w * coef[i0 - 3 + p, i1 - 3 + q, i2 - 3 + a,
+                                                          i3 - 3 + c, i4 - 3 + e, v]
+    _accumulate(block, b2, d2, b3, d3, b4, d4, derivs, out)
+
+
+@njit(cache=True, inline="always")
+def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, tau_max, xi_x,
+                 xi_y, phi, mu_n, a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res,
+                 work):
+    """Forces, moment, stick fraction and their Jacobian at one contact, from the table.
+
+    ``res`` (14,) <- tx [N], ty [N], mz [N m], stick fraction, |v|, then the (3, 3)
+    d(tx, ty, mz)/d(xi_x, xi_y, phi) row by row (rows tx, ty, mz; columns xi_x, xi_y, phi).
+    ``work``: scratch of at least 336 floats. Returns False when |tau| > tau_max (the caller
+    falls back to the solver).
+    """
+    root_ab = math.sqrt(a0 * b0)
+    h = math.hypot(b0 * c11, a0 * c22)
+    v_x = c11 * xi_x / w_sat
+    v_y = (c22 * xi_y + root_ab * c23 * phi) / w_sat
+    tau = phi * h / w_sat
+    if not abs(tau) <= tau_max:
+        return False
+    rho = math.hypot(v_x, v_y)
+    w2 = 1.0 + (SPIN_WEIGHT * tau) ** 2
+    s = 1.0 if rho > 1e150 else rho / math.sqrt(w2 + rho * rho)
+    theta = math.atan2(v_y, v_x)
+    out = work[320:336].reshape((4, 4))
+    small = want_jacobian and rho < JACOBIAN_RHO_MIN
+    spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
+                  theta, tau, want_jacobian and not small, out, work)
+    f_par = out[0, 0]
+    f_perp = out[0, 1]
+    mag = math.hypot(f_par, f_perp)
+    k = 1.0 if mag <= 1.0 else (1.0 - 2.0**-51) / mag   # |T| <= mu N
+    c = math.cos(theta)
+    sn = math.sin(theta)
+    res[0] = -mu_n * k * (f_par * c - f_perp * sn)
+    res[1] = -mu_n * k * (f_par * sn + f_perp * c)
+    res[2] = mu_n * root_ab * out[0, 2]
+    st = out[0, 3]
+    res[3] = 0.0 if st < 0.0 else (1.0 if st > 1.0 else st)
+    res[4] = rho
+    if not want_jacobian:
+        return True
+    if small:   # the polar Jacobian at a point just off the origin
+        rho = JACOBIAN_RHO_MIN
+        s = rho / math.sqrt(w2 + rho * rho)
+        spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu,
+                      s, theta, tau, True, out, work)
+        f_par = out[0, 0]
+        f_perp = out[0, 1]
+    # Cartesian force over mu N and its partials in (s, theta, tau)
+    fx_s = -(out[1, 0] * c - out[1, 1] * sn)
+    fy_s = -(out[1, 0] * sn + out[1, 1] * c)
+    fx_t = -(out[2, 0] * c - f_par * sn - out[2, 1] * sn - f_perp * c)
+    fy_t = -(out[2, 0] * sn + f_par * c + out[2, 1] * c - f_perp * sn)
+    fx_u = -(out[3, 0] * c - out[3, 1] * sn)
+    fy_u = -(out[3, 0] * sn + out[3, 1] * c)
+    if mag > 1.0:   # clipped: d(f / |f|) = (I - f^ f^T) df / |f|  (k = 1/|f| already)
+        fx = -(f_par * c - f_perp * sn) / mag
+        fy = -(f_par * sn + f_perp * c) / mag
+        dot = fx * fx_s + fy * fy_s
+        fx_s, fy_s = fx_s - fx * dot, fy_s - fy * dot
+        dot = fx * fx_t + fy * fy_t
+        fx_t, fy_t = fx_t - fx * dot, fy_t - fy * dot
+        dot = fx * fx_u + fy * fy_u
+        fx_u, fy_u = fx_u - fx * dot, fy_u - fy * dot
+    ds = (1.0 - s * s) ** 1.5 / math.sqrt(w2)  # ds/drho
+    # s depends on tau too: d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds
+    ds_u = -s * (1.0 - s * s) * SPIN_WEIGHT**2 * tau / w2
+    fx_u += fx_s * ds_u
+    fy_u += fy_s * ds_u
+    # d/dv_x = cos ds/drho d/ds - sin/rho d/dtheta ; d/dv_y = sin ds/drho d/ds + cos/rho d/dtheta
+    m_s, m_t, m_u = out[1, 2], out[2, 2], out[3, 2] + out[1, 2] * ds_u
+    for j in range(3):
+        dvx = c11 / w_sat if j == 0 else 0.0
+        dvy = 0.0 if j == 0 else (c22 / w_sat if j == 1 else root_ab * c23 / w_sat)
+        dtu = h / w_sat if j == 2 else 0.0
+        gs = (c * dvx + sn * dvy) * ds         # ds-part weight
+        gt = (-sn * dvx + c * dvy) / rho       # dtheta-part weight
+        res[5 + j] = mu_n * k * (fx_s * gs + fx_t * gt + fx_u * dtu)
+        res[8 + j] = mu_n * k * (fy_s * gs + fy_t * gt + fy_u * dtu)
+        res[11 + j] = mu_n * root_ab * (m_s * gs + m_t * gt + m_u * dtu)
+    return True
+
+
+#: Header of a contact buffer (see :func:`creep_contact`): n_s, n_theta, n_tau, tau_max,
+#: C11, C22, C23, nu, then the knots of s, theta, tau, their basis polynomials, the slab, res
+#: (14) and scratch (336).
+HEAD = 8
+_NO_COEF = np.zeros((1, 1, 1, 1, 1, 1))    # the 5-D coefficients, unused on the slab path
+_NO_KNOTS = np.zeros(1)
+_NO_POLY = np.zeros((1, 4, 4))
+
+
+@njit(cache=True, inline="always")
+def _buffer_views(buf):
+    """Views into a contact buffer: (t2, t3, t4, p2, p3, p4, slab, res, work)."""
+    n2 = int(buf[0])
+    n3 = int(buf[1])
+    n4 = int(buf[2])
+    o = HEAD
+    t2 = buf[o:o + n2 + 4]
+    o += n2 + 4
+    t3 = buf[o:o + n3 + 4]
+    o += n3 + 4
+    t4 = buf[o:o + n4 + 4]
+    o += n4 + 4
+    p2 = buf[o:o + n2 * 16].reshape((n2, 4, 4))
+    o += n2 * 16
+    p3 = buf[o:o + n3 * 16].reshape((n3, 4, 4))
+    o += n3 * 16
+    p4 = buf[o:o + n4 * 16].reshape((n4, 4, 4))
+    o += n4 * 16
+    slab = buf[o:o + n2 * n3 * n4 * 4].reshape((n2, n3, n4, 4))
+    o += n2 * n3 * n4 * 4
+    return t2, t3, t4, p2, p3, p4, slab, buf[o:o + 14], buf[o + 14:o + 14 + 336]
+
+
+@njit(cache=True, inline="always")
+def _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_load, a0, b0,
+                   youngs_modulus, friction_coefficient, want_jacobian, res, work):
+    """Checks, the saturation creepage and :func:`_creep_point` at one point of the contact
+    in ``buf``; False where the caller takes the array path (inputs not finite or out of
+    range, overflow, |tau| beyond the table)."""
+    inf = math.inf
+    if not (-inf < xi_x < inf and -inf < xi_y < inf and -inf < phi < inf
+            and 0.0 < normal_load < inf and 0.0 < a0 < inf and 0.0 < b0 < inf
+            and 0.0 < youngs_modulus < inf and 0.0 < friction_coefficient < inf):
+        return False
+    nu = buf[7]
+    mu_n = friction_coefficient * normal_load
+    den = a0 * b0 * youngs_modulus
+    if not (0.0 < den < inf and mu_n < inf):   # underflow or overflow: the array path
+        return False
+    w_sat = 1.5 * math.pi * (1.0 + nu) * mu_n / den
+    if not (0.0 < w_sat < inf):
+        return False
+    done = _creep_point(_NO_COEF, slab, True, _NO_KNOTS, _NO_KNOTS, t2, t3, t4, _NO_POLY,
+                        _NO_POLY, p2, p3, p4, buf[3], xi_x, xi_y, phi, mu_n, a0, b0, w_sat,
+                        buf[4], buf[5], buf[6], 0.0, nu, want_jacobian, res, work)
+    return done and -inf < res[0] < inf and -inf < res[1] < inf and -inf < res[2] < inf
+
+
+@njit(cache=True)
+def creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                   friction_coefficient, want_jacobian):
+    """The scalar (FMU) path in one call on one contact's buffer ``buf`` (everything the
+    contact needs in one array: a numba call costs about 0.1 us per array argument). Writes
+    ``res`` inside ``buf``; see :func:`_contact_point`."""
+    t2, t3, t4, p2, p3, p4, slab, res, work = _buffer_views(buf)
+    return _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_load, a0,
+                          b0, youngs_modulus, friction_coefficient, want_jacobian, res, work)
+
+
+@njit(cache=True)
+def creep_contact_batch(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                         friction_coefficient, want_jacobian, res, ok):
+    """:func:`creep_contact` over the creepages of one contact (flat arrays, any strides);
+    ``res`` (n, 14)."""
+    t2, t3, t4, p2, p3, p4, slab, _, work = _buffer_views(buf)
+    for i in range(xi_x.shape[0]):
+        ok[i] = _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x[i], xi_y[i], phi[i],
+                               normal_load, a0, b0, youngs_modulus, friction_coefficient,
+                               want_jacobian, res[i], work)
+
+
+@njit(cache=True)
+def creep_batch(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi, mu_n, a0,
+                 b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok):
+    """:func:`_creep_point` over flat arrays (the same kernel as the scalar path); ``poly``:
+    the five axes' :func:`railcontact.exact_table.basis_polynomials` stacked (axis d from row ``kstart[d] - 4 d``);
+    ``res`` (n, 14)."""
+    work = np.empty(336)
+    t0 = knots[kstart[0]:kstart[1]]
+    t1 = knots[kstart[1]:kstart[2]]
+    t2 = knots[kstart[2]:kstart[3]]
+    t3 = knots[kstart[3]:kstart[4]]
+    t4 = knots[kstart[4]:]
+    p0 = poly[kstart[0]:kstart[1] - 4]
+    p1 = poly[kstart[1] - 4:kstart[2] - 8]
+    p2 = poly[kstart[2] - 8:kstart[3] - 12]
+    p3 = poly[kstart[3] - 12:kstart[4] - 16]
+    p4 = poly[kstart[4] - 16:]
+    for i in range(xi_x.shape[0]):
+        ok[i] = _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
+                             tau_max, xi_x[i],
+                             xi_y[i], phi[i], mu_n[i], a0[i], b0[i], w_sat[i], c11[i], c22[i],
+                             c23[i], log_g[i], nu[i], want_jacobian, res[i], work)
