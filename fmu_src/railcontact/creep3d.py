@@ -886,9 +886,9 @@ def load_exact_table(path=None, directory=None):
     :class:`railcontact.exact_table.ExactCreepTable` of ``creep_exact.nc`` (default: the
     shipped file, :func:`railcontact.tables.default_table_path`), loaded once per path and
     process. Beyond its a0/b0 range or spin axis it answers with
-    ``creep_solution_3d(..., method="exact", grid=(40, 20), extrapolate=True, grid_shifts=1,
-    tolerance=1e-4)``, the setting
-    the table was built with, so every finite input gets the exact theory.
+    ``creep_solution_3d(..., method="exact", tolerance=1e-4)`` (30x20 -> 60x20 on two shifted
+    grids), the setting the table was built with, so every finite input gets the exact
+    theory.
 
     Parameters
     ----------
@@ -914,5 +914,5 @@ def load_exact_table(path=None, directory=None):
 
 def _exact_table_solver(*args, sensitivities=False):
     """The exact solver at the table's setting (the table's answer beyond its axes)."""
-    return creep_solution_3d(*args, method="exact", grid=(40, 20), extrapolate=True,
-                             grid_shifts=1, tolerance=1e-4, sensitivities=sensitivities)
+    return creep_solution_3d(*args, method="exact", grid=(30, 20), extrapolate=True,
+                             grid_shifts=2, tolerance=1e-4, sensitivities=sensitivities)

@@ -1,8 +1,9 @@
-"""Coordinates of the exact-theory creep table (``tables/creep_exact.nc``).
+"""Coordinates and reader of the exact-theory creep table (``tables/creep_exact.nc``).
 
-Why one module of about 870 lines: the coordinates, the compiled reader kernels and the reader
-class change together (the kernels read the per-contact buffer that the class fills, and both
-follow the coordinates' definition and the file's attributes).
+The reader's compiled kernels (one source for its scalar and vectorised paths) are in
+:mod:`railcontact._exact_kernels`; they read the per-contact buffer that
+:class:`ExactCreepTable` fills, and this module imports no numba (an FMU build's
+ahead-of-time copy of the kernels serves it, see :mod:`railcontact._compiled`).
 
 The steady rolling problem of Kalker's exact theory with Hertzian pressure depends on the
 inputs only through a0/b0, Poisson's ratio and three normalised creepages (scale invariance of
@@ -225,8 +226,10 @@ class ExactCreepTable:
     and their Jacobian, at the speed of a lookup.
 
     The table (see the module docstring for its coordinates) was computed by the discretised
-    solver :func:`railcontact.reference.rolling3d.solve_rolling_3d`, Richardson-extrapolated
-    from 40 x 20 and 80 x 20 elements; its recorded accuracy (file attributes, per variable:
+    solver :func:`railcontact.reference.rolling3d.solve_rolling_3d` at the exact method's
+    default setting (Richardson-extrapolated from 30 x 20 and 60 x 20 elements on two grids
+    moved -1/4 and +1/4 of an element; the file attribute ``solver_grid`` says which setting
+    a file was built with); its recorded accuracy (file attributes, per variable:
     ``max_abs_error``, ``rms_error`` on off-node check points against that solver) and the
     solver's own error against the converged exact theory are in ``docs/tables.md``.
 
@@ -234,8 +237,7 @@ class ExactCreepTable:
     spin coordinate |tau| within the file's axes (0.1-10 and 20). Outside them the ``solver``
     answers: :func:`railcontact.creep3d.load_exact_table` (what ``creep_force_3d(...,
     method="exact_table")`` and the FMU use) attaches ``creep_solution_3d(method="exact",
-    grid=(40, 20), extrapolate=True, grid_shifts=1, tolerance=1e-4)``, the table's own
-    setting (milliseconds per call), so every finite input gets an answer; without a solver a
+    tolerance=1e-4)``, the table's own setting (milliseconds per call), so every finite input gets an answer; without a solver a
     ValueError names the input and the range. |T| <= mu N always; the spline is C2 in every
     input (across xi_x = 0 and phi = 0 too), C1 only where it clips an overshoot to mu N. (The
     exact theory itself is only C1 at zero creepage without spin, where the force bends as

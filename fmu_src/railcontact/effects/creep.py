@@ -29,8 +29,8 @@ def table_error_estimate(table):
       components ``force_ratio_parallel`` and ``force_ratio_perpendicular``; the returned bound on
       the error of the force vector is ``hypot`` of their two recorded maxima. It is against the
       solver the table was built with (file attribute ``solver_grid``: Richardson-extrapolated
-      40 x 20 / 80 x 20 elements), whose own error against the converged exact theory is in
-      docs/tables.md.
+      30 x 20 / 60 x 20 elements on two shifted grids), whose own error against the converged
+      exact theory is in docs/tables.md.
 
     Parameters
     ----------
