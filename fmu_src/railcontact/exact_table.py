@@ -415,7 +415,8 @@ class ExactCreepTable:
             return None
         cre = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (xi_x, xi_y, phi)))
         shape = cre[0].shape
-        flat = [c.reshape(-1) for c in cre]
+        flat = [np.array(c, dtype=float).reshape(-1) for c in cre]  # copies: no broadcast
+        # views into the compiled kernel (numba warns: they become read-only in numpy)
         r = np.empty((flat[0].size, 14))
         ok = np.empty(flat[0].size, dtype=bool)
         _compiled.exact_kernels().creep_contact_batch(
@@ -456,7 +457,7 @@ class ExactCreepTable:
                 from .kalker import kalker_coefficients  # noqa: PLC0415
 
                 kc = kalker_coefficients(g[idx], nu[idx])
-                c = [np.ascontiguousarray(np.broadcast_to(v, idx.shape), dtype=float)
+                c = [np.array(np.broadcast_to(v, idx.shape), dtype=float)
                      for v in (kc.c11, kc.c22, kc.c23)]
                 slab = self._empty_slab
             r = np.zeros((idx.size, 14))
