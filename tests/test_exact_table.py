@@ -321,7 +321,7 @@ def test_jacobian_against_finite_differences_of_the_solver(table):
         up, dn = x0.copy(), x0.copy()
         up[k] += h[k]
         dn[k] -= h[k]
-        table_setting = dict(grid=(40, 20), extrapolate=True, grid_shifts=1, tolerance=1e-8)
+        table_setting = dict(tolerance=1e-8)    # the method's default grids, as the table
         fu = creep_force_3d(*_args(*up), method="exact", **table_setting)
         fd_ = creep_force_3d(*_args(*dn), method="exact", **table_setting)
         fd = np.array([fu.tx - fd_.tx, fu.ty - fd_.ty]) / (2 * h[k])
@@ -436,8 +436,7 @@ def _solve_similar(g, theta, rho, tau=0.0, nu=0.28):
     args = [float(p[k]) * (lam if k in scaled else 1.0) for k in (
         "creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
         "youngs_modulus", "poisson_ratio", "friction_coefficient")]
-    sol = creep_force_3d(*args, method="exact", grid=(40, 20), extrapolate=True,
-                         grid_shifts=1, tolerance=1e-4)
+    sol = creep_force_3d(*args, method="exact", tolerance=1e-4)   # the table's setting
     return args, sol, args[3] * args[8]
 
 
