@@ -228,12 +228,12 @@ def test_slopes_at_zero_are_kalkers_coefficients(table):
     """d T / d creepage at zero = -G a b C_ij with Kalker's published coefficients, for every
     nu of Kalker's table and a0/b0 across the table.
 
-    The target is 0.5 %, not met: the shipped table is above Kalker's coefficients by up to
-    1.8 % (C11, C22; 0.9 % on average) and 4.6 % (C23, at nu = 0 and small a/b), which is its
-    solver's bias (40x20 -> 80x20 Richardson on one grid: +1.1-1.6 % on C11, up to +2.9 % on
-    C23; two grids shifted half an element apart bring it to -1.4...+0.4 %, for a build twice
-    as long). The graded creepage nodes removed the spline's own part (the previous table was
-    4.5 % below). Pinned here so that a better table shows."""
+    The target is 0.5 %, met on average (0.44 % mean absolute over the 27 entries at a/b =
+    0.2, 1, 5 and Kalker's five nu) but not everywhere: C11 -0.74...-0.16 %, C22
+    -0.74...-0.05 %, C23 -1.07...+0.15 % (the table built at the solver's default setting,
+    2026-11-26; the earlier one-grid build was up to +1.3 % on C11, C22 and +4.5 % on C23).
+    Kalker's table has three digits from his own discretised computations. Pinned here so
+    that a better table shows."""
     g_nodes, nu_nodes, c = kalker_table()
     worst = 0.0
     for i in [int(np.argmin(np.abs(g_nodes - v))) for v in (0.2, 1.0, 5.0)]:
@@ -246,7 +246,7 @@ def test_slopes_at_zero_are_kalkers_coefficients(table):
             for got, want in ((-jac[0, 0] / scale, c[0, j, i]), (-jac[1, 1] / scale, c[1, j, i]),
                               (-jac[1, 2] / (scale * math.sqrt(a0 * b0)), c[2, j, i])):
                 worst = max(worst, abs(got / want - 1.0))
-    assert worst < 0.05
+    assert worst < 0.0115      # measured 1.07 % (C23)
 
 
 @needs_table
@@ -257,10 +257,11 @@ def test_odd_in_the_creepage_vector_and_zero_at_zero(table):
     plus = table.creep_solution_3d(*_args(xi, eta, phi), sensitivities=False)
     minus = table.creep_solution_3d(*_args(-xi, -eta, -phi), sensitivities=False)
     # exact up to the solver's tolerance: nodes on the planes theta = +-pi/2, tau = 0 are
-    # computed twice (mirror images of each other), to about 1e-7 of mu N
-    np.testing.assert_allclose(minus.tx, -plus.tx, atol=1e-6 * MU_N)
-    np.testing.assert_allclose(minus.ty, -plus.ty, atol=1e-6 * MU_N)
-    np.testing.assert_allclose(minus.spin_moment, -plus.spin_moment, atol=1e-6 * MU_N * 5e-3)
+    # computed twice (mirror images of each other), each to the build's tolerance 1e-4 of the
+    # tractions (measured: within 5e-6 of mu N)
+    np.testing.assert_allclose(minus.tx, -plus.tx, atol=1e-5 * MU_N)
+    np.testing.assert_allclose(minus.ty, -plus.ty, atol=1e-5 * MU_N)
+    np.testing.assert_allclose(minus.spin_moment, -plus.spin_moment, atol=1e-5 * MU_N * 5e-3)
     zero = table.creep_solution_3d(*_args(0.0, 0.0, 0.0), sensitivities=False)
     assert abs(zero.tx) < 1e-12 * MU_N and abs(zero.ty) < 1e-12 * MU_N
     assert zero.stick_area_fraction == pytest.approx(1.0, abs=1e-9)
@@ -475,10 +476,14 @@ def test_table_at_large_creepage_against_the_solver(table, g, theta_deg, rho):
 
 @needs_table
 def test_against_contacts_tractcurv(table):
-    """CONTACT's creep curve (tractcurv series 1, a/b = 0.5, 48x44 elements; CONTACT's own
-    discretisation error there is about 0.2 % of mu N): the table within 0.9 % of mu N at all
-    30 points (target 0.5 %: not met at small creepage) and its slope at zero within 5 % of
-    Kalker's C11."""
+    """CONTACT's creep curve (tractcurv series 1, a/b = 0.5, 48x44 elements): the table within
+    1 % of mu N at all 30 points, and its slope at zero within 0.5 % of Kalker's C11.
+
+    The curve is CONTACT's 48x44 solution, not the converged theory: in partial slip near
+    saturation (xi = 1.2e-3 to 2e-3) it lies 0.81-0.88 % of mu N above the solver's default
+    and its (60, 40) and (120, 40) grids, which agree with each other to 0.05 % (measured
+    2026-11-26), so the table's 0.93 % there is mostly CONTACT's grid error; the table's error
+    against the converged theory is checked on CONTACT's grid-convergence cases."""
     g_mod, nu, mu = 82e9, 0.28, 0.33
     e_mod = 2 * g_mod * (1 + nu)
     a0, b0, n_load = 6.304e-3, 12.61e-3, 106.7e3
@@ -486,7 +491,8 @@ def test_against_contacts_tractcurv(table):
                        comments="#", skiprows=5)
     tx = table.creep_force_3d(curve[:, 0], 0.0, 0.0, n_load, a0, b0, e_mod, nu, mu).tx
     err = np.abs(tx / (mu * n_load) - curve[:, 1])
-    assert err.max() < 9e-3           # measured 0.81 %, at small creepage (see the slope)
+    assert err.max() < 1e-2           # measured 0.93 % (at xi = 1.6e-3)
+    assert err[curve[:, 0] >= 3.6e-3].max() < 1e-4    # full sliding: measured 0.005 %
     c11 = float(kalker_coefficients(a0 / b0, nu).c11)
     slope = table.creep_force_jacobian_3d(0.0, 0.0, 0.0, n_load, a0, b0, e_mod, nu, mu)[0, 0]
-    assert -slope / (g_mod * a0 * b0) == pytest.approx(c11, rel=0.05)
+    assert -slope / (g_mod * a0 * b0) == pytest.approx(c11, rel=0.005)   # measured -0.28 %
