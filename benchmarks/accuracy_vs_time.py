@@ -1172,10 +1172,12 @@ def answers(fams, series, amp, contact_errors):
         lines.append(f"* The exact-theory table ({ex.knob}) gives {ex.error:.2e} of mu N "
                      f"(vs the project reference) at {_fmt_t(ex.t_single)}: the best choice "
                      "for budgets between the strip theories' error (~1e-2) and the table's own "
-                     "(its 40x20 node solutions and its node spacing); below that only the "
-                     "exact theory itself (with Richardson) is accurate enough, at 0.1-1 s "
-                     "per call. Beyond its axes (a0/b0 outside 0.1-10, spin coordinate above "
-                     "20) the solver answers (load_exact_table).")
+                     "(its node spacing, mostly in the creepage angle at large spin, and its "
+                     "node solutions, the solver's default setting); below that only the "
+                     "exact theory itself is accurate enough: creep_force_3d(method='exact') "
+                     "at its default (Richardson on two shifted grids, about 0.2 % of mu N) "
+                     "costs about 25 ms per call. Beyond its axes (a0/b0 outside 0.1-10, "
+                     "spin coordinate above 20) the solver answers (load_exact_table).")
     else:
         lines.append("* The exact-theory table (not built here) is where tables matter most: "
                      "the exact theory costs milliseconds to seconds per call.")

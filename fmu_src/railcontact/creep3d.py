@@ -405,7 +405,8 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
           O 0.93 / 0.64 %; ``(80, 40)`` likewise: 113 / 81 ms, C 0.57 / 0.37 %;
         * ``grid=(30, 20), grid_shifts=1`` (one Richardson step on one grid): 35 / 19 ms,
           C 0.45 / 0.19 %; ``grid=(40, 20), grid_shifts=1``: 51 / 27 ms, C 0.33 / 0.19 %
-          (the table ``creep_exact``'s setting).
+          (the table ``creep_exact``'s setting before 2026-11-26; it is now built at the
+          default with tolerance 1e-4).
 
         CONTACT's published points (per case of a table build): 11x11 1.6 ms 2.6 %, 25x25
         9.7 ms 1.0 %, 35x35 38 ms 0.36 %, 48x44 111 ms 0.18 %.
