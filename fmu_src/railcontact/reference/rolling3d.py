@@ -131,6 +131,7 @@ K.L. Johnson, Contact Mechanics, Cambridge 1985.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 from dataclasses import dataclass, field
@@ -346,6 +347,13 @@ def _kernels(mx, my, dx, dy, shear_modulus, poisson_ratio, transport_order=1):
 DENSE_SLIP_MAX_ELEMENTS = 250
 
 
+def _dense_toeplitz(kernel, i, j, mx, my):
+    """The Toeplitz kernel on offsets (index ``[di + mx - 1, dj + my - 1]``) as the dense
+    matrix between the elements ``(i, j)``: ``M[I, J] = kernel(i_I - i_J, j_I - j_J)``."""
+    return np.ascontiguousarray(kernel[i[:, None] - i[None, :] + mx - 1,
+                                       j[:, None] - j[None, :] + my - 1])
+
+
 class _Convolver:
     """``u = A p`` on the whole grid for a Toeplitz kernel on offsets: FFT products of the
     circulant embedding, or on grids of at most ``DENSE_SLIP_MAX_ELEMENTS`` elements a dense
@@ -355,8 +363,7 @@ class _Convolver:
         self.mx, self.my = mx, my
         self.dense = None
         if mx * my <= DENSE_SLIP_MAX_ELEMENTS:
-            i, j = np.divmod(np.arange(mx * my), my)
-            self.dense = kernel[i[:, None] - i[None, :] + mx - 1, j[:, None] - j[None, :] + my - 1]
+            self.dense = _dense_toeplitz(kernel, *np.divmod(np.arange(mx * my), my), mx, my)
             return
         # circulant embedding of the Toeplitz kernel: size (2mx, 2my)
         emb = np.zeros((2 * mx, 2 * my))
@@ -799,6 +806,16 @@ def clear_setup_cache():
     _UNIT_STARTS.clear()
 
 
+def _grid(mx, my, scale, a0, b0, grid_shift):
+    """Element centres ``(x, y)`` and sizes ``(dx, dy)`` of the grid over ``[-scale a0,
+    scale a0] x [-scale b0, scale b0]``, moved ``grid_shift`` of an element along x. [m]"""
+    dx = 2.0 * scale * a0 / mx
+    dy = 2.0 * scale * b0 / my
+    x = -scale * a0 + (np.arange(mx) + 0.5 + grid_shift) * dx
+    y = -scale * b0 + (np.arange(my) + 0.5) * dy
+    return x, y, dx, dy
+
+
 def _shape_key(a0, b0):
     """The contact's shape a0/b0 rounded to 12 significant digits: the key of the normalised
     set-up (semi-axes from ``hertz_3d`` at another load have the same ratio to the last bits;
@@ -828,10 +845,7 @@ def _unit_normal_solution(mx, my, scale, ratio, grid_shift):
         pn.setflags(write=False)
         return pn, approach
     a0, b0 = 1.0, 1.0 / ratio
-    dx = 2.0 * scale * a0 / mx
-    dy = 2.0 * scale * b0 / my
-    x = -scale * a0 + (np.arange(mx) + 0.5 + grid_shift) * dx
-    y = -scale * b0 + (np.arange(my) + 0.5) * dy
+    x, y, dx, dy = _grid(mx, my, scale, a0, b0, grid_shift)
     azz = _kernels(mx, my, dx, dy, 1.0, 0.0, 1)[0]
     a_curv, b_curv, _ = hertz_curvatures(a0, b0, 1.0, 2.0, 0.0)
     h = a_curv * x[:, None] ** 2 + b_curv * y[None, :] ** 2
@@ -860,8 +874,7 @@ def _unit_normal_solution(mx, my, scale, ratio, grid_shift):
 @lru_cache(maxsize=32)
 def _unit_setup(mx, my, scale, ratio, poisson_ratio, transport_order):
     """Tangential kernels and FFT products of the normalised contact (a0 = 1, G = 1)."""
-    dx = 2.0 * scale / mx
-    dy = 2.0 * scale / ratio / my
+    _, _, dx, dy = _grid(mx, my, scale, 1.0, 1.0 / ratio, 0.0)
     kern = _kernels(mx, my, dx, dy, 1.0, poisson_ratio, transport_order)
     return kern, _SlipProduct(kern[1], kern[2], kern[3], mx, my)
 
@@ -878,11 +891,7 @@ def _normal_solution(mx, my, scale, a0, b0, normal_load, youngs_modulus, poisson
     tests/test_reference_rolling3d.py)."""
     shear_modulus = youngs_modulus / (2.0 * (1.0 + poisson_ratio))
     ratio = _shape_key(a0, b0)
-    b0 = a0 / ratio
-    dx = 2.0 * scale * a0 / mx
-    dy = 2.0 * scale * b0 / my
-    x = -scale * a0 + (np.arange(mx) + 0.5 + grid_shift) * dx
-    y = -scale * b0 + (np.arange(my) + 0.5) * dy
+    x, y, dx, dy = _grid(mx, my, scale, a0, a0 / ratio, grid_shift)
     pn_unit, approach_unit = _unit_normal_solution(mx, my, scale, ratio, grid_shift)
     kern_unit, conv_unit = _unit_setup(mx, my, scale, ratio, poisson_ratio, transport_order)
     estar = youngs_modulus / (2.0 * (1.0 - poisson_ratio ** 2))
@@ -922,23 +931,19 @@ class _SlipProduct:
         """The same products for the kernels times ``factor`` (a contact of the same shape,
         another material or size): shares the unit object's line inverses (divided by
         ``factor``)."""
-        new = object.__new__(_SlipProduct)
-        new.shape, new.mx, new.my = self.shape, self.mx, self.my
+        new = copy.copy(self)
         new.hxx, new.hxy, new.hyy = (h * factor for h in (self.hxx, self.hxy, self.hyy))
         new.transposed = tuple(k * factor for k in self.transposed)
-        new._inverses = {}
+        new._inverses, new._dense = {}, None
         new._unit, new._factor = self, factor
-        new._dense = None
         return new
 
     def dense(self, cix, ciy):
         """The slip kernels between the contact elements as three dense (nc, nc) matrices
         ``(bxx, bxy, byy)[I, J] = b(x_I - x_J, y_I - y_J)``, cached for the last contact."""
         key = (cix.tobytes(), ciy.tobytes())
-        if self._dense is None or self._dense[0] != key:
-            di = cix[:, None] - cix[None, :] + self.mx - 1
-            dj = ciy[:, None] - ciy[None, :] + self.my - 1
-            self._dense = (key,) + tuple(np.ascontiguousarray(k[dj, di])
+        if self._dense is None or self._dense[0] != key:    # (transposed kernels: y first)
+            self._dense = (key,) + tuple(_dense_toeplitz(k, ciy, cix, self.my, self.mx)
                                          for k in self.transposed)
         return self._dense[1:]
 
@@ -974,8 +979,6 @@ class _SlipProduct:
         ux = scipy.fft.irfft2(fx * self.hxx + fy * self.hxy, s=self.shape)
         uy = scipy.fft.irfft2(fx * self.hxy + fy * self.hyy, s=self.shape)
         return ux[: self.mx, : self.my], uy[: self.mx, : self.my]
-
-
 
 
 def _slip(conv, px, py, cix, ciy, mx, my, wx, wy):
