@@ -62,6 +62,7 @@ def test_r_a0_of_strip_theory_is_carters_centre_strip(xi):
     pipe = build_pipeline(scene)
     c = _contact(normal_force=8e4, creepage_longitudinal=xi, friction_coefficient=0.3)
     pipe.step(c)
+    pipe.auxiliary(c)       # (the stick measures are computed when read)
     # 2-D equivalent: p0 = 2 N'/(pi a0) and a0^2 = 8 N' R (1 - nu^2)/(pi E) (Eq. (2.40))
     n_line = math.pi * c.a0 * c.p0 / 2.0
     radius = c.a0 ** 2 * math.pi * E / (8.0 * n_line * (1.0 - NU ** 2))
@@ -76,6 +77,8 @@ def test_creep_effect_returns_the_solver_values(method):
     c = _contact(normal_force=7e4, creepage_longitudinal=-1e-3, creepage_lateral=5e-4,
                  spin=0.1, friction_coefficient=0.3)
     pipe.step(c)
+    assert c.stick_area_fraction == 1.0     # (not yet: the stick measures when read)
+    pipe.auxiliary(c)
     ref = creep3d.creep_solution_3d(-1e-3, 5e-4, 0.1, 7e4, c.a0, c.b0, E, NU, 0.3, method)
     assert (c.Fx, c.Fy) == (ref.tx, ref.ty)
     assert c.stick_area_fraction == ref.stick_area_fraction
@@ -156,7 +159,7 @@ def test_no_contact_gives_zero_forces_not_nan():
 @pytest.fixture
 def counted(monkeypatch):
     """Wrap the model entry points with call counters."""
-    counts = {"hertz_3d": 0, "creep_solution_3d": 0, "creep_solution_3d_scalar": 0}
+    counts = {"hertz_3d": 0, "creep_solution_3d": 0, "creep_force_3d_scalar": 0}
 
     def wrap(module, name):
         original = getattr(module, name)
@@ -168,8 +171,8 @@ def counted(monkeypatch):
 
     wrap(hertz, "hertz_3d")
     wrap(creep3d, "creep_solution_3d")
-    # its scalar path, which the effect uses (as the effect module's name)
-    wrap(creep_effect, "creep_solution_3d_scalar")
+    # its scalar path of the forces, which the effect's step uses (as the effect module's name)
+    wrap(creep_effect, "creep_force_3d_scalar")
     return counts
 
 
@@ -196,7 +199,7 @@ def test_slave_calls_only_switched_on_effects(counted):
     _run_slave(slave, 25)
     assert list(slave._pipeline.effects) == ["normal"]
     assert slave._pipeline.calls() == {"normal": 26}
-    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "creep_solution_3d_scalar": 0}
+    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "creep_force_3d_scalar": 0}
     assert slave._contact.Fx == 0.0
 
 
@@ -206,7 +209,7 @@ def test_slave_creep_scene_calls_creep_once_per_step(counted):
     slave = _run_slave(slave, 25)
     assert slave._pipeline.calls() == {"normal": 26, "creep": 26}
     # Hertz once at build (N^(1/3) scaling afterwards), creep once per step + once at init
-    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "creep_solution_3d_scalar": 26}
+    assert counted == {"hertz_3d": 1, "creep_solution_3d": 0, "creep_force_3d_scalar": 26}
     assert slave._contact.Fx < 0.0
 
 
@@ -1250,6 +1253,7 @@ def test_3d_sigma_is_that_of_the_centre_strip_r_a0():
             c.creepage_longitudinal, c.creepage_lateral = rng.uniform(-3e-3, 3e-3, 2)
             c.spin = float(rng.uniform(-0.5, 0.5))
             pipe.step(c)
+            pipe.auxiliary(c)       # (the creep effect's r_a0 when read)
             want = relaxation_length(c.a0, c.r_a0, poisson_ratio=NU)
             assert c.relaxation_length == pytest.approx(float(want), rel=1e-12, abs=1e-18)
             ref = creep3d.creep_solution_3d(c.relaxed_creepage_longitudinal,

@@ -1064,7 +1064,7 @@ package = module_name + "_railcontact"
 import importlib
 module = importlib.import_module(module_name)
 out = {}
-for scene in ("velocity_friction_table", "creep_exact_table"):
+for scene in ("velocity_friction_table", "creep_exact_table", "corrugation_wear_table"):
     slave = module.WheelRailContact(instance_name="aot", resources=resources)
     slave.scene_file = scene
     slave.enter_initialization_mode()
@@ -1072,11 +1072,15 @@ for scene in ("velocity_friction_table", "creep_exact_table"):
     setters = {v.name: v.setter for v in slave.vars.values() if v.setter is not None}
     getters = {v.name: v.getter for v in slave.vars.values() if v.getter is not None}
     for name, value in (("normal_force", 8e4), ("creepage_longitudinal", 1e-3),
-                        ("creepage_lateral", 4e-4), ("spin", 0.3), ("rolling_speed", 30.0)):
+                        ("creepage_lateral", 4e-4), ("spin", 0.3), ("rolling_speed", 30.0),
+                        ("rail_position", 0.37)):
         setters[name](value)
     slave.do_step(0.0, 1e-3)
     out[scene] = [getters["Fx"](), getters["Fy"]()]
-out["numba_imported"] = "numba" in sys.modules
+    if scene == "creep_exact_table":
+        # (the corrugation scene imports numba: its contact module's kernels have no
+        # ahead-of-time copy; its table step does)
+        out["numba_imported"] = "numba" in sys.modules
 compiled = importlib.import_module(f"{package}._compiled")
 out["aot"] = compiled.aot_module() is not None
 # the same kernels just in time (numba), on the same inputs
@@ -1098,6 +1102,25 @@ for values in pairs:
     scale = max(abs(v) for v in other)
     diff = max(diff, max(abs(a - b) for a, b in zip(values, other)) / scale)
 out["exact_max_relative_difference"] = diff
+# the corrugation response table's step kernel, both copies on the same random surfaces
+response = importlib.import_module(f"{package}.effects.response_table")
+compiled._AOT[:] = []                           # the ahead-of-time copy again
+aot_table = response.ResponseTable(None, "corrugation", None)
+compiled._AOT[:] = [None]
+jit_table = response.ResponseTable(None, "corrugation", None)
+rng = np.random.default_rng(11)
+diff = 0.0
+for _ in range(200):
+    lam = list(rng.uniform(0.02, 0.3, 3))
+    harm = aot_table.harmonics(lam, list(rng.normal(0, 2e-6, 3)), list(rng.normal(0, 2e-6, 3)),
+                               0.46)
+    args = (float(rng.uniform(4e-3, 7e-3)), float(rng.uniform(0, 10)), float(rng.uniform(0, 1)))
+    got, want = np.zeros(4), np.zeros(4)
+    assert aot_table.superpose(harm.copy(), *args, got)
+    assert jit_table.superpose(harm.copy(), *args, want)
+    diff = max(diff, float(np.max(np.abs(got - want) / np.abs(want))))
+out["response_max_relative_difference"] = diff
+out["response_aot_used"] = aot_table._superpose is not jit_table._superpose
 print("AOT", json.dumps(out))
 """
 
@@ -1106,7 +1129,8 @@ def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, t
     # The build compiles the table kernels ahead of time from their numba source
     # (railcontact._compiled): a table scene then imports no numba, and the compiled copy
     # gives the numba kernel's values (the exact table's scalar path with its Jacobian, 200
-    # random contacts, relative to the largest entry).
+    # random contacts, relative to the largest entry; the corrugation response table's step,
+    # 200 random three-harmonic surfaces, relative to each sum).
     proc = subprocess.run([sys.executable, "-c", _AOT_CHECK, str(fmu_path),
                            str(tmp_path / "x")], capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr[-3000:]
@@ -1115,6 +1139,8 @@ def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, t
         pytest.skip("the FMU was built without ahead-of-time kernels (no C compiler)")
     assert out["numba_imported"] is False
     assert all(np.isfinite(out[s]).all() and out[s][0] < 0 for s in
-               ("velocity_friction_table", "creep_exact_table"))
+               ("velocity_friction_table", "creep_exact_table", "corrugation_wear_table"))
     # (the ahead-of-time copy targets a generic CPU, numba's this one: the last bits may differ)
     assert out["exact_max_relative_difference"] < 1e-12
+    assert out["response_aot_used"]
+    assert out["response_max_relative_difference"] < 1e-12

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from railcontact import _scalar as S
 from railcontact import evolution as ev
 from railcontact.carter import carter_creep_force, carter_critical_creepage, carter_stick_ratio
-from railcontact.creep3d import (METHODS, creep_solution_3d, saturation_creepage_3d,
+from railcontact.creep3d import (METHODS, creep_force_3d, creep_solution_3d, saturation_creepage_3d,
                                  spin_coefficient)
 from railcontact.friction import normalised_inputs, step_law_creep_force_normalised
 from railcontact.hertz import hertz_2d
@@ -158,7 +158,8 @@ def _evolve_agree(got, want):
 
 
 # ---------------------------------------------------------------------------------------------
-# creep_solution_3d_scalar and spin_coefficient_scalar (railcontact.creep3d)
+# creep_force_3d_scalar, creep_solution_3d_scalar and spin_coefficient_scalar
+# (railcontact.creep3d)
 # ---------------------------------------------------------------------------------------------
 # Bound: 4 eps, relative to mu N (and to |T| for the unbounded linear theory) for the forces,
 # absolute for the [0, 1] stick measures, relative for z and Phi; the validity flag equal.
@@ -221,6 +222,45 @@ def _creep_agree(one, want):
     return all(ok) and isinstance(one[6], bool) and one[6] == bool(ref.within_validity)
 
 
+def _force_public(*args):
+    # (force, its z, mu N)
+    return creep_force_3d(*args), creep_solution_3d(*args).normalised_creepage, args[3] * args[8]
+
+
+def _force_agree(one, want):
+    ref, z, mu_n = want
+    scale = max(mu_n, abs(float(ref.tx)), abs(float(ref.ty)))
+    return (len(one) == 3 and all(abs(one[k] - float(ref[k])) <= ULPS * EPS * scale
+                                  for k in (0, 1))
+            and (one[2] == float(z) if np.isinf(z) or z == 0.0
+                 else abs(one[2] - float(z)) <= ULPS * EPS * float(z)))
+
+
+_STICK_CONTACTS = {}      # the stick twin's inputs -> the contact they came from
+
+
+def _stick_cases():
+    for args in _creep_cases():
+        tx, ty, z = S.creep_force_3d_scalar(*args)
+        xi_x, xi_y, phi, n_load, a0, b0, _, _, mu, method = args
+        case = (tx, ty, z, xi_x, xi_y, phi, mu * n_load, a0, b0, method)
+        _STICK_CONTACTS[case] = args
+        yield case
+
+
+def _stick_public(*case):
+    # creep_solution_3d of the contact the case came from
+    return creep_solution_3d(*_STICK_CONTACTS[case])
+
+
+def _stick_agree(one, ref):
+    # (stick area fraction, b*/b0, Phi, validity) against the public solution's fields
+    return (abs(one[0] - float(ref.stick_area_fraction)) <= ULPS * EPS
+            and abs(one[1] - float(ref.stick_width_ratio)) <= ULPS * EPS
+            and _spin_agree(one[2], float(ref.spin_coefficient))
+            and one[3] == bool(ref.within_validity))
+
+
 def _spin_cases():
     for args in _regime_cases(seed=62, n_per=20):
         xi_x, xi_y, phi, _, a0, b0 = args[:6]
@@ -242,6 +282,10 @@ PAIRS = {
         _all_close),
     "evolve_harmonics_scalar": (S.evolve_harmonics_scalar, _evolve_public, _evolve_cases,
                                 _evolve_agree),
+    "creep_force_3d_scalar": (S.creep_force_3d_scalar, _force_public, _creep_cases,
+                              _force_agree),
+    "creep_stick_3d_scalar": (S.creep_stick_3d_scalar, _stick_public, _stick_cases,
+                              _stick_agree),
     "creep_solution_3d_scalar": (S.creep_solution_3d_scalar, _creep_public, _creep_cases,
                                  _creep_agree),
     "spin_coefficient_scalar": (S.spin_coefficient_scalar,

@@ -20,8 +20,10 @@ import warnings
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
+
 __all__ = ["EXPORTS", "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
-           "creep_contact", "exact_kernels", "build_aot"]
+           "creep_contact", "superposed_response", "exact_kernels", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -35,6 +37,8 @@ EXPORTS = (
     ("find_span", "_spline_kernels", "i8(f8[::1], i8, f8)"),
     ("cubic_basis", "_exact_kernels", "void(f8[::1], i8, f8, f8[::1], f8[::1], f8[::1])"),
     ("creep_contact", "_exact_kernels", "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
+    ("superposed_response", "_response_kernels",
+     "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
 )
 
 _AOT = []      # [module or None] once looked up
@@ -46,12 +50,13 @@ def aot_module():
     if not _AOT:
         try:   # made by the FMU build only
             from ._aot_kernels import (  # noqa: PLC0415
-                creep_contact, cubic_basis, find_span, tensor_eval)
+                creep_contact, cubic_basis, find_span, superposed_response, tensor_eval)
         except ImportError:
             _AOT.append(None)
         else:
             _AOT.append(SimpleNamespace(creep_contact=creep_contact, cubic_basis=cubic_basis,
-                                        find_span=find_span, tensor_eval=tensor_eval))
+                                        find_span=find_span, tensor_eval=tensor_eval,
+                                        superposed_response=superposed_response))
     return _AOT[0]
 
 
@@ -103,6 +108,23 @@ def creep_contact(buf):
     return kernel.overloads[sig].entry_point
 
 
+def superposed_response(fbuf, ibuf, harm):
+    """The corrugation response table's step kernel
+    (``_response_kernels.superposed_response``) as a plain callable: the ahead-of-time copy, or
+    the entry point of numba's signature for these buffers (see :func:`creep_contact`)."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.superposed_response
+    import numba  # noqa: PLC0415
+
+    from . import _response_kernels  # noqa: PLC0415  (numba: only when needed)
+
+    kernel = _response_kernels.superposed_response
+    kernel(fbuf, ibuf, harm, 0.0, 0.0, -1.0, np.zeros(4))   # r < 0: returns at once
+    sig = next(s for s in kernel.signatures if s[3] == numba.types.float64)
+    return kernel.overloads[sig].entry_point
+
+
 def build_aot(directory):
     """Compile :data:`EXPORTS` ahead of time into ``directory`` as the extension module
     ``_aot_kernels`` (``numba.pycc``: needs a C compiler and the Python headers).
@@ -119,7 +141,10 @@ def build_aot(directory):
             warnings.simplefilter("ignore")         # numba.pycc: pending deprecation
             from numba.pycc import CC  # noqa: PLC0415
 
-            modules = {"_spline_kernels": _spline_kernels(), "_exact_kernels": exact_kernels()}
+            from . import _response_kernels  # noqa: PLC0415
+
+            modules = {"_spline_kernels": _spline_kernels(), "_exact_kernels": exact_kernels(),
+                       "_response_kernels": _response_kernels}
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False

@@ -27,7 +27,8 @@ from .kalker import kalker_coefficients_cached
 
 __all__ = ["carter_scalar", "normalised_inputs_scalar",
            "step_law_creep_force_normalised_scalar", "evolve_harmonics_scalar",
-           "creep_solution_3d_scalar", "spin_coefficient_scalar"]
+           "creep_force_3d_scalar", "creep_stick_3d_scalar", "creep_solution_3d_scalar",
+           "spin_coefficient_scalar"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -210,29 +211,11 @@ _EPS4 = 4.0 * 2.220446049250313e-16
 _STRIP_C22 = math.pi**2 / 4.0
 
 
-def creep_solution_3d_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method,
-                             _kalker=kalker_coefficients_cached, _sqrt=math.sqrt,
-                             _hypot=math.hypot, _acos=math.acos, _pi=math.pi, _inf=math.inf,
-                             _lo=MODERATE_MIN, _hi=MODERATE_MAX):
-    """:func:`railcontact.creep3d.creep_solution_3d` for plain floats (inputs assumed in range,
-    see above).
-
-    The same operations in the same order as the array path of ``creep_solution_3d``;
-    Kalker's coefficients from the cache :func:`railcontact.kalker.kalker_coefficients_cached` (per
-    (a0/b0, nu); an FMU asks for the same ellipse shape step after step).
-
-    Returns
-    -------
-    CreepSolution3D
-        Fields as plain floats (``within_validity`` a bool).
-    """
-    # _moderate, inlined (one call per FMU step)
-    if not ((xi_x == 0.0 or _lo <= abs(xi_x) <= _hi) and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
-            and (phi == 0.0 or _lo <= abs(phi) <= _hi) and (n_load == 0.0 or _lo <= n_load <= _hi)
-            and _lo <= a0 <= _hi and _lo <= b0 <= _hi and _lo <= e_mod <= _hi
-            and (mu == 0.0 or _lo <= mu <= _hi)):
-        res = creep3d.creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
-        return CreepSolution3D(*(float(v) for v in res[:6]), bool(res[6]))
+def _creep_forces(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method,
+                  _kalker=kalker_coefficients_cached, _sqrt=math.sqrt, _hypot=math.hypot,
+                  _pi=math.pi, _inf=math.inf):
+    """The forces of :func:`creep_solution_3d_scalar` (moderate inputs): ``(tx, ty, z, mu N)``,
+    z the normalised creepage."""
     mu_n = mu * n_load
     has_area = a0 > 0.0 and b0 > 0.0
     c11, c22, c23 = _kalker(a0 / b0 if has_area else 1.0, nu)
@@ -281,11 +264,61 @@ def creep_solution_3d_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, met
             scale = mu_n * (1.0 - _EPS4) / t_abs
             tx, ty = tx * scale, ty * scale
     tx, ty = tx + 0.0, ty + 0.0
-    phi_coef = _spin_coefficient_moderate(xi_x, xi_y, phi, a0, b0)
+    return tx, ty, z, mu_n
+
+
+def _moderate_creep_inputs(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu, _lo=MODERATE_MIN,
+                           _hi=MODERATE_MAX):
+    """Whether the inputs of :func:`creep_force_3d_scalar` are all zero or moderate (above)."""
+    return ((xi_x == 0.0 or _lo <= abs(xi_x) <= _hi) and (xi_y == 0.0 or _lo <= abs(xi_y) <= _hi)
+            and (phi == 0.0 or _lo <= abs(phi) <= _hi) and (n_load == 0.0 or _lo <= n_load <= _hi)
+            and _lo <= a0 <= _hi and _lo <= b0 <= _hi and _lo <= e_mod <= _hi
+            and (mu == 0.0 or _lo <= mu <= _hi))
+
+
+def creep_force_3d_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
+    """:func:`railcontact.creep3d.creep_force_3d` for plain floats (inputs assumed in range, see
+    above; methods "linear", "she", "strip", "modified_strip"), with the normalised creepage:
+    ``(tx, ty, z)`` (z as ``creep_solution_3d`` gives it).
+
+    The FMU's creep step; :func:`creep_stick_3d_scalar` gives the stick measures from z when
+    an importer reads them."""
+    if not _moderate_creep_inputs(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+        res = creep3d.creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
+        return float(res.tx), float(res.ty), float(res.normalised_creepage)
+    return _creep_forces(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)[:3]
+
+
+def creep_stick_3d_scalar(tx, ty, z, xi_x, xi_y, phi, mu_n, a0, b0, method, _sqrt=math.sqrt,
+                          _hypot=math.hypot, _acos=math.acos, _pi=math.pi):
+    """The rest of :func:`railcontact.creep3d.creep_solution_3d` from the forces ``tx, ty`` [N]
+    and the normalised creepage ``z`` of :func:`creep_force_3d_scalar`: ``(stick area
+    fraction, stick width ratio, spin coefficient, within validity)``; ``mu_n`` = mu N [N]."""
+    phi_coef = spin_coefficient_scalar(xi_x, xi_y, phi, a0, b0)
     if method == "linear":
-        return CreepSolution3D(tx, ty, 1.0, 1.0, z, phi_coef,
-                               phi_coef <= 1.0 and _hypot(tx, ty) <= mu_n)
+        return 1.0, 1.0, phi_coef, phi_coef <= 1.0 and _hypot(tx, ty) <= mu_n
     zc = z if z < 1.0 else 1.0
     root = _sqrt(1.0 - zc * zc)
-    stick = (2.0 / _pi) * (_acos(zc) - zc * root)
-    return CreepSolution3D(tx, ty, stick, root, z, phi_coef, phi_coef <= 1.0)
+    return (2.0 / _pi) * (_acos(zc) - zc * root), root, phi_coef, phi_coef <= 1.0
+
+
+def creep_solution_3d_scalar(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
+    """:func:`railcontact.creep3d.creep_solution_3d` for plain floats (inputs assumed in range,
+    see above).
+
+    The same operations in the same order as the array path of ``creep_solution_3d``;
+    Kalker's coefficients from the cache :func:`railcontact.kalker.kalker_coefficients_cached` (per
+    (a0/b0, nu); an FMU asks for the same ellipse shape step after step).
+
+    Returns
+    -------
+    CreepSolution3D
+        Fields as plain floats (``within_validity`` a bool).
+    """
+    if not _moderate_creep_inputs(xi_x, xi_y, phi, n_load, a0, b0, e_mod, mu):
+        res = creep3d.creep_solution_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
+        return CreepSolution3D(*(float(v) for v in res[:6]), bool(res[6]))
+    tx, ty, z, mu_n = _creep_forces(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method)
+    stick, root, phi_coef, valid = creep_stick_3d_scalar(tx, ty, z, xi_x, xi_y, phi, mu_n, a0,
+                                                         b0, method)
+    return CreepSolution3D(tx, ty, stick, root, z, phi_coef, valid)

@@ -307,6 +307,13 @@ class TensorSpline:
                                     self._strides, self._offset, pts, deriv, out,
                                     np.empty_like(self._work))
 
+    def kernel_arrays(self):
+        """The arrays the compiled evaluator takes: ``(coefficients (n_var, n_coef), shape,
+        knots, knot_start, strides, offset, work)`` (see ``_spline_kernels.tensor_eval``), for
+        a caller that packs them into its own compiled call."""
+        return (self._coef, self._shape, self._knots, self._knot_start, self._strides,
+                self._offset, self._work)
+
     def evaluate_unchecked(self, points):
         """Values of all variables at several points inside the grid, in one compiled call.
 

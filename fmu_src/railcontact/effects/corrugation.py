@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .. import corrugation
 from .._corrugation_kernels import series_relative_error
 from ..scene import SceneError
@@ -120,7 +122,10 @@ class Corrugation(Effect):
         self._comp = 4.0 * (1.0 - self._nu ** 2) / (math.pi * self._e)
         self._k = [2.0 * math.pi / lam for lam in self.wavelengths]
         self._kr = [km * self._radius for km in self._k]      # k R of each harmonic
-        self._checked_surface = None, None    # the amplitude lists (4.2) was checked for
+        # the amplitude lists (4.2) was checked for, and the table's buffer of them
+        self._checked_surface = None, None
+        self._harmonics = None
+        self._sums = np.zeros(4)
         # no series is summed at run time unless the wear effect's own coefficients are
         # analytic (growth rate, evolution)
         self._series = self._series and wear.source == "analytic"
@@ -136,32 +141,45 @@ class Corrugation(Effect):
             if any(v >= 1.0 for v in curvatures):
                 corrugation.check_no_contact_loss(curvatures)               # raises (4.2)
             self._checked_surface = za, zb
+            self._harmonics = self._table.harmonics(self.wavelengths, za, zb, big_r)
         a0, x = c.a0, c.rail_position
         xi = abs(c.creepage_longitudinal)
         a0s = max(a0 - xi * big_r / mu, 0.0)
         r = a0s / a0
         one_minus_r = min(xi * big_r / (mu * a0), 1.0)          # 1 - r without cancellation
-        a, d, t = a0, 0.0, mu * n_line * one_minus_r * (2.0 - one_minus_r)
+        t = mu * n_line * one_minus_r * (2.0 - one_minus_r)
         wear = self._wear
         if wear is not None:
             kw = wear.wear_coefficient
             depth = kw * mu * mu * n_line * a0 / big_r * (1 - r) ** 2 * (1 + r)
             w_scale = kw * mu * mu * n_line / a0
         scale_t = mu / self._comp
-        rows = self._table.rows([a0 / lam for lam in self.wavelengths], r, wear is not None)
-        # in real arithmetic: z = (Z_A + i Z_B) e^{-i k x} = z_r + i z_i; the response
-        # coefficients are c_a = hw, c_Delta = i ps, c_T = tr + i ti, w = wr + i wi, and each
-        # term is Re(c z) (Eqs. (4.36)-(4.71), (4.94)-(4.95))
-        for (hw, ps, _, _, tr, ti, wr, wi), km, kr, zam, zbm in zip(rows, k, self._kr, za, zb):
-            ckx = math.cos(km * x)
-            skx = math.sin(km * x)
-            z_r = zam * ckx + zbm * skx
-            z_i = zbm * ckx - zam * skx
-            a += hw * kr * z_r
-            d -= ps * kr * z_i
-            t += scale_t * (tr * z_r - ti * z_i)
+        sums = self._sums
+        if self._table.superpose(self._harmonics, a0, x, r, sums):
+            # one compiled call: the table's rows and the sums over the harmonics
+            s_a, s_d, s_t, s_w = sums.tolist()
+            a, d = a0 + s_a, s_d
+            t += scale_t * s_t
             if wear is not None:
-                depth += w_scale * (wr * z_r - wi * z_i)
+                depth += w_scale * s_w
+        else:
+            a, d = a0, 0.0
+            # outside the table's grid: the closed forms per harmonic, the same sums; in
+            # real arithmetic: z = (Z_A + i Z_B) e^{-i k x} = z_r + i z_i; the response
+            # coefficients are c_a = hw, c_Delta = i ps, c_T = tr + i ti, w = wr + i wi, and
+            # each term is Re(c z) (Eqs. (4.36)-(4.71), (4.94)-(4.95))
+            rows = self._table.rows([a0 / lam for lam in self.wavelengths], r, wear is not None)
+            for (hw, ps, _, _, tr, ti, wr, wi), km, kr, zam, zbm in zip(rows, k, self._kr, za,
+                                                                      zb):
+                ckx = math.cos(km * x)
+                skx = math.sin(km * x)
+                z_r = zam * ckx + zbm * skx
+                z_i = zbm * ckx - zam * skx
+                a += hw * kr * z_r
+                d -= ps * kr * z_i
+                t += scale_t * (tr * z_r - ti * z_i)
+                if wear is not None:
+                    depth += w_scale * (wr * z_r - wi * z_i)
         c.contact_half_width = a
         c.patch_shift = d
         xi_signed = c.creepage_longitudinal

@@ -7,7 +7,8 @@ import math
 from pathlib import Path
 
 from .. import creep3d
-from .._scalar import carter_scalar, creep_solution_3d_scalar, spin_coefficient_scalar
+from .._scalar import (carter_scalar, creep_force_3d_scalar, creep_stick_3d_scalar,
+                       spin_coefficient_scalar)
 from ..scene import POLACH_KEYS, SceneError
 from .base import NOT_ESTIMATED, Effect, EffectUnavailable
 
@@ -67,9 +68,13 @@ class Creep3D(Effect):
     Per step the effect calls the *scalar paths* (plain floats, ``math`` module; they repeat the
     public functions' arithmetic without numpy's per-call overhead and without their input
     check, which the slave has made: finite inputs, N >= 0; a0, b0 > 0 from Hertz; mu is
-    checked here): ``railcontact._scalar.creep_solution_3d_scalar`` for the analytic source
-    (its table-driven test against :func:`~railcontact.creep3d.creep_solution_3d` is
-    tests/test_scalar.py), and the modified-strip table reader's
+    checked here): ``railcontact._scalar.creep_force_3d_scalar`` for the analytic source's
+    forces and normalised creepage in the step, and ``creep_stick_3d_scalar`` for its stick
+    measures and validity flag from them, computed when first read after a step
+    (:meth:`auxiliary`), so that an importer that reads only Fx and Fy does not pay for them
+    (their table-driven test against :func:`~railcontact.creep3d.creep_force_3d` and
+    :func:`~railcontact.creep3d.creep_solution_3d` is tests/test_scalar.py), and the
+    modified-strip table reader's
     :meth:`~railcontact.strip_table.CreepTable.force_unchecked` and
     :meth:`~railcontact.strip_table.CreepTable.stick_unchecked` (tests/test_tables.py).
 
@@ -113,7 +118,11 @@ class Creep3D(Effect):
         self._warn = warn if warn is not None else (lambda key, msg: None)
         self._aux_args = None
         self._table = None
-        self._force = None          # the modified-strip table's forces (set by _table_setup)
+        # the forces of the analytic theories and of the modified-strip table, (tx, ty) from
+        # the step's arguments; their stick measures are set when read (auxiliary)
+        self._force = None
+        self._stick_measures = None
+        self._step_forces, self._z = (0.0, 0.0), 0.0    # the analytic step's (tx, ty), z
         self._exact = self.method == "exact"
         self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
                         in POLACH_KEYS.items()}
@@ -126,8 +135,9 @@ class Creep3D(Effect):
             self._forces = self._exact_table     # (modified strip: self._force, in step)
         elif self.method in creep3d.COMPARISON_METHODS:
             self._forces = self._comparison
-        else:
-            self._forces = self._analytic
+        else:   # the forces now, the stick measures when read (auxiliary)
+            self._force = self._analytic_force
+            self._stick_measures = self._analytic_stick
 
     def _table_setup(self, opts, table_path, tables_dir):
         if self.method not in ("modified_strip", "exact"):
@@ -171,8 +181,8 @@ class Creep3D(Effect):
                     self._nu, c.friction_coefficient)
             if self._force is None:
                 self._forces(c, args)
-            else:       # modified-strip table: the forces now, the stick measures when read
-                c.Fx, c.Fy = self._force(*args)
+            else:       # the forces now, the stick measures when read
+                c.Fx, c.Fy = self._step_forces = self._force(*args)
                 self._aux_args = args
             return
         c.Fx = c.Fy = 0.0                              # no contact
@@ -190,19 +200,28 @@ class Creep3D(Effect):
         c.r_a0 = 1.0 - min(float(res.normalised_creepage), 1.0)
         c.creep_within_validity = bool(res.within_validity)
 
-    def _analytic(self, c, args):
-        # scalar path; outside its assumptions the public function (it names the input)
-        mu = args[8]
-        solve = (creep_solution_3d_scalar if 0.0 <= mu < math.inf and c.a0 > 0.0
-                 and c.b0 > 0.0 else creep3d.creep_solution_3d)
-        res = solve(*args, self.method)
-        c.Fx = float(res.tx)
-        c.Fy = float(res.ty)
-        c.stick_area_fraction = float(res.stick_area_fraction)
-        c.stick_width_ratio = float(res.stick_width_ratio)
-        c.r_a0 = 1.0 if self.method == "linear" else 1.0 - min(float(
-            res.normalised_creepage), 1.0)
-        c.creep_within_validity = bool(res.within_validity)
+    def _analytic_force(self, *args):
+        # scalar path; outside its assumptions the public function (it names the input); the
+        # normalised creepage z is kept for the stick measures (auxiliary)
+        if 0.0 <= args[8] < math.inf and args[4] > 0.0 and args[5] > 0.0:
+            tx, ty, self._z = creep_force_3d_scalar(*args, self.method)
+            return tx, ty
+        res = creep3d.creep_solution_3d(*args, self.method)
+        self._z = float(res.normalised_creepage)
+        return float(res.tx), float(res.ty)
+
+    def _analytic_stick(self, c, args):
+        # the stick measures and the validity flag of the step's solution, from its forces
+        # and z (a later effect may have replaced the contact's forces: not these)
+        xi_x, xi_y, phi, n_load, a0, b0, _, _, mu = args
+        z = self._z
+        tx, ty = self._step_forces
+        stick, root, _, valid = creep_stick_3d_scalar(tx, ty, z, xi_x, xi_y, phi, mu * n_load,
+                                                      a0, b0, self.method)
+        c.stick_area_fraction = stick
+        c.stick_width_ratio = root
+        c.r_a0 = 1.0 if self.method == "linear" else 1.0 - min(z, 1.0)
+        c.creep_within_validity = valid
 
     def _exact_table(self, c, args):
         # one evaluation: forces, moment, stick area, normalised creepage, Jacobian
@@ -227,11 +246,16 @@ class Creep3D(Effect):
         return dict(self._polach, rolling_speed=max(getattr(c, "rolling_speed", 0.0), 0.0))
 
     def auxiliary(self, c):
-        """Fill the stick measures and the validity flag of the last table step (lazily)."""
+        """Fill the stick measures and the validity flag of the last step (lazily: analytic
+        theories and the modified-strip table)."""
         # (nothing to do after the first read of a step: Mz and the stick measures of this step
-        # are already set, by step (N = 0, analytic source) or by the previous call)
+        # are already set, by step (N = 0, exact table, comparison methods) or by the previous
+        # call)
         args, self._aux_args = self._aux_args, None
         if args is None:
+            return
+        if self._stick_measures is not None:
+            self._stick_measures(c, args)
             return
         # scalar path of the reader (inputs as checked for the step; see step)
         stick, z = self._stick(*args)
@@ -249,12 +273,15 @@ class Creep3D(Effect):
 
     def get_state(self):
         return {"calls": self.calls,
-                "aux_args": None if self._aux_args is None else list(self._aux_args)}
+                "aux_args": None if self._aux_args is None else list(self._aux_args),
+                "step_forces": list(self._step_forces), "z": self._z}
 
     def set_state(self, state):
         self.calls = int(state["calls"])
         args = state.get("aux_args")
         self._aux_args = None if args is None else tuple(args)
+        self._step_forces = tuple(state.get("step_forces", (0.0, 0.0)))
+        self._z = float(state.get("z", 0.0))
 
 
 class Creep2D(Effect):

@@ -8,11 +8,11 @@ import operator
 
 import numpy as np
 
-from .. import corrugation
+from .. import _compiled, corrugation
 from ..wear import wear_coefficients
 from .base import EffectUnavailable, load_table
 
-__all__ = ["RESPONSE_VARIABLES", "ResponseTable"]
+__all__ = ["RESPONSE_VARIABLES", "ResponseTable", "pack_table", "pack_harmonics"]
 
 
 #: Variables of the table ``corrugation_response`` the corrugation and wear effects read, in the
@@ -20,6 +20,40 @@ __all__ = ["RESPONSE_VARIABLES", "ResponseTable"]
 RESPONSE_VARIABLES = ("half_width_real", "patch_shift_imag", "stick_half_width_real",
                        "stick_half_width_imag", "tangential_force_real",
                        "tangential_force_imag", "wear_real", "wear_imag")
+
+
+def pack_table(spline, columns, bounds):
+    """The flat buffers ``(fbuf, ibuf)`` of a 2-D table spline for ``superposed_response``.
+
+    ``spline``: a :class:`railcontact.tables.TableSpline` with axes (a0/L, r_a0); ``columns``:
+    the indices of its variables half_width_real, patch_shift_imag, tangential_force_real,
+    tangential_force_imag, wear_real, wear_imag; ``bounds``: (a0/L lower, upper, r lower,
+    upper), the range inside which the kernel evaluates the table.
+    """
+    coef, shape, knots, knot_start, strides, offset, work = spline.kernel_arrays()
+    ibuf = np.concatenate([
+        [shape.size, coef.shape[0], coef.shape[1], offset.size, knots.size],
+        shape, knot_start, strides, offset, np.zeros(shape.size), columns,
+    ]).astype(np.int64)
+    fbuf = np.concatenate([coef.ravel(), knots, np.zeros(work.size), np.asarray(bounds, float)])
+    return np.ascontiguousarray(fbuf), np.ascontiguousarray(ibuf)
+
+
+def pack_harmonics(wavelengths, amplitudes_cos, amplitudes_sin, radius, n_var):
+    """The harmonics' flat buffer for ``superposed_response``: wave numbers k [1/m], k R
+    [-], Z_A, Z_B [m], wavelengths L [m], then the kernel's scratch (the points and the rows
+    of the table, ``n (2 + n_var)``)."""
+    lam = np.asarray(wavelengths, dtype=float)
+    k = 2.0 * np.pi / lam
+    n = lam.size
+    return np.ascontiguousarray(np.concatenate([
+        k, k * radius, np.asarray(amplitudes_cos, float), np.asarray(amplitudes_sin, float),
+        lam, np.zeros(n * (2 + n_var))]))
+
+
+#: The variables the compiled step (:meth:`ResponseTable.superpose`) reads, in its order.
+_STEP_VARIABLES = ("half_width_real", "patch_shift_imag", "tangential_force_real",
+                   "tangential_force_imag", "wear_real", "wear_imag")
 
 
 class ResponseTable:
@@ -51,9 +85,31 @@ class ResponseTable:
         self._evaluate = self.table.spline.evaluate_unchecked
         self._points = np.empty((0, 2))     # the harmonics' (a0/L, r) of one step (rows)
         self._warn = warn if warn is not None else (lambda key, msg: None)
+        # the step kernel's buffers: the table's spline and its range (pack_table)
+        self._fbuf, self._ibuf = pack_table(
+            self.table.spline, [names.index(v) for v in _STEP_VARIABLES],
+            (self._lo, self._hi, self._r_lo, self._r_hi))
+        # (loaded now, not in the first step: the ahead-of-time copy, or numba's)
+        self._superpose = _compiled.superposed_response(
+            self._fbuf, self._ibuf, self.harmonics([1.0], [0.0], [0.0], 1.0))
         acc = self.table.accuracy()
         #: Recorded max error of each variable read (name -> float), from the file.
         self.max_abs_error = {v: acc[v]["max_abs_error"] for v in RESPONSE_VARIABLES}
+
+    def harmonics(self, wavelengths, amplitudes_cos, amplitudes_sin, radius):
+        """The harmonics' buffer :meth:`superpose` takes (wavelengths [m], Z_A, Z_B [m], the
+        wheel radius R [m]); make it again when the surface changes."""
+        return pack_harmonics(wavelengths, amplitudes_cos, amplitudes_sin, radius,
+                              len(self.table.variables))
+
+    def superpose(self, harmonics, a0, x, r, out):
+        """The harmonics' superposed response at one contact, from the table, in one compiled
+        call (:func:`railcontact._response_kernels.superposed_response`): ``out`` (4,) gets
+        ``sum hw k R z_r``, ``-sum ps k R z_i``, ``sum (tr z_r - ti z_i)`` and
+        ``sum (wr z_r - wi z_i)``; ``a0`` [m], rail position ``x`` [m], ``r = a0*/a0`` [-].
+        Returns False (``out`` untouched) where a harmonic's a0/L or r is outside the table's
+        grid or NaN: then :meth:`rows` gives the closed forms."""
+        return self._superpose(self._fbuf, self._ibuf, harmonics, a0, x, r, out)
 
     def coefficients_list(self, ratios, r, wear=True):
         """:meth:`coefficients` of every harmonic ``a0/L`` in ``ratios`` at one ``r``: one
