@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from . import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
