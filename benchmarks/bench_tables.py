@@ -131,9 +131,20 @@ def exact_lookups(args):
     t_bb = per_call(lambda: bare_batch(ex._coef, slab, *knots, *poly, pts, res), 1)
     print(f"bare compiled spline batch (limit)         : {t_bb / n * 1e9:7.1f} ns/point "
           "(4 variables, no partials, on precomputed coordinates)")
+    import numba
+
+    from railcontact import _compiled
+
     t_b = per_call(lambda: ex.creep_force_3d(xs, ys, ps, n_load, a0, b0, e_mod, nu, mu), 1)
     print(f"creep_force_3d batch, one contact          : {t_b / n * 1e9:7.1f} ns/point "
-          f"({t_b / t_bb:.1f}x the bare kernel)")
+          f"({t_b / t_bb:.2f}x the bare kernel; on {numba.get_num_threads()} numba threads)")
+    entry = ex._buffers.get((a0 / b0, nu)) or ex._buffer(a0 / b0, nu)
+    serial = _compiled.exact_kernels().creep_contact_batch
+    r14, ok = np.empty((n, 14)), np.empty(n, dtype=bool)
+    t_s = per_call(lambda: serial(entry[0], xs, ys, ps, n_load, a0, b0, e_mod, mu, False, r14,
+                                  ok), 1)
+    print(f"  its kernel on one thread                 : {t_s / n * 1e9:7.1f} ns/point "
+          f"({t_s / t_bb:.2f}x the bare kernel: the physics and the coordinates)")
     t_bj = per_call(lambda: ex.creep_solution_3d(xs, ys, ps, n_load, a0, b0, e_mod, nu, mu), 1)
     print(f"creep_solution_3d batch + Jacobian         : {t_bj / n * 1e9:7.1f} ns/point")
     a0s = rng.uniform(3e-3, 8e-3, n)

@@ -496,3 +496,39 @@ def test_against_contacts_tractcurv(table):
     c11 = float(kalker_coefficients(a0 / b0, nu).c11)
     slope = table.creep_force_jacobian_3d(0.0, 0.0, 0.0, n_load, a0, b0, e_mod, nu, mu)[0, 0]
     assert -slope / (g_mod * a0 * b0) == pytest.approx(c11, rel=0.005)   # measured -0.28 %
+
+
+@needs_table
+@pytest.mark.parametrize("own_contacts", [False, True])
+def test_parallel_batches_equal_the_point_by_point_values(table, own_contacts):
+    """Batches of at least two PARALLEL_CHUNK tasks run on numba's threads: the same values,
+    bit for bit, as the serial kernel on the same points (one contact and every point its own
+    contact, forces and Jacobian), also with two Python threads calling at once."""
+    import threading
+
+    from railcontact._exact_kernels import PARALLEL_CHUNK
+
+    rng = np.random.default_rng(23)
+    n = 2 * PARALLEL_CHUNK + 17
+    xi, eta = rng.uniform(-4e-3, 4e-3, (2, n))
+    phi = rng.uniform(-3.0, 3.0, n)
+    over = {"a0": rng.uniform(3e-3, 8e-3, n)} if own_contacts else {}
+    whole = table.creep_solution_3d(*_args(xi, eta, phi, **over))
+    parts = [table.creep_solution_3d(*_args(xi[s], eta[s], phi[s], **{
+        k: v[s] for k, v in over.items()})) for s in np.array_split(np.arange(n), 9)]
+    for field in ("tx", "ty", "spin_moment", "stick_area_fraction", "sensitivity"):
+        np.testing.assert_array_equal(getattr(whole, field), np.concatenate(
+            [getattr(p, field) for p in parts]), err_msg=field)
+    results = [None, None]
+
+    def run(k):
+        results[k] = table.creep_force_3d(*_args(xi, eta, phi, **over))
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for res in results:
+        np.testing.assert_array_equal(res.tx, whole.tx)
+        np.testing.assert_array_equal(res.ty, whole.ty)

@@ -12,14 +12,19 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
 from ._spline_kernels import find_span
 from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
 __all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_batch",
-           "creep_batch", "HEAD"]
+           "creep_contact_batch_parallel", "creep_batch", "creep_batch_parallel",
+           "PARALLEL_CHUNK", "HEAD"]
+
+#: Points per task of the parallel batch kernels (each task has its own scratch); the reader
+#: takes them for batches of at least two tasks.
+PARALLEL_CHUNK = 4096
 
 
 @njit(cache=True)
@@ -304,25 +309,46 @@ def creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                           b0, youngs_modulus, friction_coefficient, want_jacobian, res, work)
 
 
-@njit(cache=True)
-def creep_contact_batch(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                         friction_coefficient, want_jacobian, res, ok):
-    """:func:`creep_contact` over the creepages of one contact (flat arrays, any strides);
-    ``res`` (n, 14)."""
-    t2, t3, t4, p2, p3, p4, slab, _, work = _buffer_views(buf)
-    for i in range(xi_x.shape[0]):
+@njit(cache=True, inline="always")
+def _contact_points(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                    friction_coefficient, want_jacobian, res, ok, lo, hi, work):
+    """:func:`_contact_point` at the points ``lo`` .. ``hi - 1``."""
+    t2, t3, t4, p2, p3, p4, slab, _, _ = _buffer_views(buf)
+    for i in range(lo, hi):
         ok[i] = _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x[i], xi_y[i], phi[i],
                                normal_load, a0, b0, youngs_modulus, friction_coefficient,
                                want_jacobian, res[i], work)
 
 
 @njit(cache=True)
-def creep_batch(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi, mu_n, a0,
-                 b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok):
-    """:func:`_creep_point` over flat arrays (the same kernel as the scalar path); ``poly``:
-    the five axes' :func:`railcontact.exact_table.basis_polynomials` stacked (axis d from row ``kstart[d] - 4 d``);
+def creep_contact_batch(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                        friction_coefficient, want_jacobian, res, ok):
+    """:func:`creep_contact` over the creepages of one contact (flat arrays, any strides);
     ``res`` (n, 14)."""
-    work = np.empty(336)
+    _contact_points(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                    friction_coefficient, want_jacobian, res, ok, 0, xi_x.shape[0],
+                    np.empty(336))
+
+
+@njit(cache=True, parallel=True)
+def creep_contact_batch_parallel(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                 friction_coefficient, want_jacobian, res, ok):
+    """:func:`creep_contact_batch` on numba's threads, in tasks of :data:`PARALLEL_CHUNK`
+    points with their own scratch (the contact buffer is only read). Not for concurrent calls
+    from several Python threads (numba's default threading layer aborts then):
+    :class:`railcontact.exact_table.ExactCreepTable` serialises its calls."""
+    n = xi_x.shape[0]
+    for c in prange((n + PARALLEL_CHUNK - 1) // PARALLEL_CHUNK):
+        _contact_points(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                        friction_coefficient, want_jacobian, res, ok, c * PARALLEL_CHUNK,
+                        min(n, (c + 1) * PARALLEL_CHUNK), np.empty(336))
+
+
+@njit(cache=True, inline="always")
+def _creep_points(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi, mu_n,
+                  a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok, lo, hi,
+                  work):
+    """:func:`_creep_point` at the points ``lo`` .. ``hi - 1``."""
     t0 = knots[kstart[0]:kstart[1]]
     t1 = knots[kstart[1]:kstart[2]]
     t2 = knots[kstart[2]:kstart[3]]
@@ -333,8 +359,31 @@ def creep_batch(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, 
     p2 = poly[kstart[2] - 8:kstart[3] - 12]
     p3 = poly[kstart[3] - 12:kstart[4] - 16]
     p4 = poly[kstart[4] - 16:]
-    for i in range(xi_x.shape[0]):
+    for i in range(lo, hi):
         ok[i] = _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
-                             tau_max, xi_x[i],
-                             xi_y[i], phi[i], mu_n[i], a0[i], b0[i], w_sat[i], c11[i], c22[i],
-                             c23[i], log_g[i], nu[i], want_jacobian, res[i], work)
+                             tau_max, xi_x[i], xi_y[i], phi[i], mu_n[i], a0[i], b0[i],
+                             w_sat[i], c11[i], c22[i], c23[i], log_g[i], nu[i],
+                             want_jacobian, res[i], work)
+
+
+@njit(cache=True)
+def creep_batch(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi, mu_n, a0,
+                 b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok):
+    """:func:`_creep_point` over flat arrays (the same kernel as the scalar path); ``poly``:
+    the five axes' :func:`railcontact.exact_table.basis_polynomials` stacked (axis d from row
+    ``kstart[d] - 4 d``); ``res`` (n, 14)."""
+    _creep_points(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi, mu_n,
+                  a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok, 0,
+                  xi_x.shape[0], np.empty(336))
+
+
+@njit(cache=True, parallel=True)
+def creep_batch_parallel(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi,
+                         mu_n, a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res,
+                         ok):
+    """:func:`creep_batch` on numba's threads (see :func:`creep_contact_batch_parallel`)."""
+    n = xi_x.shape[0]
+    for c in prange((n + PARALLEL_CHUNK - 1) // PARALLEL_CHUNK):
+        _creep_points(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi,
+                      mu_n, a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok,
+                      c * PARALLEL_CHUNK, min(n, (c + 1) * PARALLEL_CHUNK), np.empty(336))

@@ -57,6 +57,9 @@ f_perp). The stick fraction is unchanged by all three.
 
 from __future__ import annotations
 
+import contextlib
+import threading
+
 import numpy as np
 
 __all__ = ["exact_table_coordinates", "exact_table_inverse", "creepage_coordinate",
@@ -64,6 +67,13 @@ __all__ = ["exact_table_coordinates", "exact_table_inverse", "creepage_coordinat
 
 
 from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT  # noqa: E402,F401  (the kernels' too)
+
+# Large batches run their points on numba's threads; numba's default threading layer
+# (workqueue) aborts the process when two Python threads launch parallel loops at once, so the
+# reader's batch calls take this lock (each call already uses every core).
+_BATCH_LOCK = threading.Lock()
+_NO_LOCK = contextlib.nullcontext()
+_new_tuple = tuple.__new__
 
 
 def creepage_coordinate(rho, tau=0.0):
@@ -383,7 +393,9 @@ class ExactCreepTable:
                              + [p.ravel() for p in self._poly_list[2:]]
                              + [slab.ravel(), np.zeros(14 + 336)])
         o = buf.size - 350
-        entry = (buf, buf[o:o + 14])
+        # (the results as a memoryview too: indexing it gives Python floats, cheaper than
+        # numpy's scalars in the scalar path)
+        entry = (buf, buf[o:o + 14], memoryview(buf)[o:o + 14])
         if self._kernel is None:
             self._kernel = _compiled.creep_contact(buf)
         if len(self._buffers) >= 16:
@@ -419,8 +431,15 @@ class ExactCreepTable:
         # views into the compiled kernel (numba warns: they become read-only in numpy)
         r = np.empty((flat[0].size, 14))
         ok = np.empty(flat[0].size, dtype=bool)
-        _compiled.exact_kernels().creep_contact_batch(
-            entry[0], flat[0], flat[1], flat[2], n_load, a0, b0, e_mod, mu, jacobian, r, ok)
+        kernels = _compiled.exact_kernels()
+        if flat[0].size < 2 * kernels.PARALLEL_CHUNK:
+            kernels.creep_contact_batch(entry[0], flat[0], flat[1], flat[2], n_load, a0, b0,
+                                        e_mod, mu, jacobian, r, ok)
+        else:
+            with _BATCH_LOCK:       # (numba's parallel loop: one call at a time)
+                kernels.creep_contact_batch_parallel(entry[0], flat[0], flat[1], flat[2],
+                                                     n_load, a0, b0, e_mod, mu, jacobian, r,
+                                                     ok)
         if not ok.all():
             return None
         return r[:, :5].reshape(shape + (5,)), r[:, 5:].reshape(shape + (3, 3))
@@ -462,8 +481,10 @@ class ExactCreepTable:
                 slab = self._empty_slab
             r = np.zeros((idx.size, 14))
             o = np.zeros(idx.size, dtype=bool)
-            with np.errstate(all="ignore"):
-                _compiled.exact_kernels().creep_batch(
+            kernels = _compiled.exact_kernels()
+            parallel = idx.size >= 2 * kernels.PARALLEL_CHUNK
+            with np.errstate(all="ignore"), (_BATCH_LOCK if parallel else _NO_LOCK):
+                (kernels.creep_batch_parallel if parallel else kernels.creep_batch)(
                     self._coef, slab, one, self._knots, self._kstart, self._poly,
                     self.tau_max, xi_x[idx], xi_y[idx], phi[idx], mu[idx] * n_load[idx],
                     a0[idx], b0[idx], w_sat[idx], c[0], c[1], c[2], log_g[idx], nu[idx],
@@ -509,8 +530,9 @@ class ExactCreepTable:
             if entry is not None and self._kernel(
                     entry[0], creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                     b0, youngs_modulus, friction_coefficient, False):
-                res = entry[1]
-                return CreepForce3D(res[0], res[1])
+                res = entry[2]
+                # (CreepForce3D(tx, ty) without namedtuple's Python-level __new__: 0.2 us)
+                return _new_tuple(CreepForce3D, (res[0], res[1]))
         except (TypeError, ValueError, ArithmeticError):
             pass
         res = self._evaluate((creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
