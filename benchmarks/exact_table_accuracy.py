@@ -2,7 +2,7 @@
 at the table's setting (interpolation error), and CONTACT's 21 converged cases (the table's
 whole error against the exact theory). Prints figures by a/b and spin class; asserts nothing.
 
-    python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7] [--theta-scans]
+    python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7] [--theta-scans] [--axes N]
 
 Random cases: a0/b0 log-uniform in [0.1, 10], nu uniform in [0, 0.5], creepage direction
 uniform on the circle, |v| / sqrt(1 + tau^2) (|v| the Kalker-weighted creepage over the
@@ -100,12 +100,56 @@ def theta_scans(table):
               f"of mu N at theta = {math.degrees(theta[i]):6.1f} deg")
 
 
+def axis_errors(table, n_per, rng):
+    """Interpolation error of one axis at a time: points on nodes in every axis but one and
+    midway between two nodes in that one (the spline's error along that axis alone; on the
+    nodes it interpolates the solver's values), by spin class (tau = 0, 0 < |tau| <= 1,
+    |tau| > 1), ``n_per`` random points per axis and class, against the build's point
+    function. Says which axis a finer grid needs."""
+    axes = table.table.axes
+    nodes = [np.asarray(a["nodes"]) for a in axes]
+    names = [a["name"] for a in axes]
+    s_nodes, tau_nodes = nodes[2], nodes[4]
+    # the computed quarter (the point function's domain; the rest is its mirror image):
+    # 0 < s < 1 (s = 0 and 1 are exact forms), |theta| <= pi/2, tau >= 0
+    s_pos = np.nonzero((s_nodes > 0.0) & (s_nodes < 1.0))[0]
+    th_q = np.nonzero(np.abs(nodes[3]) <= 0.5 * np.pi + 1e-12)[0]
+    spin = {"tau = 0": np.nonzero(tau_nodes == 0.0)[0],
+            "0 < tau <= 1": np.nonzero((tau_nodes > 0.0) & (tau_nodes <= 1.0))[0],
+            "tau > 1": np.nonzero(tau_nodes > 1.0)[0]}
+    quarter = {2: s_pos, 3: th_q}
+    print(f"\n== one axis at a time: midway between nodes there, on nodes elsewhere ({n_per} "
+          "points per axis and spin class), |error| of (f_par, f_perp) in % of mu N ==")
+    for label, tau_idx in spin.items():
+        line = []
+        for d, name in enumerate(names):
+            idx = np.column_stack([rng.integers(0, len(n), n_per) for n in nodes])
+            idx[:, 2] = rng.choice(s_pos, n_per)
+            idx[:, 3] = rng.choice(th_q, n_per)
+            idx[:, 4] = rng.choice(tau_idx, n_per)
+            pts = np.column_stack([nodes[k][idx[:, k]] for k in range(5)])
+            lo = np.minimum(idx[:, d], len(nodes[d]) - 2)
+            if d in quarter:     # midway inside the quarter
+                lo = np.clip(lo, quarter[d][0], quarter[d][-1] - 1)
+            if d == 4:           # tau >= 0; between 0 and the next node without spin
+                lo = np.clip(lo, int(tau_idx[0]), len(nodes[4]) - 2)
+            pts[:, d] = 0.5 * (nodes[d][lo] + nodes[d][lo + 1])
+            ref = exact_creep_function(pts)
+            got = table.table.spline.evaluate(np.ascontiguousarray(pts), check=False)
+            err = np.hypot(got[:, 0] - ref[:, 0], got[:, 1] - ref[:, 1]) * 100
+            line.append(f"{name} {err.max():.2f} / {math.sqrt(np.mean(err**2)):.2f}")
+        print(f"  {label:15s} max / RMS: " + "; ".join(line), flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--theta-scans", action="store_true",
                     help="also scan the creepage angle at the worst-known cases (~1 min)")
+    ap.add_argument("--axes", type=int, default=0, metavar="N",
+                    help="also the error of one axis at a time, N points per axis and spin "
+                         "class (N = 60: about 2 min)")
     opts = ap.parse_args(argv)
     table = load_exact_table()
     print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
@@ -160,6 +204,8 @@ def main(argv=None):
                   f"RMS {math.sqrt(np.mean(err[sel]**2)) * 100:.3f} %")
     if opts.theta_scans:
         theta_scans(table)
+    if opts.axes:
+        axis_errors(table, opts.axes, np.random.default_rng(opts.seed + 1))
 
 
 if __name__ == "__main__":
