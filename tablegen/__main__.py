@@ -52,7 +52,8 @@ def main(argv=None):
     b.add_argument("--no-progress", dest="progress", action="store_false")
     b.add_argument("--reuse-nodes", default=None, metavar="FILE",
                    help="take the node values of an earlier build of the same table (same "
-                        "method and nodes) from FILE; recompute only analytic limits and the "
+                        "method) from FILE at every grid point that is one of its nodes; "
+                        "compute the others (a refined axis), the analytic limits and the "
                         "check points")
     c = sub.add_parser("check", help="re-measure a table file's accuracy on fresh points and "
                                      "update its attributes")

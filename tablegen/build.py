@@ -109,10 +109,11 @@ def _run(spec, tasks, workdir, scheduler, workers, progress):
         bar.close()
 
 
-def _reuse_node_values(spec, path, points, tasks):
-    """Fill the grid chunk files ``tasks`` from the node values of an earlier build of the same
-    table (same name and ``method``, axes holding every point), recomputing only the points
-    ``spec.analytic_points`` marks; returns the attributes that record it."""
+def _reused_node_values(spec, path, points):
+    """Node values of an earlier build of the same table (same name and ``method``) at the
+    grid ``points`` it holds: ``(values (n, n_var), compute (n,) bool, attributes)``.
+    ``compute`` marks the points to compute anew: those that are not nodes of that file (a
+    finer grid reuses a coarser build's nodes) and those ``spec.analytic_points`` marks."""
     import netCDF4  # noqa: PLC0415
 
     path = Path(path)
@@ -122,41 +123,30 @@ def _reuse_node_values(spec, path, points, tasks):
             raise ValueError(f"reuse_nodes must be a file of table {spec.name!r} built with the "
                              f"same method ({spec.method!r}); got {path} (table "
                              f"{attrs.get('table_name')!r}, method {attrs.get('method')!r})")
-        axis_names = attrs["table_axes"].split()
-        index = []
-        for k, name in enumerate(axis_names):
+        index, found = [], np.ones(len(points), dtype=bool)
+        for k, name in enumerate(attrs["table_axes"].split()):
             nodes = np.asarray(ds[name][:], dtype=float)
             j = np.abs(points[:, k][:, None] - nodes[None, :]).argmin(axis=1)
-            if not np.allclose(nodes[j], points[:, k], rtol=0.0, atol=1e-12):
-                raise ValueError(f"reuse_nodes: {path} has no node at some grid points of axis "
-                                 f"{name!r} (the grid changed since that build; build anew)")
+            found &= np.abs(nodes[j] - points[:, k]) <= 1e-12
             index.append(j)
         values = np.stack([np.asarray(ds[v.name][:], dtype=float)[tuple(index)]
                            for v in spec.variables], axis=-1)
     analytic = (np.asarray(spec.analytic_points(points), dtype=bool)
                 if spec.analytic_points is not None else np.zeros(len(points), dtype=bool))
-    start = 0
-    for fname, pts in tasks:
-        rows = slice(start, start + len(pts))
-        start += len(pts)
-        if fname.exists():
-            continue
-        chunk = values[rows].copy()
-        redo = analytic[rows]
-        if redo.any():
-            chunk[redo] = evaluate_chunk(spec.name, pts[redo])
-        np.save(fname, chunk)
+    compute = analytic | ~found
+    values[compute] = np.nan
+    n_new = int((~found & ~analytic).sum())
     info = {"build_reused_nodes": (
-        f"{int((~analytic).sum())} of {len(points)} points' node values taken from an earlier "
+        f"{int((~compute).sum())} of {len(points)} points' node values taken from an earlier "
         f"build of this table with the same method ({path.name}, source {attrs.get('source')}, "
         f"history {attrs.get('history')!r}; stored in "
         f"{'float32' if spec.node_values_float32 else 'float64'}), "
-        f"{int(analytic.sum())} analytic points recomputed; the check points are computed "
-        "anew")}
+        f"{int(analytic.sum())} analytic points recomputed, {n_new} points that are not nodes "
+        "of that file computed; the check points are computed anew")}
     for key in ("build_seconds", "solver_source_sha1", "build_chunks_reused"):
         if key in attrs:
             info[f"reused_nodes_{key}"] = attrs[key]
-    return info
+    return values, compute, info
 
 
 def build_table(name, resolution="default", output_dir=None, scheduler=None, workers=None,
@@ -185,11 +175,13 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     keep_chunks : bool
         Keep the chunk files after success.
     reuse_nodes : path-like, optional
-        An earlier build of the same table (same ``method``, axes holding every grid point):
-        its node values are taken instead of computed, except at the points
-        ``spec.analytic_points`` marks (limits computed without the solver), which are
-        recomputed; the check points are computed anew. For a fix in an analytic limit
-        without rerunning hours of solves; recorded in the file's ``build_reused_nodes``.
+        An earlier build of the same table (same ``method``): its node values are taken
+        instead of computed at every grid point that is one of its nodes, except at the
+        points ``spec.analytic_points`` marks (limits computed without the solver), which are
+        recomputed; grid points that are not its nodes (a refined axis) and the check points
+        are computed, in chunks of their own (resumable as any build). For a fix in an
+        analytic limit, or a finer axis, without rerunning hours of solves; recorded in the
+        file's ``build_reused_nodes``.
 
     Returns
     -------
@@ -213,19 +205,30 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     key = f"{name}-{resolution}-{h.hexdigest()[:12]}"
     work = Path(workdir or default_workdir()) / key
     work.mkdir(parents=True, exist_ok=True)
-    tasks = [(work / f"grid_{i:06d}.npy", points[a:b])
-             for i, (a, b) in enumerate(_chunks(len(points), spec.chunk_size))]
+    if reuse_nodes is None:
+        grid_vals, reuse_info = None, {}
+        compute = np.arange(len(points))
+        prefix = "grid"
+    else:   # the points an earlier build does not give, in chunks of their own (resumable)
+        grid_vals, mask, reuse_info = _reused_node_values(spec, reuse_nodes, points)
+        compute = np.nonzero(mask)[0]
+        prefix = "reuse_" + hashlib.sha1(compute.tobytes()
+                                         + Path(reuse_nodes).read_bytes()).hexdigest()[:12]
+    tasks = [(work / f"{prefix}_{i:06d}.npy", points[compute[a:b]])
+             for i, (a, b) in enumerate(_chunks(len(compute), spec.chunk_size))]
+    n_grid_chunks = len(tasks)
     tasks += [(work / f"check_{i:06d}.npy", check[a:b])
               for i, (a, b) in enumerate(_chunks(len(check), spec.chunk_size))]
-    n_grid_chunks = len(_chunks(len(points), spec.chunk_size))
-    reuse_info = ({} if reuse_nodes is None else
-                  _reuse_node_values(spec, reuse_nodes, points, tasks[:n_grid_chunks]))
-    # (grid chunks filled from reuse_nodes are not "computed by an earlier run")
-    reused = sum(f.exists() for f, _ in tasks[0 if reuse_nodes is None else n_grid_chunks:])
+    reused = sum(f.exists() for f, _ in tasks)
     t0 = time.perf_counter()
     _run(spec, tasks, work, scheduler, workers, progress)
     seconds = time.perf_counter() - t0
-    grid_vals = np.concatenate([np.load(f) for f, _ in tasks[:n_grid_chunks]])
+    computed = (np.concatenate([np.load(f) for f, _ in tasks[:n_grid_chunks]])
+                if n_grid_chunks else np.zeros((0, len(spec.variables))))
+    if grid_vals is None:
+        grid_vals = computed
+    else:
+        grid_vals[compute] = computed
     check_vals = np.concatenate([np.load(f) for f, _ in tasks[n_grid_chunks:]])
     values, axes, knots, coefs, spline = fit_grid_values(spec, axes, grid_vals, assemble)
     got = spline.evaluate(np.ascontiguousarray(check[:, :len(axes)]), check=False)

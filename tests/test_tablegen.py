@@ -201,10 +201,11 @@ def test_float32_node_values_are_declared_and_read(tmp_path, monkeypatch):
     np.testing.assert_array_equal(a.spline.evaluate(pts), b.spline.evaluate(pts))
 
 
-def test_reuse_nodes_recomputes_only_the_analytic_points(tmp_path, monkeypatch):
+def test_reuse_nodes_computes_only_what_the_earlier_build_lacks(tmp_path, monkeypatch):
     """``reuse_nodes``: node values come from an earlier file of the same table, the points
     the spec marks analytic and the check points are computed, and the new file equals a
-    fresh build; a file of another table or another grid is refused by name."""
+    fresh build; on a finer grid only the points that are not the file's nodes are computed
+    (equal to a fresh fine build too); a file of another solver is refused by name."""
     fresh = build_table("selftest", "coarse", output_dir=tmp_path / "fresh",
                         scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
     spec = REGISTRY["selftest"]
@@ -233,6 +234,29 @@ def test_reuse_nodes_recomputes_only_the_analytic_points(tmp_path, monkeypatch):
         note = ds.getncattr("build_reused_nodes")
     assert f"{len(points) - n_analytic} of {len(points)}" in note
     assert f"{n_analytic} analytic points recomputed" in note
+
+    # a finer grid: the coarse file's nodes are taken, only the new points computed, and the
+    # file equals a fresh fine build
+    calls.clear()
+    monkeypatch.setattr(spec, "analytic_points", None)
+    finer = build_table("selftest", "fine", output_dir=tmp_path / "fine", scheduler="synchronous",
+                        workdir=tmp_path / "w3", progress=False, reuse_nodes=fresh["path"])
+    _, fine_points = spec.grid("fine")
+    _, coarse_points = spec.grid("coarse")
+    on_coarse = (np.abs(fine_points[:, None, :] - coarse_points[None, :, :]).max(axis=2)
+                 <= 1e-12).any(axis=1)
+    computed = np.concatenate(calls)
+    assert 0 < on_coarse.sum() < len(fine_points)
+    assert len(computed) == int((~on_coarse).sum()) + spec.n_check["fine"]
+    monkeypatch.setattr(spec, "function", selftest_function)
+    full = build_table("selftest", "fine", output_dir=tmp_path / "full", scheduler="synchronous",
+                       workdir=tmp_path / "w4", progress=False)
+    np.testing.assert_allclose(Table.from_file(finer["path"]).spline.evaluate(pts),
+                               Table.from_file(full["path"]).spline.evaluate(pts), rtol=0,
+                               atol=1e-12)
+    with netCDF4.Dataset(finer["path"]) as ds:
+        assert f"{int((~on_coarse).sum())} points that are not nodes" in ds.getncattr(
+            "build_reused_nodes")
 
     monkeypatch.setattr(spec, "method", "another solver")
     with pytest.raises(ValueError, match="reuse_nodes must be a file of table 'selftest'"):
