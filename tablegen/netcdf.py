@@ -108,11 +108,14 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 + ("" if met else "; TARGET NOT MET")),
             "comment": v.comment,
             **({"node_value_precision": "float32"} if single else {})})
-        data_vars[f"{v.name}_bspline_coefficients"] = (cdims, coefficients[k], {
+        single_coef = getattr(spec, "coefficients_float32", False)
+        data_vars[f"{v.name}_bspline_coefficients"] = (cdims, (
+            coefficients[k].astype(np.float32) if single_coef else coefficients[k]), {
             "units": v.units,
             "long_name": f"tensor-product cubic B-spline coefficients of {v.name}",
             "comment": "value = sum over i of c[i1,...,iD] * prod_d B(d, i_d)(x_d), with the "
-                       "degree-3 B-splines of the knot vectors <axis>_knots"})
+                       "degree-3 B-splines of the knot vectors <axis>_knots",
+            **({"coefficient_precision": "float32"} if single_coef else {})})
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {
         "Conventions": "CF-1.8",

@@ -129,6 +129,11 @@ class TableSpec:
         Store the node values (for viewers; the spline uses the float64 coefficients only) in
         float32, flagged by the variable attribute ``node_value_precision = "float32"``: halves
         a large table's file.
+    coefficients_float32 : bool
+        Store the spline coefficients in float32 too, flagged by the coefficient variable's
+        attribute ``coefficient_precision = "float32"`` (readers evaluate in float64; the
+        rounding, 6e-8 relative, is far below a table's interpolation error): halves the file
+        again.
     reduce : callable, optional
         ``reduce(axes) -> (points, assemble)`` for tables with symmetries: ``function`` is
         called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
@@ -157,6 +162,7 @@ class TableSpec:
     build_attributes: Callable | None = None
     reduce: Callable | None = None
     node_values_float32: bool = False
+    coefficients_float32: bool = False
     analytic_points: Callable | None = None
 
     def available(self):

@@ -9,7 +9,7 @@ from tablegen.build import build_table
 from tablegen.registry import REGISTRY, get_spec
 from tablegen.spec import Axis
 from tablegen.specs import selftest_function
-from railcontact.tables import Table
+from railcontact.tables import Table, TableFileError
 
 
 def test_registry_lists_builtin_specs():
@@ -262,3 +262,33 @@ def test_reuse_nodes_computes_only_what_the_earlier_build_lacks(tmp_path, monkey
     with pytest.raises(ValueError, match="reuse_nodes must be a file of table 'selftest'"):
         build_table("selftest", "coarse", output_dir=tmp_path / "x", scheduler="synchronous",
                     workdir=tmp_path / "w2", progress=False, reuse_nodes=fresh["path"])
+
+
+def test_float32_coefficients_are_declared_and_read(tmp_path, monkeypatch):
+    """A spec that stores its coefficients in float32 too (the exact creep table with its
+    finer angle axis: under 20 MB) flags them per variable; the reader accepts them (integrity
+    to 1e-6) and evaluates the same spline to float32 rounding; an undeclared float32
+    coefficient variable is still refused by name."""
+    import netCDF4
+
+    spec = get_spec("selftest")
+    ref = build_table("selftest", "coarse", output_dir=tmp_path / "a", scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False, keep_chunks=True)
+    monkeypatch.setattr(spec, "node_values_float32", True)
+    monkeypatch.setattr(spec, "coefficients_float32", True)
+    res = build_table("selftest", "coarse", output_dir=tmp_path / "b", scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False)
+    with netCDF4.Dataset(res["path"]) as nc:
+        for v in spec.variables:
+            coef = nc.variables[f"{v.name}_bspline_coefficients"]
+            assert coef.dtype == np.float32
+            assert coef.getncattr("coefficient_precision") == "float32"
+    a, b = Table.from_file(ref["path"]), Table.from_file(res["path"])
+    pts = np.column_stack([np.linspace(0.0, 2.0, 41), np.linspace(0.5, 2.0, 41)])
+    np.testing.assert_allclose(b.spline.evaluate(pts), a.spline.evaluate(pts), rtol=0,
+                               atol=1e-6)
+    assert not np.array_equal(b.spline.evaluate(pts), a.spline.evaluate(pts))
+    with netCDF4.Dataset(res["path"], "a") as nc:
+        nc.variables["f_bspline_coefficients"].delncattr("coefficient_precision")
+    with pytest.raises(TableFileError, match="'f_bspline_coefficients' is stored as float32"):
+        Table.from_file(res["path"])

@@ -628,7 +628,7 @@ class Table:
                 if needed not in ncvars:
                     raise TableFileError(f"{where} lacks the variable {needed!r}")
             _, val, a = ncvars[name]
-            _, coef, _ = ncvars[cname]
+            _, coef, ca = ncvars[cname]
             if val.shape != shape or coef.shape != shape:
                 raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
                                      f"expected {shape} (truncated?)")
@@ -638,7 +638,10 @@ class Table:
             else:
                 _check_float64(where, name, val)
                 tolerance.append(1e-9)
-            _check_float64(where, cname, coef)
+            if not (str(ca.get("coefficient_precision", "")) == "float32"
+                    and coef.dtype == np.float32 and single):
+                _check_float64(where, cname, coef)     # (declared float32 coefficients: a
+                # large table halved again; evaluated in float64, checked to 1e-6 below)
             values[name] = np.asarray(val, float)
             coefs.append(np.asarray(coef, float))
             vattrs[name] = a
