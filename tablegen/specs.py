@@ -151,7 +151,8 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (9, 5, 21, 7, 19),
+    "default": (9, 5, 21, 13, 19),   # theta every 15 degrees (30 until 2026-11-26: with
+    # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -420,7 +421,8 @@ register(TableSpec(
     axes=_exact_axes,
     function=exact_creep_function,
     reduce=_exact_reduce,
-    node_values_float32=True,      # 646,875 nodes x 4 variables: the file stays under 20 MB
+    node_values_float32=True,      # 1,164,375 nodes x 4 variables: with the coefficients
+    coefficients_float32=True,     # in float32 too the file stays under 20 MB
     variables=[
         Variable("force_ratio_parallel", "1", "force on the wheel over the Coulomb limit, "
                  "component opposing the combined creepage v: f_par = -T.e/(mu N), e = "
