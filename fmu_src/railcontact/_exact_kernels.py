@@ -186,14 +186,25 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
                   theta, tau, want_jacobian and not small, out, work)
     f_par = out[0, 0]
     f_perp = out[0, 1]
+    moment = out[0, 2]
+    st = out[0, 3]
+    if rho == 0.0 and tau == 0.0:
+        # no creepage, no spin: no force, no moment, full adhesion (the table's float32
+        # coefficients hold these only to their rounding)
+        f_par = 0.0
+        f_perp = 0.0
+        moment = 0.0
+        st = 1.0
     mag = math.hypot(f_par, f_perp)
-    k = 1.0 if mag <= 1.0 else (1.0 - 2.0**-51) / mag   # |T| <= mu N
+    # |T| <= mu N; at s = 1 (full sliding) |T| = mu N exactly, which the float32 coefficients
+    # hold only to their rounding
+    at_limit = s >= 1.0 and mag > 0.0
+    k = (1.0 - 2.0**-51) / mag if (mag > 1.0 or at_limit) else 1.0
     c = math.cos(theta)
     sn = math.sin(theta)
     res[0] = -mu_n * k * (f_par * c - f_perp * sn)
     res[1] = -mu_n * k * (f_par * sn + f_perp * c)
-    res[2] = mu_n * root_ab * out[0, 2]
-    st = out[0, 3]
+    res[2] = mu_n * root_ab * moment
     res[3] = 0.0 if st < 0.0 else (1.0 if st > 1.0 else st)
     res[4] = rho
     if not want_jacobian:
@@ -212,7 +223,7 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
     fy_t = -(out[2, 0] * sn + f_par * c + out[2, 1] * c - f_perp * sn)
     fx_u = -(out[3, 0] * c - out[3, 1] * sn)
     fy_u = -(out[3, 0] * sn + out[3, 1] * c)
-    if mag > 1.0:   # clipped: d(f / |f|) = (I - f^ f^T) df / |f|  (k = 1/|f| already)
+    if mag > 1.0 or at_limit:   # scaled: d(f / |f|) = (I - f^ f^T) df / |f|  (k = 1/|f|)
         fx = -(f_par * c - f_perp * sn) / mag
         fy = -(f_par * sn + f_perp * c) / mag
         dot = fx * fx_s + fy * fy_s
