@@ -92,20 +92,25 @@ def cubic_basis():
     return aot.cubic_basis if aot is not None else exact_kernels().cubic_basis
 
 
+def _entry_point(kernel, *args):
+    """The entry point of numba's ``kernel`` for the types of ``args``, compiled (or loaded
+    from the cache) by calling it with them: a plain callable without numba's type dispatch,
+    which costs about 1 us a call."""
+    import numba  # noqa: PLC0415
+
+    kernel(*args)
+    return kernel.overloads[tuple(numba.typeof(a) for a in args)].entry_point
+
+
 def creep_contact(buf):
     """The exact table's scalar kernel (``_exact_kernels.creep_contact``) as a plain callable:
     the ahead-of-time copy, or the entry point of numba's float signature, compiled (or loaded
-    from the cache) with ``buf``, one contact's buffer (numba's type dispatch costs about
-    1 us a call; the entry point skips it)."""
+    from the cache) with ``buf``, one contact's buffer."""
     aot = aot_module()
     if aot is not None:
         return aot.creep_contact
-    import numba  # noqa: PLC0415
-
-    kernel = exact_kernels().creep_contact
-    kernel(buf, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, False)
-    sig = next(s for s in kernel.signatures if all(a == numba.types.float64 for a in s[1:9]))
-    return kernel.overloads[sig].entry_point
+    return _entry_point(exact_kernels().creep_contact, buf, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0,
+                        1.0, False)
 
 
 def superposed_response(fbuf, ibuf, harm):
@@ -115,14 +120,11 @@ def superposed_response(fbuf, ibuf, harm):
     aot = aot_module()
     if aot is not None:
         return aot.superposed_response
-    import numba  # noqa: PLC0415
-
     from . import _response_kernels  # noqa: PLC0415  (numba: only when needed)
 
-    kernel = _response_kernels.superposed_response
-    kernel(fbuf, ibuf, harm, 0.0, 0.0, -1.0, np.zeros(4))   # r < 0: returns at once
-    sig = next(s for s in kernel.signatures if s[3] == numba.types.float64)
-    return kernel.overloads[sig].entry_point
+    # (r < 0: the kernel returns at once)
+    return _entry_point(_response_kernels.superposed_response, fbuf, ibuf, harm, 0.0, 0.0,
+                        -1.0, np.zeros(4))
 
 
 def build_aot(directory):

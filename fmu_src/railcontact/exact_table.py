@@ -57,7 +57,6 @@ f_perp). The stick fraction is unchanged by all three.
 
 from __future__ import annotations
 
-import contextlib
 import threading
 
 import numpy as np
@@ -72,8 +71,19 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT  # noqa: E402,F401  (the
 # (workqueue) aborts the process when two Python threads launch parallel loops at once, so the
 # reader's batch calls take this lock (each call already uses every core).
 _BATCH_LOCK = threading.Lock()
-_NO_LOCK = contextlib.nullcontext()
 _new_tuple = tuple.__new__
+
+
+def _batch(name, n, *args):
+    """Run the batch kernel ``name`` of :mod:`railcontact._exact_kernels` on ``n`` points:
+    its threaded copy ``<name>_parallel`` (under the lock) for at least two tasks of
+    ``PARALLEL_CHUNK`` points, else the serial one (same values, bit for bit)."""
+    kernels = _compiled.exact_kernels()
+    if n < 2 * kernels.PARALLEL_CHUNK:
+        getattr(kernels, name)(*args)
+        return
+    with _BATCH_LOCK:
+        getattr(kernels, name + "_parallel")(*args)
 
 
 def creepage_coordinate(rho, tau=0.0):
@@ -431,15 +441,8 @@ class ExactCreepTable:
         # views into the compiled kernel (numba warns: they become read-only in numpy)
         r = np.empty((flat[0].size, 14))
         ok = np.empty(flat[0].size, dtype=bool)
-        kernels = _compiled.exact_kernels()
-        if flat[0].size < 2 * kernels.PARALLEL_CHUNK:
-            kernels.creep_contact_batch(entry[0], flat[0], flat[1], flat[2], n_load, a0, b0,
-                                        e_mod, mu, jacobian, r, ok)
-        else:
-            with _BATCH_LOCK:       # (numba's parallel loop: one call at a time)
-                kernels.creep_contact_batch_parallel(entry[0], flat[0], flat[1], flat[2],
-                                                     n_load, a0, b0, e_mod, mu, jacobian, r,
-                                                     ok)
+        _batch("creep_contact_batch", flat[0].size, entry[0], flat[0], flat[1], flat[2],
+               n_load, a0, b0, e_mod, mu, jacobian, r, ok)
         if not ok.all():
             return None
         return r[:, :5].reshape(shape + (5,)), r[:, 5:].reshape(shape + (3, 3))
@@ -481,14 +484,11 @@ class ExactCreepTable:
                 slab = self._empty_slab
             r = np.zeros((idx.size, 14))
             o = np.zeros(idx.size, dtype=bool)
-            kernels = _compiled.exact_kernels()
-            parallel = idx.size >= 2 * kernels.PARALLEL_CHUNK
-            with np.errstate(all="ignore"), (_BATCH_LOCK if parallel else _NO_LOCK):
-                (kernels.creep_batch_parallel if parallel else kernels.creep_batch)(
-                    self._coef, slab, one, self._knots, self._kstart, self._poly,
-                    self.tau_max, xi_x[idx], xi_y[idx], phi[idx], mu[idx] * n_load[idx],
-                    a0[idx], b0[idx], w_sat[idx], c[0], c[1], c[2], log_g[idx], nu[idx],
-                    jacobian, r, o)
+            with np.errstate(all="ignore"):
+                _batch("creep_batch", idx.size, self._coef, slab, one, self._knots,
+                       self._kstart, self._poly, self.tau_max, xi_x[idx], xi_y[idx], phi[idx],
+                       mu[idx] * n_load[idx], a0[idx], b0[idx], w_sat[idx], c[0], c[1], c[2],
+                       log_g[idx], nu[idx], jacobian, r, o)
             o &= np.isfinite(r[:, :3]).all(axis=1)
             res[idx[o]] = r[o, :5]
             jac[idx[o]] = r[o, 5:].reshape(-1, 3, 3)

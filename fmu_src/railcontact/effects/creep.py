@@ -122,7 +122,7 @@ class Creep3D(Effect):
         # the step's arguments; their stick measures are set when read (auxiliary)
         self._force = None
         self._stick_measures = None
-        self._step_forces, self._z = (0.0, 0.0), 0.0    # the analytic step's (tx, ty), z
+        self._solution = (0.0, 0.0, 0.0)    # the analytic step's (tx, ty, z)
         self._exact = self.method == "exact"
         self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
                         in POLACH_KEYS.items()}
@@ -170,6 +170,7 @@ class Creep3D(Effect):
             # Hertz: the reader's scalar path without its own input check
             self._force = self._table.force_unchecked
             self._stick = self._table.stick_unchecked
+            self._stick_measures = self._table_stick
             self._z_max = float(self._table.table.axes[0]["nodes"][-1])
 
     def step(self, c):
@@ -182,7 +183,7 @@ class Creep3D(Effect):
             if self._force is None:
                 self._forces(c, args)
             else:       # the forces now, the stick measures when read
-                c.Fx, c.Fy = self._step_forces = self._force(*args)
+                c.Fx, c.Fy = self._force(*args)
                 self._aux_args = args
             return
         c.Fx = c.Fy = 0.0                              # no contact
@@ -204,18 +205,17 @@ class Creep3D(Effect):
         # scalar path; outside its assumptions the public function (it names the input); the
         # normalised creepage z is kept for the stick measures (auxiliary)
         if 0.0 <= args[8] < math.inf and args[4] > 0.0 and args[5] > 0.0:
-            tx, ty, self._z = creep_force_3d_scalar(*args, self.method)
-            return tx, ty
+            solution = self._solution = creep_force_3d_scalar(*args, self.method)
+            return solution[0], solution[1]
         res = creep3d.creep_solution_3d(*args, self.method)
-        self._z = float(res.normalised_creepage)
-        return float(res.tx), float(res.ty)
+        self._solution = float(res.tx), float(res.ty), float(res.normalised_creepage)
+        return self._solution[0], self._solution[1]
 
     def _analytic_stick(self, c, args):
         # the stick measures and the validity flag of the step's solution, from its forces
         # and z (a later effect may have replaced the contact's forces: not these)
         xi_x, xi_y, phi, n_load, a0, b0, _, _, mu = args
-        z = self._z
-        tx, ty = self._step_forces
+        tx, ty, z = self._solution
         stick, root, _, valid = creep_stick_3d_scalar(tx, ty, z, xi_x, xi_y, phi, mu * n_load,
                                                       a0, b0, self.method)
         c.stick_area_fraction = stick
@@ -254,10 +254,10 @@ class Creep3D(Effect):
         args, self._aux_args = self._aux_args, None
         if args is None:
             return
-        if self._stick_measures is not None:
-            self._stick_measures(c, args)
-            return
-        # scalar path of the reader (inputs as checked for the step; see step)
+        self._stick_measures(c, args)
+
+    def _table_stick(self, c, args):
+        # the modified-strip table reader's scalar path (inputs as checked for the step)
         stick, z = self._stick(*args)
         zc = z if z < 1.0 else 1.0
         c.stick_area_fraction = stick
@@ -274,14 +274,13 @@ class Creep3D(Effect):
     def get_state(self):
         return {"calls": self.calls,
                 "aux_args": None if self._aux_args is None else list(self._aux_args),
-                "step_forces": list(self._step_forces), "z": self._z}
+                "solution": list(self._solution)}
 
     def set_state(self, state):
         self.calls = int(state["calls"])
         args = state.get("aux_args")
         self._aux_args = None if args is None else tuple(args)
-        self._step_forces = tuple(state.get("step_forces", (0.0, 0.0)))
-        self._z = float(state.get("z", 0.0))
+        self._solution = tuple(state.get("solution", (0.0, 0.0, 0.0)))
 
 
 class Creep2D(Effect):
