@@ -304,6 +304,159 @@ def exact_full_sliding_limit(points):
                             -ux * np.sin(theta) + uy * np.cos(theta), zero, zero])
 
 
+#: Width R0 of the linear-limit anchoring, in the table's units (R = sqrt(rho^2 + tau^2), both
+#: rigid slips over the saturation creepage): the correction (J_Kalker - J_solver) x carries the
+#: weight exp(-(R / R0)^2), so it is whole at zero creepage (the slope there is Kalker's), below
+#: 0.1 % of mu N everywhere and below 1e-13 of mu N beyond R = 0.55.
+EXACT_LINEAR_LIMIT_WIDTH = 0.1
+#: rho of the solver's linear-response probes (full stick; relative nonlinearity ~ 1e-4)
+_EXACT_LINEAR_PROBE = 1e-4
+
+
+def _exact_solver_point(kw, key, previous):
+    """(tx, ty, mz, fine solution) at the table's solver setting: 30 x 20 and 60 x 20,
+    extrapolated once, averaged over the grids moved by :data:`EXACT_GRID_SHIFTS`; ``previous``
+    holds the last solution per (contact, grid) as the next start."""
+    import warnings  # noqa: PLC0415
+
+    from railcontact.reference.rolling3d import (  # noqa: PLC0415
+        RollingConvergenceError, solve_rolling_3d)
+
+    def solve(mx, shift, start=None):
+        start = previous.get((key, mx, shift), start)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx), initial_guess=start,
+                                     grid_shift=shift)
+            except RollingConvergenceError:
+                # one retry from zero, looser and longer; a second failure fails the chunk
+                # (finished chunks are kept, the build resumes)
+                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx, tolerance=1e-3,
+                                                  max_iterations=20000), grid_shift=shift)
+        previous[(key, mx, shift)] = r
+        return r
+
+    mx = EXACT_SOLVER["mx"]
+    tx = ty = mz = 0.0
+    for shift in EXACT_GRID_SHIFTS:
+        coarse = solve(mx, shift)
+        fine = solve(2 * mx, shift, coarse) if EXACT_RICHARDSON else coarse
+        w_f, w_c = (2.0, -1.0) if EXACT_RICHARDSON else (1.0, 0.0)
+        tx += (w_f * fine.tx + w_c * coarse.tx) / len(EXACT_GRID_SHIFTS)
+        ty += (w_f * fine.ty + w_c * coarse.ty) / len(EXACT_GRID_SHIFTS)
+        mz += (w_f * fine.mz + w_c * coarse.mz) / len(EXACT_GRID_SHIFTS)
+    return tx, ty, mz, fine
+
+
+_LINEAR_RESPONSE_CACHE = {}
+
+
+def exact_solver_linear_response(log_aspect_ratio, poisson_ratio):
+    """The solver's linear response at zero creepage on the reference contact, at the table's
+    setting, and Kalker's.
+
+    Probes ``xi_x``, ``xi_y`` and ``phi`` one at a time at ``rho = 1e-4`` saturation creepages
+    (full stick) and divides by the probe: the 3 x 3 matrix ``d(Tx, Ty, Mz) / d(xi_x, xi_y,
+    phi)``. Kalker's matrix has the linear theory's entries, Eqs. (2.61)-(2.62) (J.J. Kalker,
+    1990, Table E.3): ``-G a0 b0 C11``, ``-G a0 b0 C22``, ``-G (a0 b0)^1.5 C23`` for Ty(phi)
+    and, by Betti's reciprocity, the same magnitude for Mz(xi_y); it keeps the solver's Mz(phi)
+    (C33 is not in the shared coefficient table) and zeros where the linear theory has none.
+
+    Returns
+    -------
+    tuple of ndarray, shape (3, 3)
+        ``(solver, kalker)`` in [N, N m] per unit creepage [-] and spin [1/m].
+    """
+    from railcontact.creep3d import REFERENCE_CONTACT  # noqa: PLC0415
+    from railcontact.exact_table import exact_table_inverse  # noqa: PLC0415
+    from railcontact.kalker import kalker_coefficients  # noqa: PLC0415
+
+    key = (float(log_aspect_ratio), float(poisson_ratio))
+    if key in _LINEAR_RESPONSE_CACHE:
+        return _LINEAR_RESPONSE_CACHE[key]
+    from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
+
+    s0 = float(creepage_coordinate(_EXACT_LINEAR_PROBE))
+    base = exact_table_inverse(*np.array([[key[0], key[1], s0, 0.0, 0.0],
+                                          [key[0], key[1], s0, 0.5 * np.pi, 0.0],
+                                          [key[0], key[1], 0.0, 0.0, _EXACT_LINEAR_PROBE]]).T,
+                               contact=REFERENCE_CONTACT)
+    probes = (float(base["creepage_longitudinal"][0]), float(base["creepage_lateral"][1]),
+              float(base["spin"][2]))
+    solver = np.zeros((3, 3))
+    previous = {}
+    for j, size in enumerate(probes):
+        kw = {k: float(v[0]) for k, v in base.items()}
+        kw.update(creepage_longitudinal=0.0, creepage_lateral=0.0, spin=0.0)
+        kw[("creepage_longitudinal", "creepage_lateral", "spin")[j]] = size
+        tx, ty, mz, _ = _exact_solver_point(kw, key, previous)
+        solver[:, j] = np.array([tx, ty, mz]) / size
+    a0, b0, nu = float(base["a0"][0]), float(base["b0"][0]), key[1]
+    g_mod = REFERENCE_CONTACT["youngs_modulus"] / (2.0 * (1.0 + nu))
+    c = kalker_coefficients(a0 / b0, nu)
+    ab = a0 * b0
+    kalker = np.zeros((3, 3))
+    kalker[0, 0] = -g_mod * ab * float(c.c11)
+    kalker[1, 1] = -g_mod * ab * float(c.c22)
+    kalker[1, 2] = -g_mod * ab**1.5 * float(c.c23)
+    kalker[2, 1] = np.sign(solver[2, 1]) * g_mod * ab**1.5 * float(c.c23)
+    kalker[2, 2] = solver[2, 2]
+    if not (np.sign(solver[0, 0]) == np.sign(solver[1, 1]) == np.sign(solver[1, 2]) == -1.0):
+        raise RuntimeError(f"the solver's linear response has unexpected signs: {solver}")
+    _LINEAR_RESPONSE_CACHE[key] = (solver, kalker)
+    return solver, kalker
+
+
+def exact_linear_limit_correction(points):
+    """Anchoring of the table to the exact theory's linear limit, Kalker's creep coefficients:
+    ``(J_Kalker - J_solver) x exp(-(R / R0)^2)`` in table units, added to the solver's values.
+
+    The exact theory's slope at zero creepage *is* Kalker's linear theory (his coefficients are
+    its solution, Kalker 1990, Table E.3). The discretised solver approaches it only slowly:
+    the stick traction has an inverse-square-root edge singularity, so C11 at a0/b0 = 1, nu = 0
+    reads 3.3715 at the table's setting (30 x 20 -> 60 x 20), 3.3845, 3.3926, 3.3946 on grids
+    of 60 x 40, 120 x 80, 200 x 100 (error of order about h^0.7; extrapolated 3.406 against
+    Kalker's 3.40). The correction replaces the solver's linear part by Kalker's near zero and
+    fades with R = sqrt(rho^2 + tau^2) (``R0`` = :data:`EXACT_LINEAR_LIMIT_WIDTH`): it is
+    linear times an even Gaussian, so it keeps every symmetry of the table, and it is at most
+    0.43 R0 |J_K - J_s| / (mu N) (about 0.1 % of mu N) in the middle of the fade.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 5)
+        Table points (ln(a0/b0), nu, s, theta, tau), any signs, ``|s| < 1``.
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        Corrections of (f_par, f_perp, spin moment ratio). [-]
+    """
+    from railcontact.creep3d import REFERENCE_CONTACT  # noqa: PLC0415
+    from railcontact.exact_table import creepage_magnitude, exact_table_inverse  # noqa: PLC0415
+
+    points = np.asarray(points, dtype=float)
+    out = np.zeros((len(points), 3))
+    rho = creepage_magnitude(points[:, 2], points[:, 4])
+    weight = np.exp(-(rho**2 + points[:, 4] ** 2) / EXACT_LINEAR_LIMIT_WIDTH**2)
+    near = np.nonzero(weight > 1e-16)[0]
+    if near.size == 0:
+        return out
+    phys = exact_table_inverse(*points[near, :5].T, contact=REFERENCE_CONTACT)
+    x = np.column_stack([phys["creepage_longitudinal"], phys["creepage_lateral"], phys["spin"]])
+    d = np.empty((near.size, 3))
+    for i in range(near.size):
+        solver, kalker = exact_solver_linear_response(points[near[i], 0], points[near[i], 1])
+        d[i] = (kalker - solver) @ x[i] * weight[near[i]]
+    mu_n = REFERENCE_CONTACT["friction_coefficient"] * REFERENCE_CONTACT["normal_load"]
+    c, s = np.cos(points[near, 3]), np.sin(points[near, 3])
+    fx, fy = -d[:, 0] / mu_n, -d[:, 1] / mu_n
+    out[near, 0] = fx * c + fy * s
+    out[near, 1] = -fx * s + fy * c
+    out[near, 2] = d[:, 2] / (mu_n * np.sqrt(phys["a0"] * phys["b0"]))
+    return out
+
+
 def exact_creep_function(points):
     """Exact-theory values at table points (n, 5) in the quarter s >= 0, |theta| <= pi/2,
     tau >= 0: (f_par, f_perp, spin moment ratio, stick area fraction); see
@@ -314,16 +467,14 @@ def exact_creep_function(points):
     extrapolates once (Richardson, first order in the rolling-direction element size) and
     averages the grids moved by :data:`EXACT_GRID_SHIFTS` (what ``creep_solution_3d(...,
     method="exact")`` does by default); each grid starts from the previous point's solution
-    on it when the contact is the same (only the number of sweeps changes). The stick area
+    on it when the contact is the same (only the number of sweeps changes). Near zero creepage
+    and spin the forces and moment are anchored to Kalker's linear theory
+    (:func:`exact_linear_limit_correction`). The stick area
     fraction is the last fine grid's element count. At s = 1 (infinite creepage) the values are the full-sliding
     limit, :func:`exact_full_sliding_limit` (no solver).
     """
-    import warnings  # noqa: PLC0415
-
     from railcontact.creep3d import REFERENCE_CONTACT  # noqa: PLC0415
     from railcontact.exact_table import exact_table_inverse  # noqa: PLC0415
-    from railcontact.reference.rolling3d import (  # noqa: PLC0415
-        RollingConvergenceError, solve_rolling_3d)
 
     points = np.asarray(points, dtype=float)
     out = np.empty((len(points), 4))
@@ -340,33 +491,10 @@ def exact_creep_function(points):
         phys[name] = phys[name] * lam
     previous = {}
 
-    def solve(kw, mx, key, shift, start=None):
-        start = previous.get((key, mx, shift), start)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            try:
-                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx), initial_guess=start,
-                                     grid_shift=shift)
-            except RollingConvergenceError:
-                # one retry from zero, looser and longer; a second failure fails the chunk
-                # (finished chunks are kept, the build resumes)
-                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx, tolerance=1e-3,
-                                                  max_iterations=20000), grid_shift=shift)
-        previous[(key, mx, shift)] = r
-        return r
-
     for i in np.nonzero(finite)[0]:
         kw = {k: float(v[i]) for k, v in phys.items()}
         key = (points[i, 0], points[i, 1])               # same contact: same grid, pressure
-        mx = EXACT_SOLVER["mx"]
-        tx = ty = mz = 0.0
-        for shift in EXACT_GRID_SHIFTS:
-            coarse = solve(kw, mx, key, shift)
-            fine = solve(kw, 2 * mx, key, shift, coarse) if EXACT_RICHARDSON else coarse
-            w_f, w_c = (2.0, -1.0) if EXACT_RICHARDSON else (1.0, 0.0)
-            tx += (w_f * fine.tx + w_c * coarse.tx) / len(EXACT_GRID_SHIFTS)
-            ty += (w_f * fine.ty + w_c * coarse.ty) / len(EXACT_GRID_SHIFTS)
-            mz += (w_f * fine.mz + w_c * coarse.mz) / len(EXACT_GRID_SHIFTS)
+        tx, ty, mz, fine = _exact_solver_point(kw, key, previous)
         mu_n = kw["friction_coefficient"] * kw["normal_load"]
         n_contact = np.count_nonzero(fine.pn > 0.0)
         c, s = np.cos(points[i, 3]), np.sin(points[i, 3])
@@ -374,6 +502,7 @@ def exact_creep_function(points):
         out[i] = (fx * c + fy * s, -fx * s + fy * c,
                   mz / (mu_n * np.sqrt(kw["a0"] * kw["b0"])),
                   np.count_nonzero(fine.adhesion) / max(n_contact, 1))
+    out[finite, :3] += exact_linear_limit_correction(points[finite])
     return out
 
 
@@ -445,7 +574,9 @@ register(TableSpec(
     method=("railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20, "
             "scale 1.08, tolerance 1e-4, extrapolated 2 F(60 x 20) - F(30 x 20) on the grids "
             "moved -1/4 and +1/4 of an element and averaged (creep_force_3d(method='exact')'s "
-            "default), on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3"),
+            "default), on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3; forces and "
+            "moment anchored near zero creepage and spin to Kalker's linear theory "
+            "(tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)"),
     check_points=_exact_check,
     analytic_points=_exact_analytic_points,
     n_check={"coarse": 100, "default": 1000, "fine": 4000},
@@ -457,6 +588,11 @@ register(TableSpec(
                        "1.08 b0], one Richardson step, on the grids moved -1/4 and +1/4 of an "
                        "element, averaged",
         "spin_coordinate_max": EXACT_TAU_MAX,
+        "linear_limit": (
+            "slope at zero creepage and spin anchored to Kalker's linear theory (C11, C22, "
+            "C23; the solver's own Mz(phi)): (J_Kalker - J_solver) x exp(-(R / 0.1)^2) added "
+            "to the solver's forces and moment, R = sqrt(rho^2 + tau^2); at most about 0.1 % "
+            "of mu N; see tablegen.specs.exact_linear_limit_correction"),
         "creepage_coordinate_spin_weight": 1.0,
         "normalisation": (
             "forces over mu N depend only on a0/b0, nu and the Kalker-weighted creepages "
