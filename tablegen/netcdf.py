@@ -86,6 +86,10 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                         "the knots continue periodically beyond it, so C2 across the seam)"
                         if getattr(a, "periodic", False) else
                         "not-a-knot interpolation; double knots repeat a node")})
+    digits = getattr(spec, "significant_digits", None)
+    if digits and not (getattr(spec, "node_values_float32", False)
+                       and getattr(spec, "coefficients_float32", False)):
+        raise ValueError("significant_digits needs node_values_float32 and coefficients_float32")
     for k, v in enumerate(spec.variables):
         acc = accuracy[v.name]
         met = acc["max_abs_error"] <= v.error_target
@@ -107,7 +111,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 f"{int(acc['n_check_points'])} seeded random off-grid points"
                 + ("" if met else "; TARGET NOT MET")),
             "comment": v.comment,
-            **({"node_value_precision": "float32"} if single else {})})
+            **({"node_value_precision": "float32"} if single else {}),
+            **({"significant_digits": np.int32(digits)} if digits else {})})
         single_coef = getattr(spec, "coefficients_float32", False)
         data_vars[f"{v.name}_bspline_coefficients"] = (cdims, (
             coefficients[k].astype(np.float32) if single_coef else coefficients[k]), {
@@ -115,7 +120,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "long_name": f"tensor-product cubic B-spline coefficients of {v.name}",
             "comment": "value = sum over i of c[i1,...,iD] * prod_d B(d, i_d)(x_d), with the "
                        "degree-3 B-splines of the knot vectors <axis>_knots",
-            **({"coefficient_precision": "float32"} if single_coef else {})})
+            **({"coefficient_precision": "float32"} if single_coef else {}),
+            **({"significant_digits": np.int32(digits)} if digits else {})})
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {
         "Conventions": "CF-1.8",
@@ -143,6 +149,11 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     for name in ds.data_vars:
         if ds[name].ndim >= 2:
             encoding[name].update(zlib=True, complevel=4, shuffle=True)
+            if digits and name.removesuffix("_bspline_coefficients") in {
+                    v.name for v in spec.variables}:
+                # netCDF-4 quantisation: trailing mantissa bits zeroed (any reader reads floats)
+                encoding[name].update(significant_digits=int(digits),
+                                      quantize_mode="GranularBitRound", complevel=9)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")
     ds.to_netcdf(tmp, format="NETCDF4", encoding=encoding)

@@ -134,6 +134,13 @@ class TableSpec:
         attribute ``coefficient_precision = "float32"`` (readers evaluate in float64; the
         rounding, 6e-8 relative, is far below a table's interpolation error): halves the file
         again.
+    significant_digits : int, optional
+        With float32 node values and coefficients: keep only this many significant decimal
+        digits of each stored number (netCDF-4 quantisation, GranularBitRound; the trailing
+        mantissa bits are zeroed, so zlib compresses them away and any netCDF reader reads
+        plain floats). Declared by the variables' attribute ``significant_digits``; the
+        reader checks the nodes to ``10^(1 - digits)``. The spline stays exactly C2 (its
+        coefficients change by at most about ``10^-digits`` of their size).
     reduce : callable, optional
         ``reduce(axes) -> (points, assemble)`` for tables with symmetries: ``function`` is
         called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
@@ -163,6 +170,7 @@ class TableSpec:
     reduce: Callable | None = None
     node_values_float32: bool = False
     coefficients_float32: bool = False
+    significant_digits: int | None = None
     analytic_points: Callable | None = None
 
     def available(self):

@@ -151,8 +151,9 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (9, 5, 21, 13, 19),   # theta every 15 degrees (30 until 2026-11-26: with
-    # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes)
+    "default": (9, 5, 23, 13, 23),   # theta every 15 degrees (30 until 2026-11-26: with
+    # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes);
+    # rho and tau with 2 and 4 more nodes since 2026-11-27 (below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -160,20 +161,24 @@ EXACT_ASPECT_RANGE = (0.1, 10.0)
 _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (inf: full
     # sliding), w = sqrt(1 + tau^2). Graded towards 0: without spin the force's curvature jumps
     # there (Carter's 2 r - r |r|), and the spline's slope at 0 errs in proportion to the first
-    # interval (0.08 put it 4.5 % below Kalker's coefficients, 0.006 about 0.2 %); crowded
-    # near r = 1, the onset of full sliding without spin
+    # interval (0.08 put it 4.5 % below Kalker's coefficients; 0.006 up to 0.8 % at a0/b0 =
+    # 10, where the lateral force bends within rho ~ 0.01: 0.0007 and 0.002 added, which
+    # leaves 0.05 % in a 1-D fit of the solver's values); crowded near r = 1, the onset of
+    # full sliding without spin
     "coarse": [0.0, 0.5, 0.9, 1.1, 1.6, 3.0, np.inf],
-    "default": [0.0, 0.006, 0.02, 0.045, 0.09, 0.17, 0.28, 0.45, 0.62, 0.77, 0.88, 0.96, 1.03,
-                1.1, 1.22, 1.45, 1.85, 2.5, 3.6, 6.0, np.inf],
+    "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.17, 0.28, 0.45, 0.62, 0.77,
+                0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5, 3.6, 6.0, np.inf],
     "fine": [0.0, 0.004, 0.012, 0.03, 0.06, 0.1, 0.15, 0.3, 0.45, 0.58, 0.7, 0.8, 0.88, 0.94,
              0.99, 1.03, 1.07, 1.12, 1.2, 1.32, 1.5, 1.8, 2.5, 4.0, np.inf],
 }
 _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (the spin's force
     # at zero combined creepage starts at second order), about uniform where the adhesion
-    # area vanishes with growing spin (tau ~ 1.5-3, a kink in the slope), geometric beyond
+    # area vanishes with growing spin (tau ~ 1.5-3, a kink in the slope), geometric beyond;
+    # 0.875, 1.45, 2.25 and 16.5 added 2026-11-27 (midway errors up to 0.5-0.8 % of mu N in
+    # those intervals, at most 0.1 % in the others but 13.5-20: 0.2 %)
     "coarse": [0.0, 1.0, 2.5, 6.0, 20.0],
-    "default": [0.0, 0.03, 0.1, 0.25, 0.5, 0.75, 1.0, 1.3, 1.6, 2.0, 2.5, 3.0, 3.6, 4.4, 5.5,
-                7.0, 9.5, 13.5, 20.0],
+    "default": [0.0, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 2.0, 2.25, 2.5,
+                3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
     "fine": [0.0, 0.03, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.25, 2.5, 2.8,
              3.2, 3.6, 4.1, 4.7, 5.5, 7.0, 10.0, 14.0, 20.0],
 }
@@ -550,8 +555,10 @@ register(TableSpec(
     axes=_exact_axes,
     function=exact_creep_function,
     reduce=_exact_reduce,
-    node_values_float32=True,      # 1,164,375 nodes x 4 variables: with the coefficients
-    coefficients_float32=True,     # in float32 too the file stays under 20 MB
+    node_values_float32=True,      # 2,460,375 nodes x 4 variables: with the coefficients
+    coefficients_float32=True,     # in float32 too, and to 5 significant digits (6e-6 of mu
+    significant_digits=5,          # N at most; far below the interpolation error), the file
+    # stays under 20 MB
     variables=[
         Variable("force_ratio_parallel", "1", "force on the wheel over the Coulomb limit, "
                  "component opposing the combined creepage v: f_par = -T.e/(mu N), e = "

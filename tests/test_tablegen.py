@@ -292,3 +292,45 @@ def test_float32_coefficients_are_declared_and_read(tmp_path, monkeypatch):
         nc.variables["f_bspline_coefficients"].delncattr("coefficient_precision")
     with pytest.raises(TableFileError, match="'f_bspline_coefficients' is stored as float32"):
         Table.from_file(res["path"])
+
+
+def test_quantised_tables_are_declared_read_and_smaller(tmp_path, monkeypatch):
+    """A spec with ``significant_digits`` (the exact creep table: 5) stores its float32 node
+    values and coefficients quantised (netCDF-4 GranularBitRound, trailing mantissa bits
+    zeroed, so zlib compresses them), declares the digits on both, and the reader accepts the
+    file and evaluates the same spline to the declared digits (not bit for bit); a declaration
+    on one of the two only is refused by name."""
+    import netCDF4
+
+    spec = get_spec("selftest")
+    monkeypatch.setattr(spec, "node_values_float32", True)
+    monkeypatch.setattr(spec, "coefficients_float32", True)
+    ref = build_table("selftest", "coarse", output_dir=tmp_path / "a", scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False, keep_chunks=True)
+    monkeypatch.setattr(spec, "significant_digits", 4)
+    res = build_table("selftest", "coarse", output_dir=tmp_path / "b", scheduler="synchronous",
+                      workdir=tmp_path / "w", progress=False)
+    with netCDF4.Dataset(res["path"]) as nc:
+        for v in spec.variables:
+            for name in (v.name, f"{v.name}_bspline_coefficients"):
+                var = nc.variables[name]
+                assert int(var.getncattr("significant_digits")) == 4
+                data = np.asarray(var[:], dtype=np.float32)
+                # GranularBitRound: at most ~4 digits' worth of mantissa bits are kept
+                low_bits = data.view(np.uint32) & np.uint32((1 << 8) - 1)
+                assert np.all(low_bits == 0)
+    a, b = Table.from_file(ref["path"]), Table.from_file(res["path"])
+    pts = np.column_stack([np.linspace(0.0, 2.0, 41), np.linspace(0.5, 2.0, 41)])
+    scale = np.abs(a.spline.evaluate(pts)).max()
+    np.testing.assert_allclose(b.spline.evaluate(pts), a.spline.evaluate(pts), rtol=0,
+                               atol=2e-4 * scale)
+    assert not np.array_equal(b.spline.evaluate(pts), a.spline.evaluate(pts))
+    with netCDF4.Dataset(res["path"], "a") as nc:
+        nc.variables["f_bspline_coefficients"].delncattr("significant_digits")
+    with pytest.raises(TableFileError, match="'f' and its coefficients must declare the same "
+                                             "significant_digits"):
+        Table.from_file(res["path"])
+    monkeypatch.setattr(spec, "coefficients_float32", False)
+    with pytest.raises(ValueError, match="significant_digits needs node_values_float32"):
+        build_table("selftest", "coarse", output_dir=tmp_path / "c", scheduler="synchronous",
+                    workdir=tmp_path / "w", progress=False)

@@ -512,6 +512,24 @@ def _check_float64(where, name, values):
             "original file or rebuild it with `python -m tablegen build`")
 
 
+def _declared_digits(where, name, attrs, coef_attrs):
+    """Significant digits a float32 table's variable declares (attribute
+    ``significant_digits`` on the node values and the coefficients alike: netCDF-4
+    quantisation, see tablegen.spec.TableSpec.significant_digits), or None."""
+    got = attrs.get("significant_digits"), coef_attrs.get("significant_digits")
+    if got == (None, None):
+        return None
+    try:
+        digits = {int(np.asarray(g).item()) for g in got}
+    except (TypeError, ValueError):
+        digits = set()
+    if len(digits) != 1 or not 3 <= next(iter(digits)) <= 7:
+        raise TableFileError(
+            f"{where}: variable {name!r} and its coefficients must declare the same "
+            f"significant_digits, an integer in [3, 7]; got {got}")
+    return digits.pop()
+
+
 def _attr_list(value):
     arr = np.atleast_1d(np.asarray(value))
     if arr.dtype.kind in "US":
@@ -633,8 +651,11 @@ class Table:
                 raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
                                      f"expected {shape} (truncated?)")
             single = str(a.get("node_value_precision", "")) == "float32"
+            digits = _declared_digits(where, name, a, ca) if single else None
             if single and val.dtype == np.float32:
-                tolerance.append(1e-6)       # declared float32 node values (viewers only)
+                # declared float32 node values (viewers only); declared quantised to
+                # ``digits`` significant digits (node values and coefficients): 10^(1 - digits)
+                tolerance.append(1e-6 if digits is None else 10.0 ** (1 - digits))
             else:
                 _check_float64(where, name, val)
                 tolerance.append(1e-9)
