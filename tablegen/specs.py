@@ -184,6 +184,20 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
 }
 
 
+#: creepage angles of the computed quarter [deg] where they are not uniform (symmetric about
+#: 0; the full circle adds 180 - theta and the seam)
+_EXACT_THETA = {}
+
+
+def _full_circle(theta):
+    """The periodic angle nodes over [-pi, pi] of the quarter nodes ``theta`` in [-pi/2,
+    pi/2] (symmetric about 0): theta, pi - theta, wrapped, with both ends of the seam."""
+    both = np.r_[theta, np.pi - theta]
+    wrapped = (both + np.pi) % (2.0 * np.pi) - np.pi
+    nodes = np.unique(np.round(wrapped, 12))
+    return np.r_[nodes, nodes[0] + 2.0 * np.pi]
+
+
 def _exact_quarter(resolution):
     """Nodes of the computed quarter: ln g, nu, s >= 0, theta in [-pi/2, pi/2], tau >= 0."""
     from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
@@ -192,15 +206,16 @@ def _exact_quarter(resolution):
     rho = np.asarray(_EXACT_RHO[resolution])
     tau = np.asarray(_EXACT_TAU[resolution])
     assert len(rho) == n_r and len(tau) == n_s and tau[-1] == EXACT_TAU_MAX
+    theta = (np.radians(_EXACT_THETA[resolution]) if resolution in _EXACT_THETA
+             else np.linspace(-0.5 * np.pi, 0.5 * np.pi, n_t))
+    assert len(theta) == n_t and np.allclose(theta, -theta[::-1])
     return (np.linspace(*np.log(EXACT_ASPECT_RANGE), n_g), np.linspace(0.0, 0.5, n_nu),
-            creepage_coordinate(rho), np.linspace(-0.5 * np.pi, 0.5 * np.pi, n_t), tau)
+            creepage_coordinate(rho), theta, tau)
 
 
 def _exact_axes(resolution):
     g, nu, s, theta, tau = _exact_quarter(resolution)
-    h = theta[1] - theta[0]
-    n_half = int(round(np.pi / h))
-    full_theta = -np.pi + h * np.arange(2 * n_half + 1)
+    full_theta = _full_circle(theta)
     return [
         Axis("log_aspect_ratio", g, "1",
              "natural logarithm of the semi-axis ratio a0/b0 (rolling over lateral)",
@@ -237,7 +252,6 @@ def _exact_reduce(axes):
 
     # index maps: every full node (s, theta, tau) to a quarter node and sign pattern
     n_s, n_t, n_u = len(s), len(theta), len(tau)
-    h = theta[1] - theta[0]
     src = np.zeros((n_s, n_t, n_u, 3), dtype=int)
     sgn = np.zeros((n_s, n_t, n_u, 3))        # multipliers of f_par, f_perp, moment
     for i, s_i in enumerate(s):
@@ -252,7 +266,7 @@ def _exact_reduce(axes):
                     uu, tt, fp, fm = -uu, -tt, -fp, -fm
                 if abs(tt) > 0.5 * np.pi + 1e-9:  # S3: reverse x at fixed spin
                     tt, fp = (np.pi - tt + np.pi) % (2.0 * np.pi) - np.pi, -fp
-                jj = int(round((tt + 0.5 * np.pi) / h))
+                jj = int(np.argmin(np.abs(th_q - tt)))
                 ii = int(np.argmin(np.abs(s_q - ss)))
                 kk = int(np.argmin(np.abs(tau_q - uu)))
                 assert abs(th_q[jj] - tt) < 1e-9 and abs(s_q[ii] - ss) < 1e-12 \

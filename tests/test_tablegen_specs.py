@@ -262,3 +262,66 @@ def test_ncdump_reads_new_tables(path):
     out = subprocess.run(["ncdump", "-h", str(path)], capture_output=True, text=True,
                          check=True).stdout
     assert ":Conventions = \"CF-1.8\"" in out and "max_abs_error" in out
+
+
+# --------------------------------------------------------------------------------------------
+# creep_exact: the anchoring to the linear limit and the angle nodes
+# --------------------------------------------------------------------------------------------
+
+def test_solver_slope_converges_towards_kalker_which_the_table_is_anchored_to(monkeypatch):
+    """The premise of ``exact_linear_limit_correction``: the discretised solver's slope at zero
+    creepage tends to Kalker's coefficient as the grid is refined (slowly: the stick traction
+    is singular at the edge), so Kalker's value is the converged one. C11 at a0/b0 = 1, nu = 0:
+    measured -0.84 % at the table's setting (30 x 20 -> 60 x 20), -0.50 % at 60 x 40 -> 120 x
+    40, -0.22 % at 120 x 80 -> 240 x 80 (Kalker 1990, Table E.3: 3.40)."""
+    import tablegen.specs as sp
+    from railcontact.kalker import kalker_coefficients
+
+    want = float(kalker_coefficients(1.0, 0.0).c11)
+    monkeypatch.setattr(sp, "_LINEAR_RESPONSE_CACHE", {})
+    solver, kalker = sp.exact_solver_linear_response(0.0, 0.0)
+    coarse = solver[0, 0] / kalker[0, 0] - 1.0
+    monkeypatch.setattr(sp, "_LINEAR_RESPONSE_CACHE", {})
+    monkeypatch.setitem(sp.EXACT_SOLVER, "mx", 60)
+    monkeypatch.setitem(sp.EXACT_SOLVER, "my", 40)
+    fine = sp.exact_solver_linear_response(0.0, 0.0)[0]
+    fine_err = fine[0, 0] / kalker[0, 0] - 1.0
+    assert kalker[0, 0] == pytest.approx(-210e9 / 2 * 36e-6 * want, rel=1e-12)
+    assert -0.0095 < coarse < -0.0075                     # measured -0.84 %
+    assert 0.7 * coarse < fine_err < 0.0                  # measured -0.50 %
+    # Betti's reciprocity in the solver: Mz(xi_y) and Ty(phi) have one coefficient
+    assert solver[2, 1] == pytest.approx(-solver[1, 2], rel=2e-3)
+
+
+def test_anchored_point_function_has_kalkers_slope_and_a_small_fading_correction():
+    """End to end through the build's point function: at rho = 1e-4 (full stick) the anchored
+    force is Kalker's linear theory, f_par = (3 pi / 4) rho in the table's units, in the
+    longitudinal and the lateral direction at a0/b0 = 0.1 and 10 (solver alone: up to 0.8 %
+    off); the correction keeps the mirror symmetry S1 (v_y, tau) -> (-v_y, -tau), stays below
+    0.12 % of mu N and vanishes beyond R = 0.6."""
+    import tablegen.specs as sp
+    from railcontact.exact_table import creepage_coordinate
+
+    rho = 1e-4
+    for g in (0.1, 10.0):
+        pts = np.array([[np.log(g), nu, creepage_coordinate(rho), th, 0.0]
+                        for nu in (0.0, 0.5) for th in (0.0, 0.5 * np.pi)])
+        f = sp.exact_creep_function(pts)
+        np.testing.assert_allclose(f[:, 0] / (0.75 * np.pi * rho), 1.0, atol=3e-4)
+        np.testing.assert_allclose(f[:, 1], 0.0, atol=1e-9)
+    rng = np.random.default_rng(5)
+    n = 400
+    r = np.exp(rng.uniform(np.log(1e-3), np.log(1.0), n))
+    tau = rng.uniform(0.0, 0.3, n) * rng.choice([0.0, 1.0], n)
+    pts = np.column_stack([rng.uniform(np.log(0.1), np.log(10.0), n), rng.uniform(0, 0.5, n),
+                           creepage_coordinate(r, tau), rng.uniform(-np.pi, np.pi, n), tau])
+    pts[:, :2] = np.round(pts[:, :2] * 4) / 4          # a few contacts (probes are cached)
+    d = sp.exact_linear_limit_correction(pts)
+    mirror = pts * np.array([1, 1, 1, -1, -1])
+    d_m = sp.exact_linear_limit_correction(mirror)
+    # (to the solver's tolerance: its off-diagonal responses are ~1e-6 of the diagonal)
+    np.testing.assert_allclose(d_m, d * np.array([1, -1, -1]), atol=5e-6)
+    assert np.abs(d).max() < 1.2e-3
+    assert np.abs(d).max() > 1e-4                       # it does something
+    far = np.hypot(r, tau) > 0.6
+    assert far.any() and np.all(d[far] == 0.0)
