@@ -151,9 +151,9 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (9, 5, 23, 13, 23),   # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (9, 5, 23, 13, 25),   # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes);
-    # rho and tau with 2 and 4 more nodes since 2026-11-27 (below)
+    # rho and tau with 2 and 6 more nodes since 2026-11-27 (below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -175,10 +175,12 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
     # at zero combined creepage starts at second order), about uniform where the adhesion
     # area vanishes with growing spin (tau ~ 1.5-3, a kink in the slope), geometric beyond;
     # 0.875, 1.45, 2.25 and 16.5 added 2026-11-27 (midway errors up to 0.5-0.8 % of mu N in
-    # those intervals, at most 0.1 % in the others but 13.5-20: 0.2 %)
+    # those intervals, at most 0.1 % in the others but 13.5-20: 0.2 %); 0.003 and 0.01 too:
+    # along pure spin the force leaves the linear theory by 0.8 % within tau = 0.03 at a0/b0
+    # = 10, and with the first node there the slope d Ty / d phi at zero (C23) erred 0.85 %
     "coarse": [0.0, 1.0, 2.5, 6.0, 20.0],
-    "default": [0.0, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 2.0, 2.25, 2.5,
-                3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
+    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 2.0,
+                2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
     "fine": [0.0, 0.03, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.25, 2.5, 2.8,
              3.2, 3.6, 4.1, 4.7, 5.5, 7.0, 10.0, 14.0, 20.0],
 }
@@ -569,9 +571,9 @@ register(TableSpec(
     axes=_exact_axes,
     function=exact_creep_function,
     reduce=_exact_reduce,
-    node_values_float32=True,      # 2,460,375 nodes x 4 variables: with the coefficients
-    coefficients_float32=True,     # in float32 too, and to 5 significant digits (6e-6 of mu
-    significant_digits=5,          # N at most; far below the interpolation error), the file
+    node_values_float32=True,      # 2,679,075 nodes x 4 variables: with the coefficients
+    coefficients_float32=True,     # in float32 too, and to 4 significant digits (5e-5 of mu
+    significant_digits=4,          # N at most; far below the interpolation error), the file
     # stays under 20 MB
     variables=[
         Variable("force_ratio_parallel", "1", "force on the wheel over the Coulomb limit, "
