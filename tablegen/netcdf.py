@@ -112,7 +112,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 + ("" if met else "; TARGET NOT MET")),
             "comment": v.comment,
             **({"node_value_precision": "float32"} if single else {}),
-            **({"significant_digits": np.int32(digits)} if digits else {})})
+            **({"significant_digits": np.int32(v.significant_digits or digits)}
+               if digits else {})})
         single_coef = getattr(spec, "coefficients_float32", False)
         data_vars[f"{v.name}_bspline_coefficients"] = (cdims, (
             coefficients[k].astype(np.float32) if single_coef else coefficients[k]), {
@@ -121,7 +122,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "comment": "value = sum over i of c[i1,...,iD] * prod_d B(d, i_d)(x_d), with the "
                        "degree-3 B-splines of the knot vectors <axis>_knots",
             **({"coefficient_precision": "float32"} if single_coef else {}),
-            **({"significant_digits": np.int32(digits)} if digits else {})})
+            **({"significant_digits": np.int32(v.significant_digits or digits)}
+               if digits else {})})
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {
         "Conventions": "CF-1.8",
@@ -149,10 +151,11 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     for name in ds.data_vars:
         if ds[name].ndim >= 2:
             encoding[name].update(zlib=True, complevel=4, shuffle=True)
-            if digits and name.removesuffix("_bspline_coefficients") in {
-                    v.name for v in spec.variables}:
+            var = {v.name: v for v in spec.variables}.get(
+                name.removesuffix("_bspline_coefficients"))
+            if digits and var is not None:
                 # netCDF-4 quantisation: trailing mantissa bits zeroed (any reader reads floats)
-                encoding[name].update(significant_digits=int(digits),
+                encoding[name].update(significant_digits=int(var.significant_digits or digits),
                                       quantize_mode="GranularBitRound", complevel=9)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")

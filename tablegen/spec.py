@@ -79,6 +79,9 @@ class Variable:
     error_target : float
         Target for the maximum error on the off-grid check points, in units of error_scale.
     comment : str
+    significant_digits : int, optional
+        This variable's digits where the spec quantises (``TableSpec.significant_digits``);
+        default the spec's.
     """
 
     name: str
@@ -87,6 +90,7 @@ class Variable:
     error_scale: float = 1.0
     error_target: float = 1e-4
     comment: str = ""
+    significant_digits: int | None = None
 
 
 @dataclass
