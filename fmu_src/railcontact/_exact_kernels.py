@@ -200,8 +200,12 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
     # hold only to their rounding
     at_limit = s >= 1.0 and mag > 0.0
     k = (1.0 - 2.0**-51) / mag if (mag > 1.0 or at_limit) else 1.0
-    c = math.cos(theta)
-    sn = math.sin(theta)
+    if 0.0 < rho < math.inf:   # cos, sin of theta = atan2(v_y, v_x) without the calls
+        c = v_x / rho
+        sn = v_y / rho
+    else:   # (at rho = 0 the signed zeros decide theta = 0 or pi)
+        c = math.cos(theta)
+        sn = math.sin(theta)
     res[0] = -mu_n * k * (f_par * c - f_perp * sn)
     res[1] = -mu_n * k * (f_par * sn + f_perp * c)
     res[2] = mu_n * root_ab * moment
