@@ -521,7 +521,8 @@ def family_3d(quick, workdir):
             t1 = per_call(lambda: tab.creep_force_3d(*args1))
             tb = per_call(lambda: tab.creep_force_3d(*sub)) / int(ok.sum())
             shape = "x".join(str(len(a["nodes"])) for a in tab.table.axes)
-            note = "solver 40x20 -> 80x20 extrapolated at the nodes; every a/b, nu, sign"
+            note = ("solver 30x20 -> 60x20 extrapolated on two shifted grids at the nodes, "
+                    "anchored to Kalker's linear theory near zero; every a/b, nu, sign")
             add("table: exact theory (C2 spline)", f"{label} ({shape})", tx, ty, t1, tb, note)
         except Exception as exc:
             fam.notes.append(f"exact-theory table ({label}): {exc!r}")
@@ -976,7 +977,11 @@ def plot(families, contact_errors, path):
         groups = {}
         for r in fam3.rows:
             if np.isfinite(r.error_peer2):
-                groups.setdefault(r.method.split(":")[0].split(" (")[0], []).append(r)
+                name = r.method.split(":")[0].split(" (")[0]
+                if name == "table":      # the exact-theory table apart from the strip tables
+                    name = ("exact-theory table (ours)" if "exact theory" in r.method
+                            else "modified-strip table")
+                groups.setdefault(name, []).append(r)
         k = 0
         for gi, (name, rows) in enumerate(groups.items()):
             if name in ("closed form", "comparison"):
@@ -989,11 +994,17 @@ def plot(families, contact_errors, path):
                                color=colors[k % len(colors)], label=lab)
                     k += 1
                 continue
+            ours = name.startswith("exact-theory table")
             ax.scatter([r.t_single for r in rows], [max(r.error_peer2, floor) for r in rows],
-                       color="0.5" if name.startswith("exact") else colors[(gi + 5) % 10],
-                       marker="." if name.startswith("exact") else "d", s=30, label=name)
+                       color="0.5" if name.startswith("exact theory") else colors[(gi + 5) % 10],
+                       marker="." if name.startswith("exact theory") else ("*" if ours else "d"),
+                       s=140 if ours else 30, edgecolor="k" if ours else None, zorder=5,
+                       label=name)
             for r in rows:
-                if name.startswith("exact"):
+                if ours:
+                    ax.annotate("exact-theory table", (r.t_single, max(r.error_peer2, floor)),
+                                fontsize=7, xytext=(6, -3), textcoords="offset points")
+                if name.startswith("exact theory"):
                     ax.annotate(r.knob.split(",")[0].split(" ->")[0][:10],
                                 (r.t_single, max(r.error_peer2, floor)), fontsize=5.5,
                                 xytext=(3, 2), textcoords="offset points", color="0.3")
@@ -1034,7 +1045,7 @@ def plot(families, contact_errors, path):
                  "FASTSIM, Polach, FaStrip measured; the peers' published times")
     ax.grid(True, which="both", alpha=0.3)
     if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=6.5, loc="lower left", ncol=2, framealpha=0.85)
+        ax.legend(fontsize=6.5, loc="upper left", ncol=2, framealpha=0.85)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
