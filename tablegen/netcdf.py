@@ -90,6 +90,9 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     if digits and not (getattr(spec, "node_values_float32", False)
                        and getattr(spec, "coefficients_float32", False)):
         raise ValueError("significant_digits needs node_values_float32 and coefficients_float32")
+    # each quantised variable's digits (its own or the spec's), by data variable name
+    quantised = {name: int(v.significant_digits or digits) for v in spec.variables
+                 for name in (v.name, f"{v.name}_bspline_coefficients")} if digits else {}
     for k, v in enumerate(spec.variables):
         acc = accuracy[v.name]
         met = acc["max_abs_error"] <= v.error_target
@@ -112,8 +115,7 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 + ("" if met else "; TARGET NOT MET")),
             "comment": v.comment,
             **({"node_value_precision": "float32"} if single else {}),
-            **({"significant_digits": np.int32(v.significant_digits or digits)}
-               if digits else {})})
+            **({"significant_digits": np.int32(quantised[v.name])} if digits else {})})
         single_coef = getattr(spec, "coefficients_float32", False)
         data_vars[f"{v.name}_bspline_coefficients"] = (cdims, (
             coefficients[k].astype(np.float32) if single_coef else coefficients[k]), {
@@ -122,8 +124,7 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "comment": "value = sum over i of c[i1,...,iD] * prod_d B(d, i_d)(x_d), with the "
                        "degree-3 B-splines of the knot vectors <axis>_knots",
             **({"coefficient_precision": "float32"} if single_coef else {}),
-            **({"significant_digits": np.int32(v.significant_digits or digits)}
-               if digits else {})})
+            **({"significant_digits": np.int32(quantised[v.name])} if digits else {})})
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {
         "Conventions": "CF-1.8",
@@ -151,11 +152,9 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     for name in ds.data_vars:
         if ds[name].ndim >= 2:
             encoding[name].update(zlib=True, complevel=4, shuffle=True)
-            var = {v.name: v for v in spec.variables}.get(
-                name.removesuffix("_bspline_coefficients"))
-            if digits and var is not None:
+            if name in quantised:
                 # netCDF-4 quantisation: trailing mantissa bits zeroed (any reader reads floats)
-                encoding[name].update(significant_digits=int(var.significant_digits or digits),
+                encoding[name].update(significant_digits=quantised[name],
                                       quantize_mode="GranularBitRound", complevel=9)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")

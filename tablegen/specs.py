@@ -379,25 +379,23 @@ def exact_solver_linear_response(log_aspect_ratio, poisson_ratio):
 
     Probes ``xi_x``, ``xi_y`` and ``phi`` one at a time at ``rho = 1e-4`` saturation creepages
     (full stick) and divides by the probe: the 3 x 3 matrix ``d(Tx, Ty, Mz) / d(xi_x, xi_y,
-    phi)``. Kalker's matrix has the linear theory's entries, Eqs. (2.61)-(2.62) (J.J. Kalker,
-    1990, Table E.3): ``-G a0 b0 C11``, ``-G a0 b0 C22``, ``-G (a0 b0)^1.5 C23`` for Ty(phi)
-    and, by Betti's reciprocity, the same magnitude for Mz(xi_y); it keeps the solver's Mz(phi)
-    (C33 is not in the shared coefficient table) and zeros where the linear theory has none.
+    phi)``. Kalker's matrix has the force rows of the package's linear theory
+    (``creep_force_3d(..., method="linear")``, Eqs. (2.61)-(2.62), J.J. Kalker, 1990, Table
+    E.3) at the same probes, Mz(xi_y) = -Ty(phi) by Betti's reciprocity, and the solver's
+    Mz(phi) (C33 is not in the shared coefficient table).
 
     Returns
     -------
     tuple of ndarray, shape (3, 3)
         ``(solver, kalker)`` in [N, N m] per unit creepage [-] and spin [1/m].
     """
-    from railcontact.creep3d import REFERENCE_CONTACT  # noqa: PLC0415
-    from railcontact.exact_table import exact_table_inverse  # noqa: PLC0415
-    from railcontact.kalker import kalker_coefficients  # noqa: PLC0415
+    from railcontact.creep3d import REFERENCE_CONTACT, creep_force_3d  # noqa: PLC0415
+    from railcontact.exact_table import (  # noqa: PLC0415
+        creepage_coordinate, exact_table_inverse)
 
     key = (float(log_aspect_ratio), float(poisson_ratio))
     if key in _LINEAR_RESPONSE_CACHE:
         return _LINEAR_RESPONSE_CACHE[key]
-    from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
-
     s0 = float(creepage_coordinate(_EXACT_LINEAR_PROBE))
     base = exact_table_inverse(*np.array([[key[0], key[1], s0, 0.0, 0.0],
                                           [key[0], key[1], s0, 0.5 * np.pi, 0.0],
@@ -405,23 +403,18 @@ def exact_solver_linear_response(log_aspect_ratio, poisson_ratio):
                                contact=REFERENCE_CONTACT)
     probes = (float(base["creepage_longitudinal"][0]), float(base["creepage_lateral"][1]),
               float(base["spin"][2]))
-    solver = np.zeros((3, 3))
+    solver, kalker = np.zeros((3, 3)), np.zeros((3, 3))
     previous = {}
+    names = ("creepage_longitudinal", "creepage_lateral", "spin")
     for j, size in enumerate(probes):
         kw = {k: float(v[0]) for k, v in base.items()}
-        kw.update(creepage_longitudinal=0.0, creepage_lateral=0.0, spin=0.0)
-        kw[("creepage_longitudinal", "creepage_lateral", "spin")[j]] = size
+        kw.update(dict.fromkeys(names, 0.0))
+        kw[names[j]] = size
         tx, ty, mz, _ = _exact_solver_point(kw, key, previous)
         solver[:, j] = np.array([tx, ty, mz]) / size
-    a0, b0, nu = float(base["a0"][0]), float(base["b0"][0]), key[1]
-    g_mod = REFERENCE_CONTACT["youngs_modulus"] / (2.0 * (1.0 + nu))
-    c = kalker_coefficients(a0 / b0, nu)
-    ab = a0 * b0
-    kalker = np.zeros((3, 3))
-    kalker[0, 0] = -g_mod * ab * float(c.c11)
-    kalker[1, 1] = -g_mod * ab * float(c.c22)
-    kalker[1, 2] = -g_mod * ab**1.5 * float(c.c23)
-    kalker[2, 1] = np.sign(solver[2, 1]) * g_mod * ab**1.5 * float(c.c23)
+        linear = creep_force_3d(**kw, method="linear")
+        kalker[:2, j] = np.array([float(linear.tx), float(linear.ty)]) / size
+    kalker[2, 1] = -kalker[1, 2]             # Betti: Mz(xi_y) = -Ty(phi)
     kalker[2, 2] = solver[2, 2]
     if not (np.sign(solver[0, 0]) == np.sign(solver[1, 1]) == np.sign(solver[1, 2]) == -1.0):
         raise RuntimeError(f"the solver's linear response has unexpected signs: {solver}")
