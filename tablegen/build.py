@@ -124,7 +124,9 @@ def _reused_node_values(spec, path, points):
                              f"same method ({spec.method!r}); got {path} (table "
                              f"{attrs.get('table_name')!r}, method {attrs.get('method')!r})")
         index, found = [], np.ones(len(points), dtype=bool)
-        for k, name in enumerate(attrs["table_axes"].split()):
+        # the node values' own dimensions: the axes, or the blocks of them a table with
+        # symmetries stores (``<axis>_block``, coordinates the nodes there)
+        for k, name in enumerate(ds[spec.variables[0].name].dimensions):
             nodes = np.asarray(ds[name][:], dtype=float)
             j = np.abs(points[:, k][:, None] - nodes[None, :]).argmin(axis=1)
             found &= np.abs(nodes[j] - points[:, k]) <= 1e-12
@@ -231,6 +233,7 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
         grid_vals[compute] = computed
     check_vals = np.concatenate([np.load(f) for f, _ in tasks[n_grid_chunks:]])
     values, axes, knots, coefs, spline = fit_grid_values(spec, axes, grid_vals, assemble)
+    block = computed_node_block(axes, points) if assemble is not None else None
     got = spline.evaluate(np.ascontiguousarray(check[:, :len(axes)]), check=False)
     accuracy = {}
     for k, v in enumerate(spec.variables):
@@ -250,7 +253,7 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
             **reuse_info}
     write_table(path, spec, axes, knots, values, coefs, accuracy,
                 command or f"python -m tablegen build --only {name} --resolution {resolution}",
-                info)
+                info, node_block=block)
     if not keep_chunks:
         for f, _ in tasks:
             f.unlink(missing_ok=True)
@@ -260,6 +263,23 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
             pass
     return dict(path=path, seconds=seconds, n_points=len(points), n_check=len(check),
                 accuracy=accuracy, size_bytes=path.stat().st_size)
+
+
+def computed_node_block(axes, points):
+    """Per axis, the slice of the stored nodes that spans the computed points: the block a
+    table with symmetries (``spec.reduce``) stores its node values on (the rest of the grid
+    follows from them by the symmetries, or from the spline). Raises if a computed point is
+    not a node of the block."""
+    block = []
+    for k, a in enumerate(axes):
+        x = np.asarray(points[:, k], dtype=float)
+        inside = np.nonzero((a.nodes >= x.min() - 1e-12) & (a.nodes <= x.max() + 1e-12))[0]
+        sl = slice(int(inside[0]), int(inside[-1]) + 1)
+        j = np.abs(x[:, None] - a.nodes[sl][None, :]).argmin(axis=1)
+        if not np.all(np.abs(a.nodes[sl][j] - x) <= 1e-12):
+            raise ValueError(f"axis {a.name}: the computed points are not nodes of the grid")
+        block.append(sl)
+    return tuple(block)
 
 
 def fit_grid_values(spec, axes, grid_vals, assemble=None):

@@ -1,13 +1,18 @@
 """CF-1.8 netCDF writer for tables (read back by :class:`railcontact.tables.Table`).
 
-Layout (``railcontact_table_format = 1``), for axes ``A1..AD`` and variables ``V``:
+Layout (``railcontact_table_format = 1``, or 2 with node values on a block, below), for axes ``A1..AD`` and variables ``V``:
 
 * coordinates ``A`` (dim ``A``): the nodes; attributes ``units``, ``long_name``,
   ``double_knots``, ``out_of_range``, ``spline_knots``;
 * ``A_knots`` (dim ``A_knot``): the knot vector of the cubic B-spline along ``A``;
 * ``V`` (dims ``A1..AD``): values at the nodes; attributes ``units``, ``long_name``, the method,
   and the recorded accuracy (``max_abs_error``, ``rms_error``, ``error_target``,
-  ``error_target_met``, ``n_check_points``);
+  ``error_target_met``, ``n_check_points``). A table with symmetries (format 2, written when
+  the spec has ``reduce``) stores them only on the block of nodes that was computed: along an
+  axis where that block is not the whole axis the dimension is ``A_block``, with the
+  coordinate variable ``A_block`` (a contiguous run of ``A``'s nodes); the other nodes'
+  values follow from the symmetries (global attribute ``node_values_block``) or from the
+  spline;
 * ``V_bspline_coefficients`` (dims ``A1_bspline..AD_bspline``): tensor-product B-spline
   coefficients, so that ``V(x) = sum c[i1..iD] B_i1(x1) ... B_iD(xD)`` with the cubic B-splines
   of the knot vectors (de Boor 1978).
@@ -49,7 +54,8 @@ def git_revision():
         return "unknown"
 
 
-def write_table(path, spec, axes, knots, values, coefficients, accuracy, command, build_info):
+def write_table(path, spec, axes, knots, values, coefficients, accuracy, command, build_info,
+                node_block=None):
     """Write one table file atomically (``path.tmp`` then rename).
 
     Parameters
@@ -65,6 +71,10 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         Command line recorded in ``history``.
     build_info : dict
         Extra global attributes (resolution, build time, workers).
+    node_block : tuple of slice, optional
+        Per axis, the nodes whose values are stored (format 2; see the module docstring):
+        a table with symmetries keeps only the computed block (the exact creep table: a
+        quarter, 8 MB less). Default: every node (format 1).
     """
     import xarray as xr  # noqa: PLC0415
 
@@ -72,6 +82,20 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     coords, data_vars = {}, {}
     dims = [a.name for a in axes]
     cdims = [f"{a.name}_bspline" for a in axes]
+    block = tuple(node_block) if node_block is not None else (slice(None),) * len(axes)
+    vdims = []
+    for a, sl in zip(axes, block):
+        part = a.nodes[sl]
+        if len(part) == len(a.nodes):
+            vdims.append(a.name)
+            continue
+        vdims.append(f"{a.name}_block")
+        coords[f"{a.name}_block"] = (f"{a.name}_block", part, {
+            "units": a.units, "long_name": f"the nodes of {a.name} where node values are stored",
+            "comment": (f"a contiguous run of the nodes {a.name}: the block of the grid that was "
+                        "computed; the other nodes' values follow by the table's symmetries "
+                        "(global attribute node_values_block) or from the spline")})
+    blocked = vdims != dims
     for a, t in zip(axes, knots):
         coords[a.name] = (a.name, a.nodes, {
             "units": a.units, "long_name": a.long_name,
@@ -97,7 +121,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         acc = accuracy[v.name]
         met = acc["max_abs_error"] <= v.error_target
         single = getattr(spec, "node_values_float32", False)
-        data_vars[v.name] = (dims, values[k].astype(np.float32) if single else values[k], {
+        node_values = np.asarray(values[k])[block]
+        data_vars[v.name] = (vdims, node_values.astype(np.float32) if single else node_values, {
             "units": v.units, "long_name": v.long_name,
             "bspline_coefficients": f"{v.name}_bspline_coefficients",
             "method": spec.method,
@@ -135,14 +160,22 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         "references": spec.references,
         "comment": ("Smooth lookup table. Evaluate the cubic B-spline given by the "
                     "*_bspline_coefficients variables and the <axis>_knots vectors (any de Boor "
-                    "evaluator); the node values alone allow a cruder linear interpolation."),
-        "railcontact_table_format": np.int32(TABLE_FORMAT_VERSION),
+                    "evaluator); the node values alone allow a cruder linear interpolation"
+                    + (" (on the block they are stored on)." if blocked else ".")),
+        "railcontact_table_format": np.int32(TABLE_FORMAT_VERSION if blocked else 1),
         "table_name": spec.name,
         "table_axes": " ".join(dims),
         "table_variables": " ".join(v.name for v in spec.variables),
         "spline_degree": np.int32(SPLINE_DEGREE),
         "method": spec.method,
     }
+    if blocked:
+        attrs["node_values_block"] = (
+            "node values are stored on the computed block only ("
+            + ", ".join(f"{a.name} {a.nodes[sl][0]:.6g} to {a.nodes[sl][-1]:.6g}"
+                        for a, sl, d in zip(axes, block, vdims) if d != a.name)
+            + "); the rest of the grid follows by the table's symmetries (global attribute "
+            "symmetry) or from the B-spline, which covers every node")
     attrs.update({k: v for k, v in spec.attributes.items()})
     if spec.build_attributes is not None:
         attrs.update(spec.build_attributes())

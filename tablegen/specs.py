@@ -625,6 +625,12 @@ register(TableSpec(
             "(C11 xi_x, C22 xi_y, sqrt(a0 b0) C23 phi)/w_sat; the solver computes the quarter "
             "v_x >= 0, phi >= 0 and the file holds every sign (filled by symmetry) so that the "
             "spline is C2 across xi_x = 0 and phi = 0; see railcontact.exact_table"),
+        "symmetry": (
+            "(f_par, f_perp, moment, stick) at (s, theta, tau) equals: (-f_par, -f_perp, "
+            "moment, stick) at (-s, theta + pi, tau) (one point, two coordinates); (f_par, "
+            "-f_perp, -moment, stick) at (s, -theta, -tau) (mirror in y); (f_par, -f_perp, "
+            "moment, stick) at (s, pi - theta, tau) (reversed x at fixed spin); the node "
+            "values are stored for s >= 0, |theta| <= pi/2, tau >= 0"),
     },
 ))
 

@@ -341,3 +341,84 @@ def test_quantised_tables_are_declared_read_and_smaller(tmp_path, monkeypatch):
     with pytest.raises(ValueError, match="significant_digits needs node_values_float32"):
         build_table("selftest", "coarse", output_dir=tmp_path / "c", scheduler="synchronous",
                     workdir=tmp_path / "w", progress=False)
+
+
+def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path,
+                                                                        monkeypatch):
+    """A table with symmetries (``spec.reduce``; the exact creep table, coarse, with a cheap
+    point function) stores its node values on the computed block only (format 2:
+    ``<axis>_block`` dimensions, s >= 0, |theta| <= pi/2, tau >= 0); the reader takes them,
+    checks the spline against them, and the spline still covers every sign by the
+    symmetries; a rebuild reusing the file computes only the analytic and check points; a
+    block that is not a run of the axis's nodes is refused."""
+    import netCDF4  # noqa: PLC0415
+
+    spec = REGISTRY["creep_exact"]
+
+    def cheap(points):
+        p = np.asarray(points, dtype=float)
+        g, nu, s, th, tau = p.T
+        return np.column_stack([s * (1.0 + 0.1 * g) * (1.0 + 0.2 * np.cos(2 * th)),
+                                0.3 * s * np.sin(2 * th) * (1.0 + nu) + 0.01 * tau * s * np.cos(th),
+                                0.05 * tau / (1.0 + tau) * (1.0 - s ** 2),
+                                (1.0 - s) * (1.0 + 0.0 * tau)])
+
+    calls = []
+
+    def counting(points):
+        calls.append(len(points))
+        return cheap(points)
+
+    monkeypatch.setattr(spec, "function", counting)
+    res = build_table("creep_exact", "coarse", output_dir=tmp_path / "a",
+                      scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
+    axes, _ = spec.grid("coarse")
+    quarter, _ = spec.reduce(axes)
+    with netCDF4.Dataset(res["path"]) as ds:
+        assert int(ds.getncattr("railcontact_table_format")) == 2
+        assert "symmetries" in ds.getncattr("node_values_block")
+        assert ds["force_ratio_parallel"].dimensions == (
+            "log_aspect_ratio", "poisson_ratio", "creepage_coordinate_block",
+            "creepage_angle_block", "spin_coordinate_block")
+        s_b, th_b, tau_b = (np.asarray(ds[f"{n}_block"][:]) for n in (
+            "creepage_coordinate", "creepage_angle", "spin_coordinate"))
+    np.testing.assert_array_equal(s_b, np.unique(quarter[:, 2]))
+    np.testing.assert_allclose(th_b, np.unique(quarter[:, 3]), rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(tau_b, np.unique(quarter[:, 4]))
+
+    table = Table.from_file(res["path"])
+    shape = tuple(len(np.unique(quarter[:, k])) for k in range(5))
+    assert table.values["force_ratio_parallel"].shape == shape
+    want = cheap(quarter).reshape(shape + (4,))
+    for k, v in enumerate(table.variables):        # stored to 5 (stick area 3) digits
+        np.testing.assert_allclose(table.values[v], want[..., k], rtol=0,
+                                   atol=1e-4 if k < 3 else 5e-3)
+    # the spline at a point and at its mirror images (the symmetries the file states)
+    p = np.array([[0.3, 0.2, 0.4, 0.5, 1.7]])
+    mirrors = np.array([[0.3, 0.2, -0.4, 0.5 - np.pi, 1.7],      # (-s, theta + pi): -, -
+                        [0.3, 0.2, 0.4, -0.5, -1.7],             # mirror y: +, -, -
+                        [0.3, 0.2, 0.4, np.pi - 0.5, 1.7]])      # reversed x: +, -, +
+    base = table.spline.evaluate(p)[0]
+    got = table.spline.evaluate(mirrors)
+    np.testing.assert_allclose(got[0, :3], base[:3] * [-1, -1, 1], atol=2e-4)
+    np.testing.assert_allclose(got[1, :3], base[:3] * [1, -1, -1], atol=2e-4)
+    np.testing.assert_allclose(got[2, :3], base[:3] * [1, -1, 1], atol=2e-4)
+
+    calls.clear()
+    monkeypatch.setattr(spec, "analytic_points", lambda pts: np.asarray(pts)[:, 2] >= 1.0)
+    again = build_table("creep_exact", "coarse", output_dir=tmp_path / "b",
+                        scheduler="synchronous", workdir=tmp_path / "w1", progress=False,
+                        reuse_nodes=res["path"])
+    assert sum(calls) == int(np.count_nonzero(quarter[:, 2] >= 1.0)) + spec.n_check["coarse"]
+    pts = np.random.default_rng(3).uniform([-2.3, 0.0, -1.0, -np.pi, -20.0],
+                                           [2.3, 0.5, 1.0, np.pi, 20.0], (50, 5))
+    np.testing.assert_allclose(Table.from_file(again["path"]).spline.evaluate(pts)[:, :3],
+                               table.spline.evaluate(pts)[:, :3], rtol=0, atol=2e-4)
+
+    bad = tmp_path / "bad.nc"
+    bad.write_bytes(res["path"].read_bytes())
+    with netCDF4.Dataset(bad, "a") as ds:
+        ds["creepage_angle_block"][0] = ds["creepage_angle_block"][0] - 0.01
+    with pytest.raises(TableFileError, match="not a contiguous run of the nodes of "
+                                             "'creepage_angle'"):
+        Table.from_file(bad)

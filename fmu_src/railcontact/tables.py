@@ -3,7 +3,8 @@ r"""Reader for the smooth (C2) lookup tables built by ``tablegen`` (``python -m 
 A table file is a CF-1.8 netCDF file (see :data:`TABLE_FORMAT_VERSION`) holding, for each
 tabulated variable,
 
-* its values at the grid nodes (a variable on the coordinate dimensions), and
+* its values at the grid nodes (a variable on the coordinate dimensions; a table with
+  symmetries, format 2, stores them on the block of the grid that was computed), and
 * the coefficients of the tensor-product cubic B-spline that interpolates them
   (``<variable>_bspline_coefficients``), with one knot vector per axis (``<axis>_knots``).
 
@@ -58,9 +59,13 @@ __all__ = [
     "tables_directory", "periodic_bspline_knots", "periodic_stored_nodes",
 ]
 
-#: Version of the table file layout this reader understands (global attribute
-#: ``railcontact_table_format``). Bumped when the layout changes incompatibly.
-TABLE_FORMAT_VERSION = 1
+#: Version of the table file layout written for tables whose node values are stored on a
+#: block of the grid (global attribute ``railcontact_table_format``; see
+#: :mod:`tablegen.netcdf`). Bumped when the layout changes incompatibly. Version 1 (every
+#: node's value stored) is still written for the other tables and read.
+TABLE_FORMAT_VERSION = 2
+#: The versions this reader understands.
+TABLE_FORMAT_VERSIONS_READ = (1, 2)
 
 #: Environment variable naming a directory searched first for table files.
 TABLES_DIR_ENV = "RAILCONTACT_TABLES_DIR"
@@ -530,6 +535,33 @@ def _declared_digits(where, name, attrs, coef_attrs):
     return digits.pop()
 
 
+def _node_block(where, name, dims, axes, ncvars):
+    """Per axis, the slice of its nodes a variable's node values are stored on: the whole
+    axis (dimension ``<axis>``) or a block (format 2: dimension ``<axis>_block``, whose
+    coordinate variable must be a contiguous run of the axis's nodes)."""
+    if len(dims) != len(axes):
+        raise TableFileError(f"{where}: variable {name!r} has dimensions {list(dims)}, "
+                             f"expected one per axis {[a['name'] for a in axes]}")
+    block = []
+    for dim, a in zip(dims, axes):
+        if dim == a["name"]:
+            block.append(slice(None))
+            continue
+        if dim != f"{a['name']}_block" or dim not in ncvars:
+            raise TableFileError(f"{where}: variable {name!r} has the dimension {dim!r} where "
+                                 f"{a['name']!r} or {a['name'] + '_block'!r} (with its "
+                                 "coordinate variable) is expected")
+        part = np.asarray(ncvars[dim][1], dtype=float)
+        nodes = a["nodes"]
+        start = int(np.argmin(np.abs(nodes - part[0]))) if len(part) else 0
+        stop = start + len(part)
+        if not len(part) or stop > len(nodes) or np.any(nodes[start:stop] != part):
+            raise TableFileError(f"{where}: the nodes of {dim!r} are not a contiguous run of "
+                                 f"the nodes of {a['name']!r}")
+        block.append(slice(start, stop))
+    return tuple(block)
+
+
 def _attr_list(value):
     arr = np.atleast_1d(np.asarray(value))
     if arr.dtype.kind in "US":
@@ -559,10 +591,15 @@ class Table:
         Per-variable attributes, including the recorded accuracy (``max_abs_error``,
         ``rms_error``, ``error_target``, ``error_target_met``).
     values : dict of ndarray
-        Node values per variable.
+        Node values per variable, at the nodes ``node_block`` selects.
+    node_block : tuple of slice
+        Per axis, the nodes whose values the file stores: every node (``slice(None)``), or,
+        for a table with symmetries (format 2), the block that was computed (the spline
+        covers the whole grid either way).
     """
 
-    def __init__(self, path, attrs, axes, variables, variable_attrs, values, coefficients):
+    def __init__(self, path, attrs, axes, variables, variable_attrs, values, coefficients,
+                 node_block=None):
         self.path = Path(path)
         self.attrs = attrs
         self.name = str(attrs.get("table_name", self.path.stem))
@@ -570,6 +607,8 @@ class Table:
         self.variables = list(variables)
         self.variable_attrs = variable_attrs
         self.values = values
+        self.node_block = (tuple(node_block) if node_block is not None
+                           else (slice(None),) * len(axes))
         #: B-spline coefficients, shape (n_var, n_1, ..., n_D) (float64). [variable units]
         self.coefficients = np.asarray(coefficients, dtype=float)
         self.spline = TensorSpline(axes, coefficients, variables, source=str(self.path))
@@ -597,10 +636,11 @@ class Table:
         if version is None:
             raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
                                  "not written by tablegen")
-        if _as_int(version) != TABLE_FORMAT_VERSION:
+        if _as_int(version) not in TABLE_FORMAT_VERSIONS_READ:
             raise TableFileError(
                 f"{where} has table format version {_fmt_attr(version)}, this reader understands "
-                f"version {TABLE_FORMAT_VERSION}; rebuild it with `python -m tablegen build`")
+                f"versions {list(TABLE_FORMAT_VERSIONS_READ)}; rebuild it with `python -m "
+                "tablegen build`")
         if expected_name is not None and attrs.get("table_name") != expected_name:
             raise TableFileError(f"{where} holds table {attrs.get('table_name')!r}, expected "
                                  f"{expected_name!r}")
@@ -640,16 +680,20 @@ class Table:
                              double_knots=double_knots, out_of_range=out_of_range))
         values, coefs, vattrs, tolerance = {}, [], {}, []
         shape = tuple(len(a["nodes"]) for a in axes)
+        block = None
         for name in var_names:
             cname = f"{name}_bspline_coefficients"
             for needed in (name, cname):
                 if needed not in ncvars:
                     raise TableFileError(f"{where} lacks the variable {needed!r}")
-            _, val, a = ncvars[name]
+            vdims, val, a = ncvars[name]
             _, coef, ca = ncvars[cname]
-            if val.shape != shape or coef.shape != shape:
+            var_block = _node_block(where, name, vdims, axes, ncvars)
+            block = var_block if block is None else block
+            want = tuple(len(range(*sl.indices(n))) for sl, n in zip(var_block, shape))
+            if var_block != block or val.shape != want or coef.shape != shape:
                 raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
-                                     f"expected {shape} (truncated?)")
+                                     f"expected {want} (truncated?)")
             single = str(a.get("node_value_precision", "")) == "float32"
             digits = _declared_digits(where, name, a, ca) if single else None
             if single and val.dtype == np.float32:
@@ -666,18 +710,20 @@ class Table:
             values[name] = np.asarray(val, float)
             coefs.append(np.asarray(coef, float))
             vattrs[name] = a
-        table = cls(path, attrs, axes, var_names, vattrs, values, np.stack(coefs))
+        table = cls(path, attrs, axes, var_names, vattrs, values, np.stack(coefs),
+                    node_block=block)
         if store is None:    # from the user cache: this content passed the check below
             return table
         # integrity: the stored spline reproduces the stored node values (every node, or for
         # large tables the corners and a fixed sample of 20,000: a load stays fast)
-        n_nodes = int(np.prod(shape))
+        vshape = next(iter(values.values())).shape
+        n_nodes = int(np.prod(vshape))
         flat = np.arange(n_nodes) if n_nodes <= _INTEGRITY_NODES else np.unique(np.r_[
-            np.ravel_multi_index(tuple(np.array(c) * (shape[d] - 1) for d, c in enumerate(
-                zip(*np.ndindex(*(2,) * len(shape))))), shape),
+            np.ravel_multi_index(tuple(np.array(c) * (vshape[d] - 1) for d, c in enumerate(
+                zip(*np.ndindex(*(2,) * len(vshape))))), vshape),
             np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
-        idx = np.unravel_index(flat, shape)
-        pts = np.stack([a["nodes"][i] for a, i in zip(axes, idx)], axis=1)
+        idx = np.unravel_index(flat, vshape)
+        pts = np.stack([a["nodes"][sl][i] for a, sl, i in zip(axes, block, idx)], axis=1)
         if len(axes) == 1:
             # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
             # evaluated per step as a piecewise polynomial) is read without numba
