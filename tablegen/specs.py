@@ -151,10 +151,10 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (9, 5, 23, 17, 25),   # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (9, 5, 23, 21, 25),   # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
-    # and +-7.5, +-82.5 since 2026-11-27 (below); rho and tau with 2 and 6 more nodes since
-    # 2026-11-27 (below)
+    # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 2 and 6
+    # more nodes since 2026-11-27 (below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -190,12 +190,14 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
 #: creepage angles of the computed quarter [deg] where they are not uniform (symmetric about
 #: 0; the full circle adds 180 - theta and the seam)
 _EXACT_THETA = {
-    # +-7.5 and +-82.5 added 2026-11-27: large spin turns the force within ~15 degrees of
-    # theta = 0 (a0/b0 < 1) and +-90 degrees (a0/b0 > 1); on the 15-degree grid a periodic
-    # cubic through the solver's values along theta erred by up to 3.6 % of mu N there (a0/b0
-    # 0.1 and 10, tau 7-13.5, nodes of the other axes), with these nodes by up to 0.64 %
-    "default": [-90.0, -82.5, -75.0, -60.0, -45.0, -30.0, -15.0, -7.5, 0.0, 7.5, 15.0, 30.0,
-                45.0, 60.0, 75.0, 82.5, 90.0],
+    # +-3.75, +-7.5, +-67.5 and +-82.5 added 2026-11-27: large spin turns the force within
+    # ~15 degrees of theta = 0 (a0/b0 < 1) and +-90 degrees (a0/b0 > 1); on the 15-degree grid
+    # a periodic cubic through the solver's values along theta erred by up to 3.6 % of mu N
+    # there (a0/b0 0.1 and 10, tau 3-16.5, at nodes of the other axes), with +-7.5 and +-82.5
+    # by up to 0.64 % (a0/b0 0.1, near theta = 0) and 0.60 % (a0/b0 10, near 68 degrees), with
+    # all four pairs by up to 0.33 % (10 such profiles)
+    "default": [-90.0, -82.5, -75.0, -67.5, -60.0, -45.0, -30.0, -15.0, -7.5, -3.75, 0.0, 3.75,
+                7.5, 15.0, 30.0, 45.0, 60.0, 67.5, 75.0, 82.5, 90.0],
 }
 
 
