@@ -18,6 +18,8 @@ from . import _numba_cache  # noqa: F401  (the user cache, before any njit is co
 from ._spline_kernels import find_span
 from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
+_TWO_OVER_PI = 2.0 / math.pi
+
 __all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_batch",
            "creep_contact_batch_parallel", "creep_batch", "creep_batch_parallel",
            "PARALLEL_CHUNK", "HEAD"]
@@ -178,7 +180,8 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         return False
     rho = math.hypot(v_x, v_y)
     w2 = 1.0 + (SPIN_WEIGHT * tau) ** 2
-    s = 1.0 if rho > 1e150 else rho / math.sqrt(w2 + rho * rho)
+    w = math.sqrt(w2)
+    s = 1.0 if rho > 1e150 else _TWO_OVER_PI * math.atan(rho / w)
     theta = math.atan2(v_y, v_x)
     out = work[320:336].reshape((4, 4))
     small = want_jacobian and rho < JACOBIAN_RHO_MIN
@@ -215,7 +218,7 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         return True
     if small:   # the polar Jacobian at a point just off the origin
         rho = JACOBIAN_RHO_MIN
-        s = rho / math.sqrt(w2 + rho * rho)
+        s = _TWO_OVER_PI * math.atan(rho / w)
         spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu,
                       s, theta, tau, True, out, work)
         f_par = out[0, 0]
@@ -236,9 +239,12 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         fx_t, fy_t = fx_t - fx * dot, fy_t - fy * dot
         dot = fx * fx_u + fy * fy_u
         fx_u, fy_u = fx_u - fx * dot, fy_u - fy * dot
-    ds = (1.0 - s * s) ** 1.5 / math.sqrt(w2)  # ds/drho
-    # s depends on tau too: d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds
-    ds_u = -s * (1.0 - s * s) * SPIN_WEIGHT**2 * tau / w2
+    # s = (2 / pi) atan(rho / w): ds/drho = (2 / pi) w / (w^2 + rho^2), and s depends on tau
+    # too (w = sqrt(1 + tau^2)): d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds,
+    # ds/dtau = -(2 / pi) rho / (w^2 + rho^2) dw/dtau; both 0 at rho = inf (s = 1)
+    q = 0.0 if rho > 1e150 else _TWO_OVER_PI / (w2 + rho * rho)
+    ds = q * w
+    ds_u = -q * rho * SPIN_WEIGHT**2 * tau / w
     fx_u += fx_s * ds_u
     fy_u += fy_s * ds_u
     # d/dv_x = cos ds/drho d/ds - sin/rho d/dtheta ; d/dv_y = sin ds/drho d/ds + cos/rho d/dtheta
