@@ -559,10 +559,9 @@ def _exact_check(axes, n, rng):
     far = rng.random(n) < 0.25
     # (uniform in u = r / sqrt(1 + r^2), the creepage coordinate of the tables before
     # 2026-11-27: the same physical points as their checks)
+    r_far = np.exp(rng.uniform(np.log(5.0), np.log(100.0), n))
     u = rng.uniform(0.0, 5.0 / np.sqrt(26.0), n)
-    s_pts = np.where(far, creepage_coordinate(np.exp(rng.uniform(np.log(5.0), np.log(100.0),
-                                                                 n))),
-                     creepage_coordinate(u / np.sqrt(1.0 - u * u)))
+    s_pts = np.where(far, creepage_coordinate(r_far), creepage_coordinate(u / np.sqrt(1.0 - u * u)))
     pts = np.column_stack([
         rng.uniform(g[0], g[-1], n), rng.uniform(nu[0], nu[-1], n),
         s_pts,                                   # |v| / sqrt(1 + tau^2) <= 100
