@@ -580,3 +580,29 @@ def test_parallel_batches_equal_the_point_by_point_values(table, own_contacts):
     for res in results:
         np.testing.assert_array_equal(res.tx, whole.tx)
         np.testing.assert_array_equal(res.ty, whole.ty)
+
+
+def test_jacobian_at_the_origin_is_cartesian():
+    """Within |v| < JACOBIAN_RHO_MIN of v = 0 the Jacobian comes from the radial derivatives
+    along v_x and v_y: the same for either sign of a zero and for any direction of a tiny v,
+    and continuous with the polar formula just outside. (Taken along the direction of v, the
+    angle derivative at |v| = 1e-6 divided the smallest nodes' rounding by |v|: at a0/b0 = 10,
+    nu = 0.25, C23 read -0.51 % at phi = 0 and -0.32 % at phi = 1e-9.)"""
+    from railcontact.creep3d import load_exact_table
+
+    table = load_exact_table()
+    g, nu = 10.0, 0.25
+    a0, b0 = 6e-3 * math.sqrt(g), 6e-3 / math.sqrt(g)
+
+    def jac(xi_x, xi_y, phi):
+        return np.asarray(table.creep_force_jacobian_3d(xi_x, xi_y, phi, 1e5, a0, b0, 210e9,
+                                                        nu, 0.3))
+
+    origin = jac(0.0, 0.0, 0.0)
+    scale = np.abs(origin).max(axis=1, keepdims=True)
+    for inside in [(-0.0, -0.0, -0.0), (1e-9, 0.0, 0.0), (0.0, 1e-9, 0.0), (0.0, 0.0, 1e-9),
+                   (-7e-10, 7e-10, 0.0)]:          # |v| ~ 1e-7, inside
+        np.testing.assert_allclose(jac(*inside) / scale, origin / scale, rtol=0, atol=1e-9)
+    for outside in [(1e-7, 0.0, 0.0), (0.0, 1e-7, 0.0), (0.0, 0.0, 1e-7),
+                    (-7e-8, -7e-8, 0.0)]:          # |v| ~ 1e-5, the polar formula
+        np.testing.assert_allclose(jac(*outside) / scale, origin / scale, rtol=0, atol=2e-3)
