@@ -26,6 +26,8 @@ program table_reader
   end type
   type(knot_vector) :: knots(maxd)
   real(dp), allocatable :: coef(:)
+  real, allocatable :: coef_single(:)
+  integer :: xtype
   real(dp) :: x(maxd), nb(0:3, maxd), db(0:3, maxd), value, grad(maxd), prod, partial(maxd)
 
   if (command_argument_count() /= 2) then
@@ -69,7 +71,17 @@ program table_reader
   call check(nf90_get_att(ncid, varid, 'bspline_coefficients', name))
   call check(nf90_inq_varid(ncid, trim(name), varid))
   allocate (coef(0:variable_size(ncid, varid) - 1))
-  call check(nf_get_var_double(ncid, varid, coef))
+  ! a float variable is read as float and widened here (libnetcdf 4.9.0 re-applies a
+  ! variable's quantisation when it converts float to double on reading; see table_reader.c)
+  call check(nf90_inquire_variable(ncid, varid, xtype=xtype))
+  if (xtype == nf90_float) then
+    allocate (coef_single(0:size(coef) - 1))
+    call check(nf_get_var_real(ncid, varid, coef_single))
+    coef = real(coef_single, dp)
+    deallocate (coef_single)
+  else
+    call check(nf_get_var_double(ncid, varid, coef))
+  end if
   call check(nf90_close(ncid))
   stride(ndim) = 1
   do d = ndim - 1, 1, -1

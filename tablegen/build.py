@@ -128,6 +128,8 @@ def _reused_node_values(spec, path, points):
         # symmetries stores (``<axis>_block``, coordinates the nodes there)
         for k, name in enumerate(ds[spec.variables[0].name].dimensions):
             nodes = np.asarray(ds[name][:], dtype=float)
+            if spec.reuse_coordinates is not None:     # a changed coordinate, same points
+                nodes = np.asarray(spec.reuse_coordinates(attrs, name, nodes), dtype=float)
             j = np.abs(points[:, k][:, None] - nodes[None, :]).argmin(axis=1)
             found &= np.abs(nodes[j] - points[:, k]) <= 1e-12
             index.append(j)

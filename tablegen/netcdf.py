@@ -184,7 +184,10 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     encoding = {name: {"_FillValue": None} for name in list(ds.data_vars) + list(ds.coords)}
     for name in ds.data_vars:
         if ds[name].ndim >= 2:
-            encoding[name].update(zlib=True, complevel=4, shuffle=True)
+            # one chunk per variable (readers load whole arrays): zlib sees the whole array
+            # (creep_exact's coefficients: 15.5 MiB against 20.8 in netCDF's default chunks)
+            encoding[name].update(zlib=True, complevel=4, shuffle=True,
+                                  chunksizes=tuple(ds[name].shape))
             if name in quantised:
                 # netCDF-4 quantisation: trailing mantissa bits zeroed (any reader reads floats)
                 encoding[name].update(significant_digits=quantised[name],

@@ -150,6 +150,11 @@ class TableSpec:
         called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
         to the values on the whole grid, shape (n_var, n_1, ..., n_D). Default: every grid
         point is computed.
+    reuse_coordinates : callable, optional
+        ``reuse_coordinates(attrs, name, nodes) -> nodes``: an earlier file's node coordinates
+        (its global attributes ``attrs``, the coordinate variable ``name``) in this spec's
+        coordinates, for ``build_table(reuse_nodes=...)`` across a change of an axis's
+        coordinate that keeps its nodes' physical points. Default: unchanged.
     analytic_points : callable, optional
         ``analytic_points(points) -> bool mask`` of the points that ``function`` answers
         without its expensive solver (limits). A build that reuses an earlier file's node
@@ -176,6 +181,7 @@ class TableSpec:
     coefficients_float32: bool = False
     significant_digits: int | None = None
     analytic_points: Callable | None = None
+    reuse_coordinates: Callable | None = None
 
     def available(self):
         """``None`` if buildable, else the reason (a module that does not import)."""

@@ -234,7 +234,7 @@ def _exact_axes(resolution):
              comment=f"a0/b0 from {EXACT_ASPECT_RANGE[0]} to {EXACT_ASPECT_RANGE[1]}"),
         Axis("poisson_ratio", nu, "1", "Poisson's ratio nu of both bodies"),
         Axis("creepage_coordinate", np.r_[-s[:0:-1], s], "1",
-             "s = rho / sqrt(rho^2 + 1 + tau^2), rho = |v|, v = (C11 xi_x, C22 xi_y + "
+             "s = (2 / pi) atan(rho / sqrt(1 + tau^2)), rho = |v|, v = (C11 xi_x, C22 xi_y + "
              "sqrt(a0 b0) C23 phi) / w_sat, w_sat = pi^2 (1 + nu) mu p0 / E, p0 = 3 N / (2 pi "
              "a0 b0), C_ij Kalker's coefficients, tau the spin coordinate; signed: (-s, theta "
              "+ pi) is the point (s, theta)",
@@ -548,7 +548,8 @@ def _exact_analytic_points(points):
 
 def _exact_check(axes, n, rng):
     """Off-node points spread over the computed quarter (the rest follows by symmetry):
-    uniform in ln g, nu, theta; s uniform up to rho = 5 for three quarters of the points and
+    uniform in ln g, nu, theta; r / sqrt(1 + r^2) uniform up to r = 5 for three quarters of
+    the points (r = rho / sqrt(1 + tau^2)) and
     rho log-uniform in 5-100 for the rest (far past saturation, where the force turns to the
     physical creepage); tau uniform in the node index."""
     from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
@@ -556,15 +557,33 @@ def _exact_check(axes, n, rng):
     g, nu, s, theta, tau = (a.nodes for a in axes)
     tau_q = tau[tau >= 0.0]
     far = rng.random(n) < 0.25
-    s_pts = np.where(far, creepage_coordinate(np.exp(rng.uniform(np.log(5.0), np.log(100.0),
-                                                                 n))),
-                     rng.uniform(0.0, creepage_coordinate(5.0), n))
+    # (uniform in u = r / sqrt(1 + r^2), the creepage coordinate of the tables before
+    # 2026-11-27: the same physical points as their checks)
+    r_far = np.exp(rng.uniform(np.log(5.0), np.log(100.0), n))
+    u = rng.uniform(0.0, 5.0 / np.sqrt(26.0), n)
+    s_pts = np.where(far, creepage_coordinate(r_far), creepage_coordinate(u / np.sqrt(1.0 - u * u)))
     pts = np.column_stack([
         rng.uniform(g[0], g[-1], n), rng.uniform(nu[0], nu[-1], n),
         s_pts,                                   # |v| / sqrt(1 + tau^2) <= 100
         rng.uniform(-0.5 * np.pi, 0.5 * np.pi, n),
         np.interp(rng.uniform(0.0, len(tau_q) - 1.0, n), np.arange(len(tau_q)), tau_q)])
     return pts[np.lexsort((pts[:, 1], pts[:, 0]))]   # contact by contact (solver caches)
+
+
+def _exact_reuse_coordinates(attrs, name, nodes):
+    """An earlier file's node coordinates in today's: files without ``creepage_coordinate_form
+    = "arctan"`` (before 2026-11-27) measured the creepage as s = r / sqrt(1 + r^2), r = rho /
+    w; the same nodes r are s = (2 / pi) atan(r) now (no new solves for the change)."""
+    from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
+
+    nodes = np.asarray(nodes, dtype=float)
+    if not name.startswith("creepage_coordinate") or attrs.get(
+            "creepage_coordinate_form") == "arctan":
+        return nodes
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(np.abs(nodes) >= 1.0, np.sign(nodes) * np.inf,
+                     nodes / np.sqrt(1.0 - nodes * nodes))
+    return creepage_coordinate(r)
 
 
 register(TableSpec(
@@ -607,6 +626,7 @@ register(TableSpec(
             "(tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)"),
     check_points=_exact_check,
     analytic_points=_exact_analytic_points,
+    reuse_coordinates=_exact_reuse_coordinates,
     n_check={"coarse": 100, "default": 1000, "fine": 4000},
     chunk_size=24,
     requires=("railcontact.reference.rolling3d",),
@@ -622,6 +642,9 @@ register(TableSpec(
             "to the solver's forces and moment, R = sqrt(rho^2 + tau^2); at most about 0.1 % "
             "of mu N; see tablegen.specs.exact_linear_limit_correction"),
         "creepage_coordinate_spin_weight": 1.0,
+        "creepage_coordinate_form": (
+            "arctan"),   # s = (2 / pi) atan(rho / w); the tables before 2026-11-27: rho / sqrt(
+        # rho^2 + w^2) (see railcontact.creep_common.CREEPAGE_COORDINATE_FORM)
         "normalisation": (
             "forces over mu N depend only on a0/b0, nu and the Kalker-weighted creepages "
             "(C11 xi_x, C22 xi_y, sqrt(a0 b0) C23 phi)/w_sat; the solver computes the quarter "

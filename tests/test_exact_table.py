@@ -57,23 +57,47 @@ def test_creepage_coordinate_inverse_and_limits():
     rho = np.array([0.0, 1e-9, 0.3, 1.0, 7.0, 1e3, 1e6, np.inf])
     s = creepage_coordinate(rho)
     assert s[0] == 0.0 and s[-1] == 1.0 and np.all(np.diff(s) > 0)
-    # (the inverse loses digits as s -> 1: 1 - s^2 cancels; exact enough up to rho ~ 1e3)
+    # (the inverse loses digits as s -> 1: tan near pi/2; exact enough up to rho ~ 1e3)
     np.testing.assert_allclose(creepage_magnitude(s[:-2]), rho[:-2], rtol=1e-9)
     assert creepage_coordinate(-2.0) == -creepage_coordinate(2.0)
 
 
 @pytest.mark.parametrize("tau", [0.0, 0.7, -3.0, 20.0])
 def test_creepage_coordinate_with_spin(tau):
-    """s = rho / sqrt(rho^2 + 1 + tau^2): inverse at every spin, even in tau, and with large
-    spin the creepage as large as the spin's slip (rho ~ |tau|, where the force turns from the
-    spin's direction to the creepage's) sits mid-axis, not in the last interval."""
+    """s = (2 / pi) atan(rho / sqrt(1 + tau^2)): inverse at every spin, even in tau, and with
+    large spin the creepage as large as the spin's slip (rho ~ |tau|, where the force turns
+    from the spin's direction to the creepage's) sits mid-axis, not in the last interval."""
     rho = np.array([0.0, 1e-6, 0.5, 3.0, 25.0, 400.0])
     s = creepage_coordinate(rho, tau)
     np.testing.assert_allclose(creepage_magnitude(s, tau), rho, rtol=1e-9, atol=1e-15)
     np.testing.assert_array_equal(s, creepage_coordinate(rho, -tau))
     w = math.sqrt(1.0 + tau * tau)
-    assert creepage_coordinate(w, tau) == pytest.approx(math.sqrt(0.5), rel=1e-12)
+    assert creepage_coordinate(w, tau) == pytest.approx(0.5, rel=1e-12)
     assert creepage_coordinate(np.inf, tau) == 1.0
+    # far past saturation 1 - s = (2 / pi) w / rho + O(rho^-3): linear in the 1/rho tail
+    big = np.array([1e2, 1e3]) * w
+    np.testing.assert_allclose(1.0 - creepage_coordinate(big, tau), 2.0 / np.pi * w / big,
+                               rtol=1e-3)
+
+
+def test_creepage_coordinate_of_earlier_files_maps_onto_the_same_points():
+    """--reuse-nodes across the coordinate change: an earlier file's s = r / sqrt(1 + r^2)
+    nodes become (2 / pi) atan(r), the same creepages r = rho / w; files that declare the
+    arctan form, and the other axes, are left alone."""
+    from tablegen.specs import _exact_reuse_coordinates
+
+    r = np.array([0.0, 0.0007, 0.5, 1.03, 6.0])
+    u = np.r_[r / np.sqrt(1.0 + r * r), 1.0]     # the old nodes, s = 1 at r = infinity
+    old = np.r_[-u[:0:-1], u]
+    r = np.r_[r, np.inf]
+    new = _exact_reuse_coordinates({}, "creepage_coordinate_block", old)
+    np.testing.assert_allclose(new[len(r) - 1:], creepage_coordinate(r), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(new, -new[::-1], rtol=0, atol=0)
+    assert new[-1] == 1.0
+    same = _exact_reuse_coordinates({"creepage_coordinate_form": "arctan"},
+                                    "creepage_coordinate", old)
+    np.testing.assert_array_equal(same, old)
+    np.testing.assert_array_equal(_exact_reuse_coordinates({}, "spin_coordinate", old), old)
 
 
 def test_a_table_of_the_old_coordinate_is_refused(tmp_path):
@@ -92,6 +116,11 @@ def test_a_table_of_the_old_coordinate_is_refused(tmp_path):
 
     assert issubclass(TableFileError, ValueError) and Table is not None
     with pytest.raises(TableFileError, match="creepage_coordinate_spin_weight None"):
+        ExactCreepTable(Old())
+    # with the weight but the algebraic coordinate of the files before 2026-11-27
+    Old.attrs = {"creepage_coordinate_spin_weight": 1.0}
+    with pytest.raises(TableFileError, match="creepage_coordinate_form None; this reader "
+                                             "needs .*'arctan'"):
         ExactCreepTable(Old())
 
 
@@ -551,3 +580,29 @@ def test_parallel_batches_equal_the_point_by_point_values(table, own_contacts):
     for res in results:
         np.testing.assert_array_equal(res.tx, whole.tx)
         np.testing.assert_array_equal(res.ty, whole.ty)
+
+
+def test_jacobian_at_the_origin_is_cartesian():
+    """Within |v| < JACOBIAN_RHO_MIN of v = 0 the Jacobian comes from the radial derivatives
+    along v_x and v_y: the same for either sign of a zero and for any direction of a tiny v,
+    and continuous with the polar formula just outside. (Taken along the direction of v, the
+    angle derivative at |v| = 1e-6 divided the smallest nodes' rounding by |v|: at a0/b0 = 10,
+    nu = 0.25, C23 read -0.51 % at phi = 0 and -0.32 % at phi = 1e-9.)"""
+    from railcontact.creep3d import load_exact_table
+
+    table = load_exact_table()
+    g, nu = 10.0, 0.25
+    a0, b0 = 6e-3 * math.sqrt(g), 6e-3 / math.sqrt(g)
+
+    def jac(xi_x, xi_y, phi):
+        return np.asarray(table.creep_force_jacobian_3d(xi_x, xi_y, phi, 1e5, a0, b0, 210e9,
+                                                        nu, 0.3))
+
+    origin = jac(0.0, 0.0, 0.0)
+    scale = np.abs(origin).max(axis=1, keepdims=True)
+    for inside in [(-0.0, -0.0, -0.0), (1e-9, 0.0, 0.0), (0.0, 1e-9, 0.0), (0.0, 0.0, 1e-9),
+                   (-7e-10, 7e-10, 0.0)]:          # |v| ~ 1e-7, inside
+        np.testing.assert_allclose(jac(*inside) / scale, origin / scale, rtol=0, atol=1e-9)
+    for outside in [(1e-7, 0.0, 0.0), (0.0, 1e-7, 0.0), (0.0, 0.0, 1e-7),
+                    (-7e-8, -7e-8, 0.0)]:          # |v| ~ 1e-5, the polar formula
+        np.testing.assert_allclose(jac(*outside) / scale, origin / scale, rtol=0, atol=2e-3)

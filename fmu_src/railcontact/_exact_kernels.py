@@ -18,6 +18,8 @@ from . import _numba_cache  # noqa: F401  (the user cache, before any njit is co
 from ._spline_kernels import find_span
 from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
+_TWO_OVER_PI = 2.0 / math.pi
+
 __all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_batch",
            "creep_contact_batch_parallel", "creep_batch", "creep_batch_parallel",
            "PARALLEL_CHUNK", "HEAD"]
@@ -178,7 +180,8 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         return False
     rho = math.hypot(v_x, v_y)
     w2 = 1.0 + (SPIN_WEIGHT * tau) ** 2
-    s = 1.0 if rho > 1e150 else rho / math.sqrt(w2 + rho * rho)
+    w = math.sqrt(w2)
+    s = 1.0 if rho > 1e150 else _TWO_OVER_PI * math.atan(rho / w)
     theta = math.atan2(v_y, v_x)
     out = work[320:336].reshape((4, 4))
     small = want_jacobian and rho < JACOBIAN_RHO_MIN
@@ -213,13 +216,10 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
     res[4] = rho
     if not want_jacobian:
         return True
-    if small:   # the polar Jacobian at a point just off the origin
-        rho = JACOBIAN_RHO_MIN
-        s = rho / math.sqrt(w2 + rho * rho)
-        spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu,
-                      s, theta, tau, True, out, work)
-        f_par = out[0, 0]
-        f_perp = out[0, 1]
+    if small:
+        _origin_jacobian(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g,
+                         nu, w, tau, c11, c22, c23, h, root_ab, w_sat, mu_n, res, out, work)
+        return True
     # Cartesian force over mu N and its partials in (s, theta, tau)
     fx_s = -(out[1, 0] * c - out[1, 1] * sn)
     fy_s = -(out[1, 0] * sn + out[1, 1] * c)
@@ -236,9 +236,12 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         fx_t, fy_t = fx_t - fx * dot, fy_t - fy * dot
         dot = fx * fx_u + fy * fy_u
         fx_u, fy_u = fx_u - fx * dot, fy_u - fy * dot
-    ds = (1.0 - s * s) ** 1.5 / math.sqrt(w2)  # ds/drho
-    # s depends on tau too: d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds
-    ds_u = -s * (1.0 - s * s) * SPIN_WEIGHT**2 * tau / w2
+    # s = (2 / pi) atan(rho / w): ds/drho = (2 / pi) w / (w^2 + rho^2), and s depends on tau
+    # too (w = sqrt(1 + tau^2)): d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds,
+    # ds/dtau = -(2 / pi) rho / (w^2 + rho^2) dw/dtau; both 0 at rho = inf (s = 1)
+    q = 0.0 if rho > 1e150 else _TWO_OVER_PI / (w2 + rho * rho)
+    ds = q * w
+    ds_u = -q * rho * SPIN_WEIGHT**2 * tau / w
     fx_u += fx_s * ds_u
     fy_u += fy_s * ds_u
     # d/dv_x = cos ds/drho d/ds - sin/rho d/dtheta ; d/dv_y = sin ds/drho d/ds + cos/rho d/dtheta
@@ -253,6 +256,66 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         res[8 + j] = mu_n * k * (fy_s * gs + fy_t * gt + fy_u * dtu)
         res[11 + j] = mu_n * root_ab * (m_s * gs + m_t * gt + m_u * dtu)
     return True
+
+
+@njit(cache=True)
+def _origin_jacobian(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu,
+                     w, tau, c11, c22, c23, h, root_ab, w_sat, mu_n, res, out, work):
+    """``res[5:14]`` <- the Jacobian within |v| < JACOBIAN_RHO_MIN of v = 0 (where the polar
+    coordinates divide by |v|), in Cartesian form: the column of v_x from the radial
+    derivative along theta = 0, that of v_y from the radial derivative along theta = pi/2, the
+    spin's from the latter and d/dtau, each at |v| = JACOBIAN_RHO_MIN. (The angle derivative
+    there, which the polar formula would use for the column across the direction of v,
+    divides the node values' rounding and the solver's tolerance at the smallest s by
+    JACOBIAN_RHO_MIN; with angle nodes 3.75 degrees apart that moved C23 at a0/b0 = 10 by
+    0.2 %, and the Jacobian at v = 0 depended on the sign of a zero.)"""
+    rho = JACOBIAN_RHO_MIN
+    s = _TWO_OVER_PI * math.atan(rho / w)
+    ds = _TWO_OVER_PI * w / (w * w + rho * rho)            # ds/drho
+    ds_u = -_TWO_OVER_PI * rho / (w * w + rho * rho) * SPIN_WEIGHT**2 * tau / w
+    # along e_x (theta = 0): T/(mu N) = -(f_par, f_perp)
+    spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
+                 0.0, tau, True, out, work)
+    fx = -out[0, 0]
+    fy = -out[0, 1]
+    ax_x = -out[1, 0] * ds           # d(T_x, T_y, m)/dv_x
+    ay_x = -out[1, 1] * ds
+    am_x = out[1, 2] * ds
+    ux = -(out[3, 0] + out[1, 0] * ds_u)   # d/dtau at fixed v (the average of both rays)
+    uy = -(out[3, 1] + out[1, 1] * ds_u)
+    um = out[3, 2] + out[1, 2] * ds_u
+    # along e_y (theta = pi/2): T/(mu N) = -(-f_perp, f_par)
+    spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
+                 0.5 * math.pi, tau, True, out, work)
+    ax_y = out[1, 1] * ds            # d(T_x, T_y, m)/dv_y
+    ay_y = -out[1, 0] * ds
+    am_y = out[1, 2] * ds
+    ux = 0.5 * (ux + out[3, 1] + out[1, 1] * ds_u)
+    uy = 0.5 * (uy - out[3, 0] - out[1, 0] * ds_u)
+    um = 0.5 * (um + out[3, 2] + out[1, 2] * ds_u)
+    mag = math.hypot(fx, fy)
+    if mag > 1.0:    # scaled to mu N: d(f / |f|) = (I - f^ f^T) df / |f|
+        fx /= mag
+        fy /= mag
+        dot = fx * ax_x + fy * ay_x
+        ax_x, ay_x = (ax_x - fx * dot) / mag, (ay_x - fy * dot) / mag
+        dot = fx * ax_y + fy * ay_y
+        ax_y, ay_y = (ax_y - fx * dot) / mag, (ay_y - fy * dot) / mag
+        dot = fx * ux + fy * uy
+        ux, uy = (ux - fx * dot) / mag, (uy - fy * dot) / mag
+    dvx = c11 / w_sat
+    dvy = c22 / w_sat
+    dvp = root_ab * c23 / w_sat      # dv_y/dphi
+    dtu = h / w_sat                  # dtau/dphi
+    res[5] = mu_n * ax_x * dvx
+    res[6] = mu_n * ax_y * dvy
+    res[7] = mu_n * (ax_y * dvp + ux * dtu)
+    res[8] = mu_n * ay_x * dvx
+    res[9] = mu_n * ay_y * dvy
+    res[10] = mu_n * (ay_y * dvp + uy * dtu)
+    res[11] = mu_n * root_ab * am_x * dvx
+    res[12] = mu_n * root_ab * am_y * dvy
+    res[13] = mu_n * root_ab * (am_y * dvp + um * dtu)
 
 
 #: Header of a contact buffer (see :func:`creep_contact`): n_s, n_theta, n_tau, tau_max,

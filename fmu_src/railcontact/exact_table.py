@@ -19,7 +19,8 @@ axes are
 
     log_aspect_ratio  ln(a0/b0)
     poisson_ratio     nu
-    creepage_coordinate  s = rho / sqrt(rho^2 + 1 + tau^2), rho = |v|, *signed* (see below)
+    creepage_coordinate  s = (2 / pi) atan(rho / w), w = sqrt(1 + tau^2), rho = |v|, *signed*
+                         (see below)
     creepage_angle    theta = atan2(v_y, v_x), periodic over [-pi, pi]
     spin_coordinate   tau (signed with phi)
 
@@ -47,6 +48,12 @@ instead covers every sign, and computes only a quarter with the solver:
   spin (with ``s = rho / sqrt(1 + rho^2)`` it fell into the last interval, and a table of that
   kind erred by up to 18 % of mu N at |tau| > 5). ``w`` is smooth and even in tau, so the
   spline stays C2 across phi = 0.
+* ``s`` is the arctangent of rho / w: far past saturation the force approaches its
+  full-sliding limit like 1/rho (the spin's share), which is *linear* in 1 - s, so the last
+  interval (rho / w from 6 to infinity) interpolates it; with the algebraic form
+  ``rho / sqrt(rho^2 + w^2)`` of the tables before 2026-11-27, 1/rho went like sqrt(1 - s)
+  and that interval erred by up to 1.6 % of mu N (a 1-D fit through the same nodes:
+  0.002 %). atan is odd and analytic, so the double cover stays C2 through v = 0.
 
 Symmetries used to fill the grid from the computed quarter (v_x >= 0, tau >= 0, s >= 0):
 S1, mirroring y: (v_x, v_y, tau) -> (v_x, -v_y, -tau), (f_par, f_perp, M) -> (f_par, -f_perp,
@@ -65,7 +72,8 @@ __all__ = ["exact_table_coordinates", "exact_table_inverse", "creepage_coordinat
            "creepage_magnitude"]
 
 
-from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT  # noqa: E402,F401  (the kernels' too)
+from .creep_common import (  # noqa: E402,F401  (the kernels' too)
+    CREEPAGE_COORDINATE_FORM, JACOBIAN_RHO_MIN, SPIN_WEIGHT)
 
 # Large batches run their points on numba's threads; numba's default threading layer
 # (workqueue) aborts the process when two Python threads launch parallel loops at once, so the
@@ -87,23 +95,22 @@ def _batch(name, n, *args):
 
 
 def creepage_coordinate(rho, tau=0.0):
-    """Compactified creepage magnitude ``s = rho / sqrt(rho^2 + w^2)``, ``w^2 = 1 + tau^2``
-    (1 at rho = inf; ``rho / sqrt(1 + rho^2)`` without spin). [-]"""
+    """Compactified creepage magnitude ``s = (2 / pi) atan(rho / w)``, ``w^2 = 1 + tau^2``
+    (1 at rho = inf; odd in rho). [-]"""
     rho = np.asarray(rho, dtype=float)
-    w2 = 1.0 + (SPIN_WEIGHT * np.asarray(tau, dtype=float)) ** 2
+    w = np.sqrt(1.0 + (SPIN_WEIGHT * np.asarray(tau, dtype=float)) ** 2)
     with np.errstate(over="ignore", invalid="ignore"):
         big = np.abs(rho) > 1e150
         r = np.where(big, 0.0, rho)
-        return np.where(big, np.sign(rho), r / np.sqrt(w2 + r * r))
+        return np.where(big, np.sign(rho), (2.0 / np.pi) * np.arctan(r / w))
 
 
 def creepage_magnitude(s, tau=0.0):
-    """Inverse of :func:`creepage_coordinate`: ``rho = w s / sqrt(1 - s^2)`` (inf at
-    |s| = 1)."""
+    """Inverse of :func:`creepage_coordinate`: ``rho = w tan(pi s / 2)`` (inf at |s| = 1)."""
     s = np.asarray(s, dtype=float)
     w = np.sqrt(1.0 + (SPIN_WEIGHT * np.asarray(tau, dtype=float)) ** 2)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(np.abs(s) >= 1.0, np.sign(s) * np.inf, w * s / np.sqrt(1.0 - s * s))
+        return np.where(np.abs(s) >= 1.0, np.sign(s) * np.inf, w * np.tan(0.5 * np.pi * s))
 
 
 def exact_table_inverse(log_aspect_ratio, poisson_ratio, creepage_coordinate_, creepage_angle,
@@ -274,16 +281,20 @@ class ExactCreepTable:
 
     def __init__(self, table, solver=None):
         names = tuple(a["name"] for a in table.axes)
-        weight = getattr(table, "attrs", {}).get("creepage_coordinate_spin_weight")
+        attrs = getattr(table, "attrs", {})
+        weight = attrs.get("creepage_coordinate_spin_weight")
+        form = attrs.get("creepage_coordinate_form")
         if names != AXES or tuple(table.variables) != VARIABLES or weight is None \
-                or float(weight) != SPIN_WEIGHT:
+                or float(weight) != SPIN_WEIGHT or form != CREEPAGE_COORDINATE_FORM:
             from .tables import TableFileError  # noqa: PLC0415
 
             raise TableFileError(f"table file {str(table.path)!r} has axes {names}, "
-                                 f"variables {tuple(table.variables)} and "
-                                 f"creepage_coordinate_spin_weight {weight!r}; this reader "
-                                 f"needs {AXES}, {VARIABLES} and {SPIN_WEIGHT} (rebuild with "
-                                 "`python -m tablegen build --only creep_exact`)")
+                                 f"variables {tuple(table.variables)}, "
+                                 f"creepage_coordinate_spin_weight {weight!r} and "
+                                 f"creepage_coordinate_form {form!r}; this reader needs "
+                                 f"{AXES}, {VARIABLES}, {SPIN_WEIGHT} and "
+                                 f"{CREEPAGE_COORDINATE_FORM!r} (rebuild with `python -m "
+                                 "tablegen build --only creep_exact`)")
         self.table = table
         self.path = table.path
         #: Callable answering beyond the table (``solver(xi_x, xi_y, phi, N, a0, b0, E, nu,
