@@ -678,7 +678,11 @@ class Table:
                              knots=np.asarray(knots, float), units=str(a.get("units", "1")),
                              long_name=str(a.get("long_name", name)),
                              double_knots=double_knots, out_of_range=out_of_range))
-        values, coefs, vattrs, tolerance = {}, [], {}, []
+        values, vattrs, tolerance = {}, {}, []
+        # one float64 array, filled variable by variable (a float32 file's coefficients are
+        # widened in that one pass: creep_exact's are 137 MB in float64, and a list of
+        # converted arrays stacked afterwards cost two more passes at every load)
+        coefs = np.empty((len(var_names),) + tuple(len(a["nodes"]) for a in axes))
         shape = tuple(len(a["nodes"]) for a in axes)
         block = None
         for name in var_names:
@@ -708,9 +712,9 @@ class Table:
                 _check_float64(where, cname, coef)     # (declared float32 coefficients: a
                 # large table halved again; evaluated in float64, checked to 1e-6 below)
             values[name] = np.asarray(val, float)
-            coefs.append(np.asarray(coef, float))
+            coefs[var_names.index(name)] = coef
             vattrs[name] = a
-        table = cls(path, attrs, axes, var_names, vattrs, values, np.stack(coefs),
+        table = cls(path, attrs, axes, var_names, vattrs, values, coefs,
                     node_block=block)
         if store is None:    # from the user cache: this content passed the check below
             return table
