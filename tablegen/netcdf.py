@@ -1,6 +1,7 @@
 """CF-1.8 netCDF writer for tables (read back by :class:`railcontact.tables.Table`).
 
-Layout (``railcontact_table_format = 1``, or 2 with node values on a block, below), for axes ``A1..AD`` and variables ``V``:
+Layout (``railcontact_table_format = 1``, or 2 with node values on a block, below), for axes
+``A1..AD`` and variables ``V``:
 
 * coordinates ``A`` (dim ``A``): the nodes; attributes ``units``, ``long_name``,
   ``double_knots``, ``out_of_range``, ``spline_knots``;

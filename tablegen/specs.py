@@ -11,6 +11,7 @@ direct model in :mod:`railcontact`; the coordinate conversions live in
 from __future__ import annotations
 
 import numpy as np
+from railcontact.creep_common import CREEPAGE_COORDINATE_FORM
 
 from .spec import Axis, TableSpec, Variable
 
@@ -561,13 +562,22 @@ def _exact_check(axes, n, rng):
     # 2026-11-27: the same physical points as their checks)
     r_far = np.exp(rng.uniform(np.log(5.0), np.log(100.0), n))
     u = rng.uniform(0.0, 5.0 / np.sqrt(26.0), n)
-    s_pts = np.where(far, creepage_coordinate(r_far), creepage_coordinate(u / np.sqrt(1.0 - u * u)))
+    s_pts = np.where(far, creepage_coordinate(r_far),
+                     creepage_coordinate(_algebraic_creepage_magnitude(u)))
     pts = np.column_stack([
         rng.uniform(g[0], g[-1], n), rng.uniform(nu[0], nu[-1], n),
         s_pts,                                   # |v| / sqrt(1 + tau^2) <= 100
         rng.uniform(-0.5 * np.pi, 0.5 * np.pi, n),
         np.interp(rng.uniform(0.0, len(tau_q) - 1.0, n), np.arange(len(tau_q)), tau_q)])
     return pts[np.lexsort((pts[:, 1], pts[:, 0]))]   # contact by contact (solver caches)
+
+
+def _algebraic_creepage_magnitude(u):
+    """r = u / sqrt(1 - u^2): the creepage r = rho / w of the coordinate u = r / sqrt(1 + r^2)
+    the exact tables used before 2026-11-27 (infinite at |u| = 1)."""
+    u = np.asarray(u, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(np.abs(u) >= 1.0, np.sign(u) * np.inf, u / np.sqrt(1.0 - u * u))
 
 
 def _exact_reuse_coordinates(attrs, name, nodes):
@@ -578,12 +588,9 @@ def _exact_reuse_coordinates(attrs, name, nodes):
 
     nodes = np.asarray(nodes, dtype=float)
     if not name.startswith("creepage_coordinate") or attrs.get(
-            "creepage_coordinate_form") == "arctan":
+            "creepage_coordinate_form") == CREEPAGE_COORDINATE_FORM:
         return nodes
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.where(np.abs(nodes) >= 1.0, np.sign(nodes) * np.inf,
-                     nodes / np.sqrt(1.0 - nodes * nodes))
-    return creepage_coordinate(r)
+    return creepage_coordinate(_algebraic_creepage_magnitude(nodes))
 
 
 register(TableSpec(
@@ -593,7 +600,7 @@ register(TableSpec(
     axes=_exact_axes,
     function=exact_creep_function,
     reduce=_exact_reduce,
-    node_values_float32=True,      # 2,679,075 nodes x 4 variables: with the coefficients
+    node_values_float32=True,      # 4,266,675 coefficients x 4 variables: with the node values
     coefficients_float32=True,     # in float32 too, and to 5 significant digits (stick area: 3)
     significant_digits=5,          # the file stays under 20 MB. (4 digits made the spline 3e-8
     # off zero near v = 0: combinations of coefficients that cancel there keep their rounding,
@@ -642,9 +649,8 @@ register(TableSpec(
             "to the solver's forces and moment, R = sqrt(rho^2 + tau^2); at most about 0.1 % "
             "of mu N; see tablegen.specs.exact_linear_limit_correction"),
         "creepage_coordinate_spin_weight": 1.0,
-        "creepage_coordinate_form": (
-            "arctan"),   # s = (2 / pi) atan(rho / w); the tables before 2026-11-27: rho / sqrt(
-        # rho^2 + w^2) (see railcontact.creep_common.CREEPAGE_COORDINATE_FORM)
+        # s = (2 / pi) atan(rho / w); the tables before 2026-11-27: rho / sqrt(rho^2 + w^2)
+        "creepage_coordinate_form": CREEPAGE_COORDINATE_FORM,
         "normalisation": (
             "forces over mu N depend only on a0/b0, nu and the Kalker-weighted creepages "
             "(C11 xi_x, C22 xi_y, sqrt(a0 b0) C23 phi)/w_sat; the solver computes the quarter "

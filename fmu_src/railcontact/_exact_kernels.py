@@ -236,12 +236,8 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
         fx_t, fy_t = fx_t - fx * dot, fy_t - fy * dot
         dot = fx * fx_u + fy * fy_u
         fx_u, fy_u = fx_u - fx * dot, fy_u - fy * dot
-    # s = (2 / pi) atan(rho / w): ds/drho = (2 / pi) w / (w^2 + rho^2), and s depends on tau
-    # too (w = sqrt(1 + tau^2)): d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds,
-    # ds/dtau = -(2 / pi) rho / (w^2 + rho^2) dw/dtau; both 0 at rho = inf (s = 1)
-    q = 0.0 if rho > 1e150 else _TWO_OVER_PI / (w2 + rho * rho)
-    ds = q * w
-    ds_u = -q * rho * SPIN_WEIGHT**2 * tau / w
+    # s depends on tau too: d/dtau at fixed rho = d/dtau at fixed s + ds/dtau d/ds
+    ds, ds_u = _s_partials(rho, w, w2, tau)
     fx_u += fx_s * ds_u
     fy_u += fy_s * ds_u
     # d/dv_x = cos ds/drho d/ds - sin/rho d/dtheta ; d/dv_y = sin ds/drho d/ds + cos/rho d/dtheta
@@ -258,6 +254,15 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
     return True
 
 
+@njit(cache=True, inline="always")
+def _s_partials(rho, w, w2, tau):
+    """``(ds/drho, ds/dtau at fixed rho)`` of the creepage coordinate ``s = (2 / pi) atan(rho /
+    w)``, ``w = sqrt(w2)``, ``w2 = 1 + (SPIN_WEIGHT tau)^2``: ``(2 / pi) w / (w2 + rho^2)`` and
+    ``-(2 / pi) rho / (w2 + rho^2) dw/dtau``; both 0 at rho = inf (s = 1)."""
+    q = 0.0 if rho > 1e150 else _TWO_OVER_PI / (w2 + rho * rho)
+    return q * w, -q * rho * SPIN_WEIGHT**2 * tau / w
+
+
 @njit(cache=True)
 def _origin_jacobian(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu,
                      w, tau, c11, c22, c23, h, root_ab, w_sat, mu_n, res, out, work):
@@ -271,8 +276,7 @@ def _origin_jacobian(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p
     0.2 %, and the Jacobian at v = 0 depended on the sign of a zero.)"""
     rho = JACOBIAN_RHO_MIN
     s = _TWO_OVER_PI * math.atan(rho / w)
-    ds = _TWO_OVER_PI * w / (w * w + rho * rho)            # ds/drho
-    ds_u = -_TWO_OVER_PI * rho / (w * w + rho * rho) * SPIN_WEIGHT**2 * tau / w
+    ds, ds_u = _s_partials(rho, w, w * w, tau)
     # along e_x (theta = 0): T/(mu N) = -(f_par, f_perp)
     spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
                  0.0, tau, True, out, work)

@@ -682,10 +682,10 @@ class Table:
         # one float64 array, filled variable by variable (a float32 file's coefficients are
         # widened in that one pass: creep_exact's are 137 MB in float64, and a list of
         # converted arrays stacked afterwards cost two more passes at every load)
-        coefs = np.empty((len(var_names),) + tuple(len(a["nodes"]) for a in axes))
         shape = tuple(len(a["nodes"]) for a in axes)
+        coefs = np.empty((len(var_names),) + shape)
         block = None
-        for name in var_names:
+        for k_var, name in enumerate(var_names):
             cname = f"{name}_bspline_coefficients"
             for needed in (name, cname):
                 if needed not in ncvars:
@@ -712,7 +712,7 @@ class Table:
                 _check_float64(where, cname, coef)     # (declared float32 coefficients: a
                 # large table halved again; evaluated in float64, checked to 1e-6 below)
             values[name] = np.asarray(val, float)
-            coefs[var_names.index(name)] = coef
+            coefs[k_var] = coef
             vattrs[name] = a
         table = cls(path, attrs, axes, var_names, vattrs, values, coefs,
                     node_block=block)
