@@ -113,16 +113,24 @@ def _reused_node_values(spec, path, points):
     """Node values of an earlier build of the same table (same name and ``method``) at the
     grid ``points`` it holds: ``(values (n, n_var), compute (n,) bool, attributes)``.
     ``compute`` marks the points to compute anew: those that are not nodes of that file (a
-    finer grid reuses a coarser build's nodes) and those ``spec.analytic_points`` marks."""
+    finer grid reuses a coarser build's nodes), those ``spec.analytic_points`` marks, and, for
+    a file of another method that ``spec.reusable_points`` accepts, those it does not mark."""
     import netCDF4  # noqa: PLC0415
 
     path = Path(path)
     with netCDF4.Dataset(path) as ds:
         attrs = {k: ds.getncattr(k) for k in ds.ncattrs()}
-        if attrs.get("table_name") != spec.name or attrs.get("method") != spec.method:
+        reusable = None
+        if attrs.get("table_name") == spec.name:
+            if attrs.get("method") == spec.method:
+                reusable = np.ones(len(points), dtype=bool)
+            elif spec.reusable_points is not None:
+                reusable = spec.reusable_points(attrs, points)
+        if reusable is None:
             raise ValueError(f"reuse_nodes must be a file of table {spec.name!r} built with the "
-                             f"same method ({spec.method!r}); got {path} (table "
-                             f"{attrs.get('table_name')!r}, method {attrs.get('method')!r})")
+                             f"same method ({spec.method!r}) or one its spec's reusable_points "
+                             f"accepts; got {path} (table {attrs.get('table_name')!r}, method "
+                             f"{attrs.get('method')!r})")
         index, found = [], np.ones(len(points), dtype=bool)
         # the node values' own dimensions: the axes, or the blocks of them a table with
         # symmetries stores (``<axis>_block``, coordinates the nodes there)
@@ -137,16 +145,22 @@ def _reused_node_values(spec, path, points):
                            for v in spec.variables], axis=-1)
     analytic = (np.asarray(spec.analytic_points(points), dtype=bool)
                 if spec.analytic_points is not None else np.zeros(len(points), dtype=bool))
-    compute = analytic | ~found
+    reusable = np.asarray(reusable, dtype=bool)
+    compute = analytic | ~found | ~reusable
     values[compute] = np.nan
     n_new = int((~found & ~analytic).sum())
+    n_changed = int((found & ~analytic & ~reusable).sum())
+    same = attrs.get("method") == spec.method
     info = {"build_reused_nodes": (
         f"{int((~compute).sum())} of {len(points)} points' node values taken from an earlier "
-        f"build of this table with the same method ({path.name}, source {attrs.get('source')}, "
+        f"build of this table with "
+        f"{'the same method' if same else 'the method ' + repr(attrs.get('method'))} "
+        f"({path.name}, source {attrs.get('source')}, "
         f"history {attrs.get('history')!r}; stored in "
         f"{'float32' if spec.node_values_float32 else 'float64'}), "
         f"{int(analytic.sum())} analytic points recomputed, {n_new} points that are not nodes "
-        "of that file computed; the check points are computed anew")}
+        f"of that file computed, {n_changed} points whose method changed computed; the check "
+        "points are computed anew")}
     for key in ("build_seconds", "solver_source_sha1", "build_chunks_reused"):
         if key in attrs:
             info[f"reused_nodes_{key}"] = attrs[key]
@@ -179,7 +193,8 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     keep_chunks : bool
         Keep the chunk files after success.
     reuse_nodes : path-like, optional
-        An earlier build of the same table (same ``method``): its node values are taken
+        An earlier build of the same table (same ``method``, or one whose points
+        ``spec.reusable_points`` accepts): its node values are taken
         instead of computed at every grid point that is one of its nodes, except at the
         points ``spec.analytic_points`` marks (limits computed without the solver), which are
         recomputed; grid points that are not its nodes (a refined axis) and the check points

@@ -155,6 +155,12 @@ class TableSpec:
         (its global attributes ``attrs``, the coordinate variable ``name``) in this spec's
         coordinates, for ``build_table(reuse_nodes=...)`` across a change of an axis's
         coordinate that keeps its nodes' physical points. Default: unchanged.
+    reusable_points : callable, optional
+        ``reusable_points(attrs, points) -> bool mask or None``: for
+        ``build_table(reuse_nodes=...)`` with an earlier file whose ``method`` differs from
+        this spec's (a solver setting changed in part of the domain), the grid points whose
+        earlier values this method would give too; ``None`` refuses the file. Default: only a
+        file of the same ``method`` is reused.
     analytic_points : callable, optional
         ``analytic_points(points) -> bool mask`` of the points that ``function`` answers
         without its expensive solver (limits). A build that reuses an earlier file's node
@@ -182,6 +188,7 @@ class TableSpec:
     significant_digits: int | None = None
     analytic_points: Callable | None = None
     reuse_coordinates: Callable | None = None
+    reusable_points: Callable | None = None
 
     def available(self):
         """``None`` if buildable, else the reason (a module that does not import)."""

@@ -149,6 +149,29 @@ register(TableSpec(
 EXACT_SOLVER = dict(mx=30, my=20, tolerance=1e-4, max_iterations=4000)
 EXACT_RICHARDSON = True
 EXACT_GRID_SHIFTS = (-0.25, 0.25)
+#: Lateral elements where the contact is narrow in the rolling direction and the spin large
+#: (since 2026-11-27): there the spin's slip varies fastest across the wide lateral extent,
+#: and 20 elements across 2.16 b0 leave the discrete solution depending on where the spin
+#: pole falls between element rows. Measured along creepage scans (rho / w 0.03-1.2, four
+#: cases with tau 4.4-20 per a0/b0) against 30 (60) x 80 elements, % of mu N max:
+#: a0/b0 = 0.1: my = 20 1.29, 27 0.63, 36 0.17; 0.18: 1.51, 0.68, 0.20; 0.32: 0.69, 0.29,
+#: 0.15; 0.56: 0.37, 0.20, 0.12; 1: 0.20, 0.10, 0.05; 1.8: 0.10 with 20 (the forces along
+#: such a scan at a0/b0 = 0.18, tau = 9.5 alternate by up to 1 % of mu N with 20 elements,
+#: smooth with 40). With tau <= 1 20 elements are within 0.13 %.
+EXACT_LATERAL_ELEMENTS_NARROW = 36
+#: a0/b0 below which, and spin coordinate |tau| above which, the table's solver uses
+#: :data:`EXACT_LATERAL_ELEMENTS_NARROW` lateral elements (between the nodes 0.32 and 0.56 of
+#: a0/b0 and 1 and 1.3 of tau). [-]
+EXACT_NARROW_ASPECT_MAX = 0.45
+EXACT_NARROW_SPIN_MIN = 1.15
+
+
+def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate):
+    """Lateral elements ``my`` of the table's solver at table points: 36 where a0/b0 < 0.45
+    and |tau| > 1.15 (:data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20. [-]"""
+    narrow = ((np.asarray(log_aspect_ratio) < np.log(EXACT_NARROW_ASPECT_MAX))
+              & (np.abs(np.asarray(spin_coordinate)) > EXACT_NARROW_SPIN_MIN))
+    return np.where(narrow, EXACT_LATERAL_ELEMENTS_NARROW, EXACT_SOLVER["my"])
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
@@ -345,28 +368,31 @@ EXACT_LINEAR_LIMIT_WIDTH = 0.1
 _EXACT_LINEAR_PROBE = 1e-4
 
 
-def _exact_solver_point(kw, key, previous):
-    """(tx, ty, mz, fine solution) at the table's solver setting: 30 x 20 and 60 x 20,
-    extrapolated once, averaged over the grids moved by :data:`EXACT_GRID_SHIFTS`; ``previous``
-    holds the last solution per (contact, grid) as the next start."""
+def _exact_solver_point(kw, key, previous, my=None):
+    """(tx, ty, mz, fine solution) at the table's solver setting: 30 x my and 60 x my
+    (``my`` default 20), extrapolated once, averaged over the grids moved by
+    :data:`EXACT_GRID_SHIFTS`; ``previous`` holds the last solution per (contact, grid) as
+    the next start."""
     import warnings  # noqa: PLC0415
 
     from railcontact.reference.rolling3d import (  # noqa: PLC0415
         RollingConvergenceError, solve_rolling_3d)
 
+    my = int(EXACT_SOLVER["my"] if my is None else my)
+
     def solve(mx, shift, start=None):
-        start = previous.get((key, mx, shift), start)
+        start = previous.get((key, mx, my, shift), start)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
-                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx), initial_guess=start,
-                                     grid_shift=shift)
+                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx, my=my),
+                                     initial_guess=start, grid_shift=shift)
             except RollingConvergenceError:
                 # one retry from zero, looser and longer; a second failure fails the chunk
                 # (finished chunks are kept, the build resumes)
-                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx, tolerance=1e-3,
+                r = solve_rolling_3d(**kw, **dict(EXACT_SOLVER, mx=mx, my=my, tolerance=1e-3,
                                                   max_iterations=20000), grid_shift=shift)
-        previous[(key, mx, shift)] = r
+        previous[(key, mx, my, shift)] = r
         return r
 
     mx = EXACT_SOLVER["mx"]
@@ -488,15 +514,16 @@ def exact_creep_function(points):
     :mod:`railcontact.exact_table`.
 
     Calls :func:`railcontact.reference.rolling3d.solve_rolling_3d` on the reference contact
-    (:data:`railcontact.creep3d.REFERENCE_CONTACT`) at 30 x 20 and 60 x 20 elements,
+    (:data:`railcontact.creep3d.REFERENCE_CONTACT`) at 30 x my and 60 x my elements (my =
+    20, or 36 where a0/b0 < 0.45 and |tau| > 1.15: :func:`exact_solver_lateral_elements`),
     extrapolates once (Richardson, first order in the rolling-direction element size) and
     averages the grids moved by :data:`EXACT_GRID_SHIFTS` (what ``creep_solution_3d(...,
-    method="exact")`` does by default); each grid starts from the previous point's solution
-    on it when the contact is the same (only the number of sweeps changes). Near zero creepage
-    and spin the forces and moment are anchored to Kalker's linear theory
-    (:func:`exact_linear_limit_correction`). The stick area
-    fraction is the last fine grid's element count. At s = 1 (infinite creepage) the values are the full-sliding
-    limit, :func:`exact_full_sliding_limit` (no solver).
+    method="exact")`` does by default, but for my); each grid starts from the previous point's
+    solution on it when the contact is the same (only the number of sweeps changes). Near zero
+    creepage and spin the forces and moment are anchored to Kalker's linear theory
+    (:func:`exact_linear_limit_correction`). The stick area fraction is the last fine grid's
+    element count. At s = 1 (infinite creepage) the values are the full-sliding limit,
+    :func:`exact_full_sliding_limit` (no solver).
     """
     from railcontact.creep3d import REFERENCE_CONTACT  # noqa: PLC0415
     from railcontact.exact_table import exact_table_inverse  # noqa: PLC0415
@@ -515,11 +542,13 @@ def exact_creep_function(points):
     for name in ("creepage_longitudinal", "creepage_lateral", "spin", "friction_coefficient"):
         phys[name] = phys[name] * lam
     previous = {}
+    lateral = exact_solver_lateral_elements(points[:, 0], points[:, 4])
 
     for i in np.nonzero(finite)[0]:
         kw = {k: float(v[i]) for k, v in phys.items()}
         key = (points[i, 0], points[i, 1])               # same contact: same grid, pressure
-        tx, ty, mz, fine = _exact_solver_point(kw, key, previous)
+        tx, ty, mz, fine = _exact_solver_point(kw, key, previous,
+                                               my=lateral[i])
         mu_n = kw["friction_coefficient"] * kw["normal_load"]
         n_contact = np.count_nonzero(fine.pn > 0.0)
         c, s = np.cos(points[i, 3]), np.sin(points[i, 3])
@@ -593,6 +622,33 @@ def _exact_reuse_coordinates(attrs, name, nodes):
     return creepage_coordinate(_algebraic_creepage_magnitude(nodes))
 
 
+#: The exact table's method before 2026-11-27 (20 lateral elements everywhere).
+_EXACT_METHOD_MY20 = (
+    "railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20, "
+    "scale 1.08, tolerance 1e-4, extrapolated 2 F(60 x 20) - F(30 x 20) on the grids "
+    "moved -1/4 and +1/4 of an element and averaged (creep_force_3d(method='exact')'s "
+    "default), on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3; forces and "
+    "moment anchored near zero creepage and spin to Kalker's linear theory "
+    "(tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)")
+_EXACT_METHOD = (
+    "railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20 (36 where "
+    f"a0/b0 < {EXACT_NARROW_ASPECT_MAX:g} and |tau| > {EXACT_NARROW_SPIN_MIN:g}: "
+    "tablegen.specs.exact_solver_lateral_elements), scale 1.08, tolerance 1e-4, extrapolated "
+    "2 F(60 x my) - F(30 x my) on the grids moved -1/4 and +1/4 of an element and averaged "
+    "(creep_force_3d(method='exact')'s default but for my), on a0 b0 = 36 mm^2, N = 100 kN, "
+    "E = 210 GPa, mu = 0.3; forces and moment anchored near zero creepage and spin to "
+    "Kalker's linear theory (tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)")
+
+
+def _exact_reusable_points(attrs, points):
+    """A file built before the narrow-contact lateral elements (:data:`_EXACT_METHOD_MY20`):
+    its values stand where :func:`exact_solver_lateral_elements` is still 20."""
+    if attrs.get("method") != _EXACT_METHOD_MY20:
+        return None
+    points = np.asarray(points, dtype=float)
+    return exact_solver_lateral_elements(points[:, 0], points[:, 4]) == EXACT_SOLVER["my"]
+
+
 register(TableSpec(
     name="creep_exact",
     title="Creep forces of Kalker's exact theory (discretised, Richardson-extrapolated) with "
@@ -616,7 +672,7 @@ register(TableSpec(
         Variable("spin_moment_ratio", "1", "spin moment on the wheel about the ellipse "
                  "centre over mu N sqrt(a0 b0)", error_target=5e-3),
         Variable("stick_area_fraction", "1", "adhesion area over contact area (element counts of "
-                 "the 60 x 20 solution on the grid moved +1/4 of an element)",
+                 "the 60 x my solution on the grid moved +1/4 of an element)",
                  error_target=5e-2, significant_digits=3,
                  comment="piecewise constant in the solver (element count), so only "
                          "approximately smooth"),
@@ -625,23 +681,20 @@ register(TableSpec(
                 "1990 (exact theory, steady rolling, creep coefficients); E.A.H. Vollebregt, "
                 "J. Optim. Theory Appl. 157 (2013) (block Gauss-Seidel); "
                 f"{THESIS}, Sec. 2.5.3-2.5.4 (discretisation, tables)"),
-    method=("railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20, "
-            "scale 1.08, tolerance 1e-4, extrapolated 2 F(60 x 20) - F(30 x 20) on the grids "
-            "moved -1/4 and +1/4 of an element and averaged (creep_force_3d(method='exact')'s "
-            "default), on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3; forces and "
-            "moment anchored near zero creepage and spin to Kalker's linear theory "
-            "(tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)"),
+    method=_EXACT_METHOD,
     check_points=_exact_check,
     analytic_points=_exact_analytic_points,
     reuse_coordinates=_exact_reuse_coordinates,
+    reusable_points=_exact_reusable_points,
     n_check={"coarse": 100, "default": 1000, "fine": 4000},
     chunk_size=24,
     requires=("railcontact.reference.rolling3d",),
     build_attributes=_exact_provenance,
     attributes={
-        "solver_grid": "30 x 20 and 60 x 20 elements over [-1.08 a0, 1.08 a0] x [-1.08 b0, "
-                       "1.08 b0], one Richardson step, on the grids moved -1/4 and +1/4 of an "
-                       "element, averaged",
+        "solver_grid": "30 x my and 60 x my elements over [-1.08 a0, 1.08 a0] x [-1.08 b0, "
+                       "1.08 b0], my = 20 (36 where a0/b0 < 0.45 and |tau| > 1.15), one "
+                       "Richardson step, on the grids moved -1/4 and +1/4 of an element, "
+                       "averaged",
         "spin_coordinate_max": EXACT_TAU_MAX,
         "linear_limit": (
             "slope at zero creepage and spin anchored to Kalker's linear theory (C11, C22, "
