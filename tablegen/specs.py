@@ -161,14 +161,15 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 EXACT_LATERAL_ELEMENTS_NARROW = 36
 #: a0/b0 below which, and spin coordinate |tau| above which, the table's solver uses
 #: :data:`EXACT_LATERAL_ELEMENTS_NARROW` lateral elements (between the nodes 0.32 and 0.56 of
-#: a0/b0 and 1 and 1.3 of tau). [-]
+#: a0/b0 and 2.5 and 3 of tau: the 62,370 solver points of the computed quarter there were
+#: rebuilt in one session; from tau = 1.3 it would have been 103,950, 2.5 h on 2 cores). [-]
 EXACT_NARROW_ASPECT_MAX = 0.45
-EXACT_NARROW_SPIN_MIN = 1.15
+EXACT_NARROW_SPIN_MIN = 2.75
 
 
 def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate):
     """Lateral elements ``my`` of the table's solver at table points: 36 where a0/b0 < 0.45
-    and |tau| > 1.15 (:data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20. [-]"""
+    and |tau| > 2.75 (:data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20. [-]"""
     narrow = ((np.asarray(log_aspect_ratio) < np.log(EXACT_NARROW_ASPECT_MAX))
               & (np.abs(np.asarray(spin_coordinate)) > EXACT_NARROW_SPIN_MIN))
     return np.where(narrow, EXACT_LATERAL_ELEMENTS_NARROW, EXACT_SOLVER["my"])
@@ -515,7 +516,7 @@ def exact_creep_function(points):
 
     Calls :func:`railcontact.reference.rolling3d.solve_rolling_3d` on the reference contact
     (:data:`railcontact.creep3d.REFERENCE_CONTACT`) at 30 x my and 60 x my elements (my =
-    20, or 36 where a0/b0 < 0.45 and |tau| > 1.15: :func:`exact_solver_lateral_elements`),
+    20, or 36 where a0/b0 < 0.45 and |tau| > 2.75: :func:`exact_solver_lateral_elements`),
     extrapolates once (Richardson, first order in the rolling-direction element size) and
     averages the grids moved by :data:`EXACT_GRID_SHIFTS` (what ``creep_solution_3d(...,
     method="exact")`` does by default, but for my); each grid starts from the previous point's
@@ -692,7 +693,8 @@ register(TableSpec(
     build_attributes=_exact_provenance,
     attributes={
         "solver_grid": "30 x my and 60 x my elements over [-1.08 a0, 1.08 a0] x [-1.08 b0, "
-                       "1.08 b0], my = 20 (36 where a0/b0 < 0.45 and |tau| > 1.15), one "
+                       f"1.08 b0], my = 20 (36 where a0/b0 < {EXACT_NARROW_ASPECT_MAX:g} and "
+                       f"|tau| > {EXACT_NARROW_SPIN_MIN:g}), one "
                        "Richardson step, on the grids moved -1/4 and +1/4 of an element, "
                        "averaged",
         "spin_coordinate_max": EXACT_TAU_MAX,
