@@ -32,14 +32,25 @@ sys.path[:0] = [str(ROOT / "fmu_src")]
 
 from railcontact import creep_force_3d  # noqa: E402
 from railcontact.creep3d import REFERENCE_CONTACT, load_exact_table  # noqa: E402
-from railcontact.exact_table import exact_table_inverse, creepage_coordinate  # noqa: E402
+from railcontact.exact_table import (  # noqa: E402
+    _kalker_pair, creepage_coordinate, exact_table_coordinates, exact_table_inverse)
 
 sys.path[:0] = [str(ROOT)]
-from tablegen.specs import exact_creep_function  # noqa: E402
+from tablegen.specs import exact_creep_function, exact_solver_lateral_elements  # noqa: E402
 
 #: the solver setting the shipped table was built with (tablegen/specs.py: the exact method's
-#: default grids, 30x20 -> 60x20 on the grids moved -1/4 and +1/4, scale 1.08)
+#: default grids, 30x20 -> 60x20 on the grids moved -1/4 and +1/4, scale 1.08; the lateral
+#: elements per case from tablegen.specs.exact_solver_lateral_elements)
 TABLE_SETTING = dict(tolerance=1e-4)
+
+
+def table_grid(args):
+    """The table solver's grid (30, my) for physical inputs ``args`` of creep_force_3d."""
+    xi, eta, phi, n_load, a0, b0, e_mod, nu, mu = args
+    w_sat = math.pi**2 * (1 + nu) * mu * (3 * n_load / (2 * math.pi * a0 * b0)) / e_mod
+    coords = exact_table_coordinates(xi, eta, phi, a0, b0, nu, w_sat,
+                                     _kalker_pair(a0 / b0, nu))
+    return (30, int(exact_solver_lateral_elements(coords[0], coords[4])))
 
 
 def random_cases(n, rng):
@@ -158,7 +169,7 @@ def main(argv=None):
     errs = []
     for g, case, args, fx, fy in contact_converged():
         f = table.creep_force_3d(*args)
-        s = creep_force_3d(*args, method="exact", **TABLE_SETTING)
+        s = creep_force_3d(*args, method="exact", grid=table_grid(args), **TABLE_SETTING)
         mu_n = args[3] * args[8]
         e_tab = math.hypot(f.tx / mu_n - fx, f.ty / mu_n - fy)
         e_sol = math.hypot(s.tx / mu_n - fx, s.ty / mu_n - fy)

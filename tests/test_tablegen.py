@@ -264,6 +264,65 @@ def test_reuse_nodes_computes_only_what_the_earlier_build_lacks(tmp_path, monkey
                     workdir=tmp_path / "w2", progress=False, reuse_nodes=fresh["path"])
 
 
+def test_reuse_nodes_across_a_method_change_recomputes_what_the_spec_marks(tmp_path,
+                                                                           monkeypatch):
+    """A file of another method is reused only where ``spec.reusable_points`` says its
+    values stand: the solver changed for s >= 1.5 here, so exactly those grid points (and
+    the check points) are computed, and their values are the new method's; a spec without
+    the hook, or a hook that returns None, refuses the file."""
+    old = build_table("selftest", "coarse", output_dir=tmp_path / "old", scheduler="synchronous",
+                      workdir=tmp_path / "w0", progress=False)
+    spec = REGISTRY["selftest"]
+    calls = []
+
+    def changed(points):       # the "new method": g doubled where s >= 1.5
+        calls.append(np.asarray(points).copy())
+        out = selftest_function(points)
+        out[:, 1] *= np.where(np.asarray(points)[:, 1] >= 1.5, 2.0, 1.0)
+        return out
+
+    monkeypatch.setattr(spec, "function", changed)
+    monkeypatch.setattr(spec, "method", "new method")
+    seen = []
+
+    def reusable(attrs, points):
+        seen.append(attrs["method"])
+        return (np.asarray(points)[:, 1] < 1.5) if attrs["method"] == (
+            "tablegen.specs.selftest_function") else None
+
+    monkeypatch.setattr(spec, "reusable_points", reusable)
+    res = build_table("selftest", "coarse", output_dir=tmp_path / "new", scheduler="synchronous",
+                      workdir=tmp_path / "w1", progress=False, reuse_nodes=old["path"])
+    assert seen == ["tablegen.specs.selftest_function"]
+    _, points = spec.grid("coarse")
+    n_changed = int(np.count_nonzero(points[:, 1] >= 1.5))
+    assert 0 < n_changed < len(points)
+    computed = np.concatenate(calls)
+    assert len(computed) == n_changed + spec.n_check["coarse"]
+    assert np.all(computed[:n_changed, 1] >= 1.5)
+    # equal to a fresh build of the new method
+    full = build_table("selftest", "coarse", output_dir=tmp_path / "full",
+                       scheduler="synchronous", workdir=tmp_path / "w2", progress=False)
+    pts = np.column_stack([np.linspace(0.0, 2.0, 41), np.linspace(0.5, 2.0, 41)])
+    np.testing.assert_allclose(Table.from_file(res["path"]).spline.evaluate(pts),
+                               Table.from_file(full["path"]).spline.evaluate(pts), rtol=0,
+                               atol=1e-12)
+    import netCDF4  # noqa: PLC0415
+    with netCDF4.Dataset(res["path"]) as ds:
+        note = ds.getncattr("build_reused_nodes")
+    assert f"{n_changed} points whose method changed computed" in note
+    assert "the method 'tablegen.specs.selftest_function'" in note
+
+    monkeypatch.setattr(spec, "method", "a third method")   # the hook refuses the new file
+    with pytest.raises(ValueError, match="reusable_points accepts; got .*method 'new method'"):
+        build_table("selftest", "coarse", output_dir=tmp_path / "x", scheduler="synchronous",
+                    workdir=tmp_path / "w3", progress=False, reuse_nodes=res["path"])
+    monkeypatch.setattr(spec, "reusable_points", None)
+    with pytest.raises(ValueError, match="built with the same method"):
+        build_table("selftest", "coarse", output_dir=tmp_path / "x", scheduler="synchronous",
+                    workdir=tmp_path / "w4", progress=False, reuse_nodes=old["path"])
+
+
 def test_float32_coefficients_are_declared_and_read(tmp_path, monkeypatch):
     """A spec that stores its coefficients in float32 too (the exact creep table with its
     finer angle axis: under 20 MB) flags them per variable; the reader accepts them (integrity

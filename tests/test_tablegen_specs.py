@@ -325,3 +325,37 @@ def test_anchored_point_function_has_kalkers_slope_and_a_small_fading_correction
     assert np.abs(d).max() > 1e-4                       # it does something
     far = np.hypot(r, tau) > 0.6
     assert far.any() and np.all(d[far] == 0.0)
+
+
+def test_narrow_contacts_with_large_spin_need_more_lateral_elements(monkeypatch):
+    """Why the exact table's solver uses 36 lateral elements at a0/b0 < 0.45, |tau| > 2.75
+    (grid convergence, independent of the table): along a creepage scan at a0/b0 = 0.18,
+    nu = 0.5, theta = -30 deg, tau = 20, the 30 (60) x 20 solution is off the 30 (60) x 80
+    one by more than 1 % of mu N (measured 1.51 % over 12 points; the spin pole crosses
+    element rows), the 30 (60) x 36 one by less than 0.25 % (measured 0.17 %); the rule
+    marks exactly that corner, and a file of the old method is reused elsewhere."""
+    import tablegen.specs as sp
+    from railcontact.exact_table import creepage_coordinate
+
+    g, nu, theta, tau = np.log(0.1778), 0.5, np.radians(-30.0), 20.0
+    r = np.linspace(0.03, 1.2, 12)
+    pts = np.column_stack([np.full_like(r, g), np.full_like(r, nu),
+                           creepage_coordinate(r * np.hypot(1.0, tau), tau),
+                           np.full_like(r, theta), np.full_like(r, tau)])
+    np.testing.assert_array_equal(sp.exact_solver_lateral_elements(pts[:, 0], pts[:, 4]), 36)
+    lateral = sp.exact_solver_lateral_elements(
+        np.log([0.1, 0.316, 0.316, 0.562, 0.316, 0.316]), [3.0, 20.0, -3.0, 20.0, 2.5, 0.0])
+    np.testing.assert_array_equal(lateral, [36, 36, 36, 20, 20, 20])
+    grid = np.column_stack([np.log([0.1, 0.562, 0.1]), [0.0] * 3, [0.5] * 3, [0.0] * 3,
+                            [3.0, 3.0, 2.5]])
+    np.testing.assert_array_equal(
+        sp._exact_reusable_points({"method": sp._EXACT_METHOD_MY20}, grid), [False, True, True])
+    assert sp._exact_reusable_points({"method": "something else"}, grid) is None
+    values = {}
+    for my in (20, 36, 80):
+        monkeypatch.setattr(sp, "EXACT_LATERAL_ELEMENTS_NARROW", my)
+        values[my] = sp.exact_creep_function(pts)[:, :2]
+    err = {my: 100 * np.hypot(*(values[my] - values[80]).T).max() for my in (20, 36)}
+    assert err[20] > 1.0
+    assert err[36] < 0.25
+
