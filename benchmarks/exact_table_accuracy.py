@@ -3,6 +3,7 @@ at the table's setting (interpolation error), and CONTACT's 21 converged cases (
 whole error against the exact theory). Prints figures by a/b and spin class; asserts nothing.
 
     python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7] [--theta-scans] [--axes N]
+        [--converged N]
 
 Random cases: a0/b0 log-uniform in [0.1, 10], nu uniform in [0, 0.5], creepage direction
 uniform on the circle, |v| / sqrt(1 + tau^2) (|v| the Kalker-weighted creepage over the
@@ -12,8 +13,11 @@ quarters of the cases) or in [5, 100] (far past saturation: the rest), spin
 coordinate tau log-uniform in [0.01, 20] with a random sign (a third of the
 cases without spin). The reference is the build's point function,
 tablegen.specs.exact_creep_function (the solver at the table's setting, the exact method's
-default: 30x20 -> 60x20 Richardson on two shifted grids, on the reference contact), at the
-same table coordinates.
+default: 30x20 -> 60x20 Richardson on two shifted grids, on the reference contact; 36 lateral
+elements at a0/b0 < 0.45 with |tau| > 2.75), at the same table coordinates. ``--converged N``
+adds N such cases (rho / w <= 5) against the exact theory converged in the element size (80
+lateral elements everywhere): the table's whole error, and its build solver's, over the
+domain rather than at CONTACT's 21 cases.
 """
 
 from __future__ import annotations
@@ -111,6 +115,57 @@ def theta_scans(table):
               f"of mu N at theta = {math.degrees(theta[i]):6.1f} deg")
 
 
+#: lateral elements of the converged reference (--converged): against 80, the table's 36
+#: lateral elements at narrow contacts err by up to 0.2 % of mu N and 20 elements at a0/b0 >=
+#: 1 by up to 0.2 %; 60 x 80 -> 120 x 80 differs from 30 x 80 -> 60 x 80 by at most 0.04 %
+CONVERGED_LATERAL_ELEMENTS = 80
+
+
+def _by_class(err, g, tau):
+    for name, sel in (("a/b < 0.3", g < 0.3), ("0.3 <= a/b <= 3", (g >= 0.3) & (g <= 3)),
+                      ("a/b > 3", g > 3), ("no spin", tau == 0),
+                      ("|tau| <= 1", (tau != 0) & (np.abs(tau) <= 1)),
+                      ("1 < |tau| <= 5", (np.abs(tau) > 1) & (np.abs(tau) <= 5)),
+                      ("|tau| > 5", np.abs(tau) > 5)):
+        if np.any(sel):
+            print(f"  {name:18s} n = {int(sel.sum()):4d}: max {err[sel].max() * 100:.3f} %, "
+                  f"RMS {math.sqrt(np.mean(err[sel]**2)) * 100:.3f} %")
+
+
+def converged_cases(table, n, rng):
+    """The table and its build solver against the exact theory converged in the element
+    size (Richardson 30 x 80 -> 60 x 80 on the two moved grids: 80 lateral elements
+    everywhere) at ``n`` random cases of :func:`random_cases` (those at rho / w <= 5: the
+    solver's own error is where the traction has structure)."""
+    import tablegen.specs as sp  # noqa: PLC0415
+
+    phys, g, tau, points = random_cases(n, rng)
+    keep = np.abs(np.tan(0.5 * np.pi * points[:, 2])) <= 5.0
+    phys = {k: v[keep] for k, v in phys.items()}
+    g, tau, points = g[keep], tau[keep], points[keep]
+    print(f"\n== {len(points)} random cases against the converged exact theory (30 x "
+          f"{CONVERGED_LATERAL_ELEMENTS} -> 60 x {CONVERGED_LATERAL_ELEMENTS}) ==")
+    build = exact_creep_function(points)
+    saved = dict(sp.EXACT_SOLVER), sp.EXACT_LATERAL_ELEMENTS_NARROW
+    try:
+        sp.EXACT_SOLVER["my"] = CONVERGED_LATERAL_ELEMENTS
+        sp.EXACT_LATERAL_ELEMENTS_NARROW = CONVERGED_LATERAL_ELEMENTS
+        ref = exact_creep_function(points)
+    finally:
+        sp.EXACT_SOLVER.clear()
+        sp.EXACT_SOLVER.update(saved[0])
+        sp.EXACT_LATERAL_ELEMENTS_NARROW = saved[1]
+    got = table.table.spline.evaluate(np.ascontiguousarray(points), check=False)
+    for label, vals in (("table", got), ("its build solver", build)):
+        err = np.hypot(vals[:, 0] - ref[:, 0], vals[:, 1] - ref[:, 1])
+        i = int(np.argmax(err))
+        print(f"  {label}: max {err.max() * 100:.3f} %, RMS "
+              f"{math.sqrt(np.mean(err**2)) * 100:.3f} % of mu N (worst: a/b {g[i]:.3g}, "
+              f"nu {points[i, 1]:.2f}, rho/w {np.tan(0.5 * np.pi * points[i, 2]):.3g}, "
+              f"theta {math.degrees(points[i, 3]):.1f} deg, tau {tau[i]:.3g})")
+        _by_class(err, g, tau)
+
+
 def axis_errors(table, n_per, rng):
     """Interpolation error of one axis at a time: points on nodes in every axis but one and
     midway between two nodes in that one (the spline's error along that axis alone; on the
@@ -161,6 +216,9 @@ def main(argv=None):
     ap.add_argument("--axes", type=int, default=0, metavar="N",
                     help="also the error of one axis at a time, N points per axis and spin "
                          "class (N = 60: about 2 min)")
+    ap.add_argument("--converged", type=int, default=0, metavar="N",
+                    help="also N random cases against the exact theory converged in the "
+                         "element size (80 lateral elements; N = 200: about 10 min)")
     opts = ap.parse_args(argv)
     table = load_exact_table()
     print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
@@ -205,18 +263,13 @@ def main(argv=None):
           "ms/case")
     worst = int(np.argmax(err))
     print("  worst: " + ", ".join(f"{k} = {float(phys[k][worst]):.4g}" for k in keys))
-    for name, sel in (("a/b < 0.3", g < 0.3), ("0.3 <= a/b <= 3", (g >= 0.3) & (g <= 3)),
-                      ("a/b > 3", g > 3), ("no spin", tau == 0),
-                      ("|tau| <= 1", (tau != 0) & (np.abs(tau) <= 1)),
-                      ("1 < |tau| <= 5", (np.abs(tau) > 1) & (np.abs(tau) <= 5)),
-                      ("|tau| > 5", np.abs(tau) > 5)):
-        if np.any(sel):
-            print(f"  {name:18s} n = {int(sel.sum()):4d}: max {err[sel].max() * 100:.3f} %, "
-                  f"RMS {math.sqrt(np.mean(err[sel]**2)) * 100:.3f} %")
+    _by_class(err, g, tau)
     if opts.theta_scans:
         theta_scans(table)
     if opts.axes:
         axis_errors(table, opts.axes, np.random.default_rng(opts.seed + 1))
+    if opts.converged:
+        converged_cases(table, opts.converged, np.random.default_rng(opts.seed + 2))
 
 
 if __name__ == "__main__":

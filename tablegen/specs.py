@@ -12,6 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 from railcontact.creep_common import CREEPAGE_COORDINATE_FORM
+from railcontact.creep_common import (
+    EXACT_TABLE_LATERAL_ELEMENTS_NARROW as EXACT_LATERAL_ELEMENTS_NARROW,
+    EXACT_TABLE_NARROW_ASPECT_MAX as EXACT_NARROW_ASPECT_MAX,
+    EXACT_TABLE_NARROW_SPIN_MIN as EXACT_NARROW_SPIN_MIN)
 
 from .spec import Axis, TableSpec, Variable
 
@@ -157,14 +161,12 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 #: a0/b0 = 0.1: my = 20 1.29, 27 0.63, 36 0.17; 0.18: 1.51, 0.68, 0.20; 0.32: 0.69, 0.29,
 #: 0.15; 0.56: 0.37, 0.20, 0.12; 1: 0.20, 0.10, 0.05; 1.8: 0.10 with 20 (the forces along
 #: such a scan at a0/b0 = 0.18, tau = 9.5 alternate by up to 1 % of mu N with 20 elements,
-#: smooth with 40). With tau <= 1 20 elements are within 0.13 %.
-EXACT_LATERAL_ELEMENTS_NARROW = 36
-#: a0/b0 below which, and spin coordinate |tau| above which, the table's solver uses
-#: :data:`EXACT_LATERAL_ELEMENTS_NARROW` lateral elements (between the nodes 0.32 and 0.56 of
-#: a0/b0 and 2.5 and 3 of tau: the 62,370 solver points of the computed quarter there were
-#: rebuilt in one session; from tau = 1.3 it would have been 103,950, 2.5 h on 2 cores). [-]
-EXACT_NARROW_ASPECT_MAX = 0.45
-EXACT_NARROW_SPIN_MIN = 2.75
+#: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.45 and
+#: |tau| > 2.75 (between the nodes 0.32 and 0.56 of a0/b0 and 2.5 and 3 of tau; the 62,370
+#: solver points of the computed quarter there were rebuilt in one session, from tau = 1.3
+#: it would have been 103,950, 2.5 h on 2 cores) the table's solver uses 36 lateral
+#: elements: EXACT_LATERAL_ELEMENTS_NARROW, EXACT_NARROW_ASPECT_MAX, EXACT_NARROW_SPIN_MIN
+#: (imported from railcontact.creep_common, which the table's solver beyond its axes shares).
 
 
 def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate):

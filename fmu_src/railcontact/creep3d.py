@@ -75,6 +75,8 @@ References
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from ._validation import (check_choice, check_contact_inputs, check_creep_inputs,
@@ -85,6 +87,8 @@ from .creep_common import saturation_creepage_scaled as _saturation_scaled
 from .creep_common import weighted_creepage_scaled as _weighted_scaled
 from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
                            spin_coefficient)
+from .creep_common import (EXACT_TABLE_LATERAL_ELEMENTS_NARROW,
+                           EXACT_TABLE_NARROW_ASPECT_MAX)
 from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
@@ -410,6 +414,12 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
 
         CONTACT's published points (per case of a table build): 11x11 1.6 ms 2.6 %, 25x25
         9.7 ms 1.0 %, 35x35 38 ms 0.36 %, 48x44 111 ms 0.18 %.
+        Narrow contacts with large spin need more lateral elements than those 21 cases show:
+        along creepage scans with the spin coordinate tau (:mod:`railcontact.exact_table`)
+        4-20, 20 lateral elements err against 80 by up to 1.5 % of mu N at a0/b0 = 0.18,
+        0.7 % at 0.32, 0.4 % at 0.56 and 0.2 % at 1 (the discrete solution depends on where
+        the spin pole falls between element rows), 36 by up to 0.2 % (at about 1.8 times the
+        cost); the table ``creep_exact`` uses 36 at a0/b0 < 0.45 with |tau| > 2.75.
         A plain solve on one grid: ``extrapolate=False, grid_shifts=1``. From 32 x 16 elements
         a grid starts from a solve on half the elements (``coarse_start`` of the solver).
     extrapolate : bool, keyword-only
@@ -888,8 +898,8 @@ def load_exact_table(path=None, directory=None):
     shipped file, :func:`railcontact.tables.default_table_path`), loaded once per path and
     process. Beyond its a0/b0 range or spin axis it answers with
     ``creep_solution_3d(..., method="exact", tolerance=1e-4)`` (30x20 -> 60x20 on two shifted
-    grids), the setting the table was built with, so every finite input gets the exact
-    theory.
+    grids; 30x36 -> 60x36 where a0/b0 < 0.45), the setting the table was built with, so
+    every finite input gets the exact theory.
 
     Parameters
     ----------
@@ -914,6 +924,26 @@ def load_exact_table(path=None, directory=None):
 
 
 def _exact_table_solver(*args, sensitivities=False):
-    """The exact solver at the table's setting (the table's answer beyond its axes)."""
-    return creep_solution_3d(*args, method="exact", grid=(30, 20), extrapolate=True,
-                             grid_shifts=2, tolerance=1e-4, sensitivities=sensitivities)
+    """The exact solver at the table's setting (the table's answer beyond its axes): 36
+    lateral elements where a0/b0 < 0.45 (``EXACT_TABLE_*`` of :mod:`railcontact.creep_common`;
+    beyond the table such a contact has a0/b0 < 0.1 or |tau| > 20, which the table's rule
+    gives 36 too), else 20. Returns the fields the table reads (tx, ty, spin_moment,
+    stick_area_fraction, normalised_creepage, sensitivity)."""
+    args = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args))
+    narrow = args[4] < EXACT_TABLE_NARROW_ASPECT_MAX * args[5]
+    out = None
+    for mask, my in ((~narrow, EXACT_DEFAULT_GRID[1]),
+                     (narrow, EXACT_TABLE_LATERAL_ELEMENTS_NARROW)):
+        if not np.any(mask):
+            continue
+        sol = creep_solution_3d(*(a[mask] for a in args), method="exact", grid=(30, my),
+                                extrapolate=True, grid_shifts=2, tolerance=1e-4,
+                                sensitivities=sensitivities)
+        if out is None:
+            out = {k: np.zeros(narrow.shape + np.shape(getattr(sol, k))[1:]) for k in (
+                "tx", "ty", "spin_moment", "stick_area_fraction", "normalised_creepage")}
+            out["sensitivity"] = (np.zeros(narrow.shape + (3, 3)) if sensitivities else None)
+        for k in out:
+            if out[k] is not None:
+                out[k][mask] = getattr(sol, k)
+    return SimpleNamespace(**out)

@@ -33,6 +33,16 @@ CREEPAGE_COORDINATE_FORM = "arctan"
 #: coordinates divide by |v|; the Jacobian is continuous there). [-]
 JACOBIAN_RHO_MIN = 1e-6
 
+#: The exact table's solver uses EXACT_TABLE_LATERAL_ELEMENTS_NARROW lateral elements (20
+#: elsewhere) where a0/b0 < EXACT_TABLE_NARROW_ASPECT_MAX and |tau| >
+#: EXACT_TABLE_NARROW_SPIN_MIN (narrow contacts with large spin: with 20 elements across
+#: 2.16 b0 the discrete solution depends on where the spin pole falls between element rows,
+#: up to 1.5 % of mu N at a0/b0 = 0.18; with 36 up to 0.2 %; tablegen.specs and
+#: railcontact.creep3d.load_exact_table's solver beyond the table both follow it). [-]
+EXACT_TABLE_LATERAL_ELEMENTS_NARROW = 36
+EXACT_TABLE_NARROW_ASPECT_MAX = 0.45
+EXACT_TABLE_NARROW_SPIN_MIN = 2.75
+
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
 CreepForce3D.__doc__ = "Tangential creep force on the wheel, components tx, ty. [N]"
 
