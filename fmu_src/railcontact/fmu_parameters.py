@@ -64,8 +64,8 @@ FMU_PARAMETERS = (
                   "Coulomb friction coefficient mu, >= 0"),
     ParameterSpec("creep_method", ("effects", "creep", "method"), "string", "",
                   "Creep theory: exact (default: Kalker's exact theory from the table "
-                  "creep_exact; 0.17 % of mu N on CONTACT's converged cases, up to about 1.2 % "
-                  "with large spin) | linear | she | strip | modified_strip "
+                  "creep_exact; 0.15 % of mu N on CONTACT's converged cases, up to about 1.2 % "
+                  "with spin) | linear | she | strip | modified_strip "
                   "(the thesis's method) | fastsim | polach | fastrip (3-D), carter (2-D, "
                   "geometry_kind = 'line')"),
     ParameterSpec("polach_reduction_adhesion", ("effects", "creep", "polach_reduction_adhesion"),

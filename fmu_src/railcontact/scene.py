@@ -106,8 +106,8 @@ it; where an error estimate exists, the FMU reports it as an output (-1 = not es
   against the direct solution of the theory it holds (netCDF attributes ``max_abs_error``, read
   at initialisation; ``creep_modified_strip``: about 2e-7; ``creep_exact``: its recorded
   interpolation error against the extrapolated solver it was built from, docs/tables.md; the
-  solver's own error against the converged theory is at most about 0.2 % of mu N: 0.17 % on
-  CONTACT's 21 converged cases). With
+  solver's own error against the converged theory: 0.13 % on CONTACT's 21 converged cases,
+  0.51 % at most on 300 random ones, docs/tables.md). With
   ``source = "analytic"`` it is -1: there is no interpolation error, and the error of the
   strip, modified strip, SHE and linear theories against Kalker's exact theory is not
   estimated at run time (the package's tests and benchmarks measure it).
