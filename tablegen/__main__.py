@@ -52,9 +52,10 @@ def main(argv=None):
     b.add_argument("--no-progress", dest="progress", action="store_false")
     b.add_argument("--reuse-nodes", default=None, metavar="FILE",
                    help="take the node values of an earlier build of the same table (same "
-                        "method) from FILE at every grid point that is one of its nodes; "
-                        "compute the others (a refined axis), the analytic limits and the "
-                        "check points")
+                        "method, or where the spec's reusable_points accepts its method) from "
+                        "FILE at every grid point that is one of its nodes; compute the others "
+                        "(a refined axis, a changed solver setting), the analytic limits and "
+                        "the check points")
     c = sub.add_parser("check", help="re-measure a table file's accuracy on fresh points and "
                                      "update its attributes")
     c.add_argument("--only", action="append", metavar="NAME", required=True)
