@@ -161,19 +161,25 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 #: a0/b0 = 0.1: my = 20 1.29, 27 0.63, 36 0.17; 0.18: 1.51, 0.68, 0.20; 0.32: 0.69, 0.29,
 #: 0.15; 0.56: 0.37, 0.20, 0.12; 1: 0.20, 0.10, 0.05; 1.8: 0.10 with 20 (the forces along
 #: such a scan at a0/b0 = 0.18, tau = 9.5 alternate by up to 1 % of mu N with 20 elements,
-#: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.45 and
-#: |tau| > 2.75 (between the nodes 0.32 and 0.56 of a0/b0 and 2.5 and 3 of tau; the 62,370
-#: solver points of the computed quarter there were rebuilt in one session, from tau = 1.3
-#: it would have been 103,950, 2.5 h on 2 cores) the table's solver uses 36 lateral
-#: elements: EXACT_LATERAL_ELEMENTS_NARROW, EXACT_NARROW_ASPECT_MAX, EXACT_NARROW_SPIN_MIN
-#: (imported from railcontact.creep_common, which the table's solver beyond its axes shares).
+#: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.75 and
+#: |tau| > 2.75 (between the nodes 0.56 and 1 of a0/b0 and 2.5 and 3 of tau; rebuilt in two
+#: sessions' steps: a0/b0 < 0.45, 62,370 solver points of the computed quarter, then the node
+#: 0.56, 20,790; from tau = 1.3 it would have been 1.7 times as many) the table's solver
+#: uses 36 lateral elements: EXACT_LATERAL_ELEMENTS_NARROW, EXACT_NARROW_ASPECT_MAX,
+#: EXACT_NARROW_SPIN_MIN (imported from railcontact.creep_common, which the table's solver
+#: beyond its axes shares).
 
 
-def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate):
-    """Lateral elements ``my`` of the table's solver at table points: 36 where a0/b0 < 0.45
-    and |tau| > 2.75 (:data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20. [-]"""
-    narrow = ((np.asarray(log_aspect_ratio) < np.log(EXACT_NARROW_ASPECT_MAX))
-              & (np.abs(np.asarray(spin_coordinate)) > EXACT_NARROW_SPIN_MIN))
+def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=None,
+                                  spin_min=None):
+    """Lateral elements ``my`` of the table's solver at table points: 36 where a0/b0 <
+    ``aspect_max`` and |tau| > ``spin_min`` (default :data:`EXACT_NARROW_ASPECT_MAX` = 0.75,
+    :data:`EXACT_NARROW_SPIN_MIN` = 2.75; :data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20.
+    [-]"""
+    aspect_max = EXACT_NARROW_ASPECT_MAX if aspect_max is None else aspect_max
+    spin_min = EXACT_NARROW_SPIN_MIN if spin_min is None else spin_min
+    narrow = ((np.asarray(log_aspect_ratio) < np.log(aspect_max))
+              & (np.abs(np.asarray(spin_coordinate)) > spin_min))
     return np.where(narrow, EXACT_LATERAL_ELEMENTS_NARROW, EXACT_SOLVER["my"])
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
@@ -518,7 +524,7 @@ def exact_creep_function(points):
 
     Calls :func:`railcontact.reference.rolling3d.solve_rolling_3d` on the reference contact
     (:data:`railcontact.creep3d.REFERENCE_CONTACT`) at 30 x my and 60 x my elements (my =
-    20, or 36 where a0/b0 < 0.45 and |tau| > 2.75: :func:`exact_solver_lateral_elements`),
+    20, or 36 where a0/b0 < 0.75 and |tau| > 2.75: :func:`exact_solver_lateral_elements`),
     extrapolates once (Richardson, first order in the rolling-direction element size) and
     averages the grids moved by :data:`EXACT_GRID_SHIFTS` (what ``creep_solution_3d(...,
     method="exact")`` does by default, but for my); each grid starts from the previous point's
@@ -633,23 +639,38 @@ _EXACT_METHOD_MY20 = (
     "default), on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3; forces and "
     "moment anchored near zero creepage and spin to Kalker's linear theory "
     "(tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)")
-_EXACT_METHOD = (
-    "railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20 (36 where "
-    f"a0/b0 < {EXACT_NARROW_ASPECT_MAX:g} and |tau| > {EXACT_NARROW_SPIN_MIN:g}: "
-    "tablegen.specs.exact_solver_lateral_elements), scale 1.08, tolerance 1e-4, extrapolated "
-    "2 F(60 x my) - F(30 x my) on the grids moved -1/4 and +1/4 of an element and averaged "
-    "(creep_force_3d(method='exact')'s default but for my), on a0 b0 = 36 mm^2, N = 100 kN, "
-    "E = 210 GPa, mu = 0.3; forces and moment anchored near zero creepage and spin to "
-    "Kalker's linear theory (tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)")
+def _exact_method(aspect_max, spin_min):
+    """The exact spec's method string with the narrow-contact rule (a0/b0 < aspect_max,
+    |tau| > spin_min: 36 lateral elements)."""
+    return (
+        "railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20 (36 "
+        f"where a0/b0 < {aspect_max:g} and |tau| > {spin_min:g}: "
+        "tablegen.specs.exact_solver_lateral_elements), scale 1.08, tolerance 1e-4, "
+        "extrapolated 2 F(60 x my) - F(30 x my) on the grids moved -1/4 and +1/4 of an element "
+        "and averaged (creep_force_3d(method='exact')'s default but for my), on a0 b0 = 36 "
+        "mm^2, N = 100 kN, E = 210 GPa, mu = 0.3; forces and moment anchored near zero "
+        "creepage and spin to Kalker's linear theory (tablegen.specs."
+        "exact_linear_limit_correction, width R0 = 0.1)")
+
+
+_EXACT_METHOD = _exact_method(EXACT_NARROW_ASPECT_MAX, EXACT_NARROW_SPIN_MIN)
+#: Earlier methods of the exact table and their narrow-contact rule ((a0/b0 max, |tau| min)
+#: of the 36 lateral elements; None: 20 everywhere), for --reuse-nodes across a change.
+_EXACT_EARLIER_METHODS = {_EXACT_METHOD_MY20: None,
+                          _exact_method(0.45, 2.75): (0.45, 2.75)}   # 2026-11-27, 70ae614
 
 
 def _exact_reusable_points(attrs, points):
-    """A file built before the narrow-contact lateral elements (:data:`_EXACT_METHOD_MY20`):
-    its values stand where :func:`exact_solver_lateral_elements` is still 20."""
-    if attrs.get("method") != _EXACT_METHOD_MY20:
+    """A file of an earlier method (:data:`_EXACT_EARLIER_METHODS`): its values stand where
+    its lateral elements equal today's :func:`exact_solver_lateral_elements`."""
+    if attrs.get("method") not in _EXACT_EARLIER_METHODS:
         return None
+    rule = _EXACT_EARLIER_METHODS[attrs["method"]]
     points = np.asarray(points, dtype=float)
-    return exact_solver_lateral_elements(points[:, 0], points[:, 4]) == EXACT_SOLVER["my"]
+    now = exact_solver_lateral_elements(points[:, 0], points[:, 4])
+    then = (np.full(len(points), EXACT_SOLVER["my"]) if rule is None
+            else exact_solver_lateral_elements(points[:, 0], points[:, 4], *rule))
+    return now == then
 
 
 register(TableSpec(

@@ -40,7 +40,7 @@ JACOBIAN_RHO_MIN = 1e-6
 #: up to 1.5 % of mu N at a0/b0 = 0.18; with 36 up to 0.2 %; tablegen.specs and
 #: railcontact.creep3d.load_exact_table's solver beyond the table both follow it). [-]
 EXACT_TABLE_LATERAL_ELEMENTS_NARROW = 36
-EXACT_TABLE_NARROW_ASPECT_MAX = 0.45
+EXACT_TABLE_NARROW_ASPECT_MAX = 0.75
 EXACT_TABLE_NARROW_SPIN_MIN = 2.75
 
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
