@@ -522,7 +522,7 @@ def family_3d(quick, workdir):
             tb = per_call(lambda: tab.creep_force_3d(*sub)) / int(ok.sum())
             shape = "x".join(str(len(a["nodes"])) for a in tab.table.axes)
             note = ("solver 30x20 -> 60x20 extrapolated on two shifted grids at the nodes "
-                    "(30x36 -> 60x36 at a/b < 0.45 with spin coordinate > 2.75), "
+                    "(30x36 -> 60x36 at a/b < 0.75 with spin coordinate > 2.75), "
                     "anchored to Kalker's linear theory near zero; every a/b, nu, sign")
             add("table: exact theory (C2 spline)", f"{label} ({shape})", tx, ty, t1, tb, note)
         except Exception as exc:

@@ -14,7 +14,7 @@ coordinate tau log-uniform in [0.01, 20] with a random sign (a third of the
 cases without spin). The reference is the build's point function,
 tablegen.specs.exact_creep_function (the solver at the table's setting, the exact method's
 default: 30x20 -> 60x20 Richardson on two shifted grids, on the reference contact; 36 lateral
-elements at a0/b0 < 0.45 with |tau| > 2.75), at the same table coordinates. ``--converged N``
+elements at a0/b0 < 0.75 with |tau| > 2.75), at the same table coordinates. ``--converged N``
 adds N such cases (rho / w <= 5) against the exact theory converged in the element size (80
 lateral elements everywhere): the table's whole error, and its build solver's, over the
 domain rather than at CONTACT's 21 cases.

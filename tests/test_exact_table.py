@@ -380,7 +380,7 @@ def test_jacobian_against_finite_differences_of_the_solver(table):
 @needs_table
 def test_beyond_the_spin_axis_the_solver_answers(table):
     """|tau| > 20: the documented fallback, the solver at the table's setting (36 lateral
-    elements for a0/b0 < 0.45); without a solver attached, a ValueError naming the spin and
+    elements for a0/b0 < 0.75); without a solver attached, a ValueError naming the spin and
     the table's range."""
     from railcontact import creep_solution_3d
 

@@ -255,7 +255,7 @@ class ExactCreepTable:
     The table (see the module docstring for its coordinates) was computed by the discretised
     solver :func:`railcontact.reference.rolling3d.solve_rolling_3d` at the exact method's
     default setting (Richardson-extrapolated from 30 x 20 and 60 x 20 elements on two grids
-    moved -1/4 and +1/4 of an element; 36 lateral elements where a0/b0 < 0.45 and |tau| >
+    moved -1/4 and +1/4 of an element; 36 lateral elements where a0/b0 < 0.75 and |tau| >
     2.75; the file attribute ``solver_grid`` says which setting a file was built with); its recorded accuracy (file attributes, per variable:
     ``max_abs_error``, ``rms_error`` on off-node check points against that solver) and the
     solver's own error against the converged exact theory are in ``docs/tables.md``.
