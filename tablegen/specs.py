@@ -163,8 +163,8 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 #: such a scan at a0/b0 = 0.18, tau = 9.5 alternate by up to 1 % of mu N with 20 elements,
 #: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.75 and
 #: |tau| > 2.75 (between the nodes 0.56 and 1 of a0/b0 and 2.5 and 3 of tau; rebuilt in two
-#: sessions' steps: a0/b0 < 0.45, 62,370 solver points of the computed quarter, then the node
-#: 0.56, 20,790; from tau = 1.3 it would have been 1.7 times as many) the table's solver
+#: steps: a0/b0 < 0.45, 62,370 solver points of the computed quarter, then the node 0.56,
+#: 20,790; from tau = 1.3 it would have been 1.7 times as many) the table's solver
 #: uses 36 lateral elements: EXACT_LATERAL_ELEMENTS_NARROW, EXACT_NARROW_ASPECT_MAX,
 #: EXACT_NARROW_SPIN_MIN (imported from railcontact.creep_common, which the table's solver
 #: beyond its axes shares).

@@ -256,9 +256,10 @@ class ExactCreepTable:
     solver :func:`railcontact.reference.rolling3d.solve_rolling_3d` at the exact method's
     default setting (Richardson-extrapolated from 30 x 20 and 60 x 20 elements on two grids
     moved -1/4 and +1/4 of an element; 36 lateral elements where a0/b0 < 0.75 and |tau| >
-    2.75; the file attribute ``solver_grid`` says which setting a file was built with); its recorded accuracy (file attributes, per variable:
-    ``max_abs_error``, ``rms_error`` on off-node check points against that solver) and the
-    solver's own error against the converged exact theory are in ``docs/tables.md``.
+    2.75; the file attribute ``solver_grid`` says which setting a file was built with); its
+    recorded accuracy (file attributes, per variable: ``max_abs_error``, ``rms_error`` on
+    off-node check points against that solver) and the solver's own error against the
+    converged exact theory are in ``docs/tables.md``.
 
     **Domain.** Every creepage and spin of either sign; Poisson's ratio 0-0.5; a0/b0 and the
     spin coordinate |tau| within the file's axes (0.1-10 and 20). Outside them the ``solver``
