@@ -36,8 +36,11 @@ sys.path[:0] = [str(ROOT / "fmu_src")]
 
 from railcontact import creep_force_3d  # noqa: E402
 from railcontact.creep3d import REFERENCE_CONTACT, load_exact_table  # noqa: E402
+from railcontact._floats import value as _value  # noqa: E402
+from railcontact.creep_common import saturation_creepage_scaled  # noqa: E402
 from railcontact.exact_table import (  # noqa: E402
-    _kalker_pair, creepage_coordinate, exact_table_coordinates, exact_table_inverse)
+    creepage_coordinate, exact_table_coordinates, exact_table_inverse)
+from railcontact.kalker import kalker_coefficients  # noqa: E402
 
 sys.path[:0] = [str(ROOT)]
 from tablegen.specs import exact_creep_function, exact_solver_lateral_elements  # noqa: E402
@@ -51,9 +54,9 @@ TABLE_SETTING = dict(tolerance=1e-4)
 def table_grid(args):
     """The table solver's grid (30, my) for physical inputs ``args`` of creep_force_3d."""
     xi, eta, phi, n_load, a0, b0, e_mod, nu, mu = args
-    w_sat = math.pi**2 * (1 + nu) * mu * (3 * n_load / (2 * math.pi * a0 * b0)) / e_mod
-    coords = exact_table_coordinates(xi, eta, phi, a0, b0, nu, w_sat,
-                                     _kalker_pair(a0 / b0, nu))
+    w_sat = _value(*saturation_creepage_scaled(n_load, a0, b0, e_mod, nu, mu))
+    c = kalker_coefficients(a0 / b0, nu)
+    coords = exact_table_coordinates(xi, eta, phi, a0, b0, nu, w_sat, (c.c11, c.c22, c.c23))
     return (30, int(exact_solver_lateral_elements(coords[0], coords[4])))
 
 
@@ -137,8 +140,6 @@ def converged_cases(table, n, rng):
     size (Richardson 30 x 80 -> 60 x 80 on the two moved grids: 80 lateral elements
     everywhere) at ``n`` random cases of :func:`random_cases` (those at rho / w <= 5: the
     solver's own error is where the traction has structure)."""
-    import tablegen.specs as sp  # noqa: PLC0415
-
     phys, g, tau, points = random_cases(n, rng)
     keep = np.abs(np.tan(0.5 * np.pi * points[:, 2])) <= 5.0
     phys = {k: v[keep] for k, v in phys.items()}
@@ -146,15 +147,7 @@ def converged_cases(table, n, rng):
     print(f"\n== {len(points)} random cases against the converged exact theory (30 x "
           f"{CONVERGED_LATERAL_ELEMENTS} -> 60 x {CONVERGED_LATERAL_ELEMENTS}) ==")
     build = exact_creep_function(points)
-    saved = dict(sp.EXACT_SOLVER), sp.EXACT_LATERAL_ELEMENTS_NARROW
-    try:
-        sp.EXACT_SOLVER["my"] = CONVERGED_LATERAL_ELEMENTS
-        sp.EXACT_LATERAL_ELEMENTS_NARROW = CONVERGED_LATERAL_ELEMENTS
-        ref = exact_creep_function(points)
-    finally:
-        sp.EXACT_SOLVER.clear()
-        sp.EXACT_SOLVER.update(saved[0])
-        sp.EXACT_LATERAL_ELEMENTS_NARROW = saved[1]
+    ref = exact_creep_function(points, lateral_elements=CONVERGED_LATERAL_ELEMENTS)
     got = table.table.spline.evaluate(np.ascontiguousarray(points), check=False)
     for label, vals in (("table", got), ("its build solver", build)):
         err = np.hypot(vals[:, 0] - ref[:, 0], vals[:, 1] - ref[:, 1])

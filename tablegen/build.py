@@ -121,8 +121,9 @@ def _reused_node_values(spec, path, points):
     with netCDF4.Dataset(path) as ds:
         attrs = {k: ds.getncattr(k) for k in ds.ncattrs()}
         reusable = None
+        same = attrs.get("method") == spec.method
         if attrs.get("table_name") == spec.name:
-            if attrs.get("method") == spec.method:
+            if same:
                 reusable = np.ones(len(points), dtype=bool)
             elif spec.reusable_points is not None:
                 reusable = spec.reusable_points(attrs, points)
@@ -150,7 +151,6 @@ def _reused_node_values(spec, path, points):
     values[compute] = np.nan
     n_new = int((~found & ~analytic).sum())
     n_changed = int((found & ~analytic & ~reusable).sum())
-    same = attrs.get("method") == spec.method
     info = {"build_reused_nodes": (
         f"{int((~compute).sum())} of {len(points)} points' node values taken from an earlier "
         f"build of this table with "

@@ -517,7 +517,7 @@ def exact_linear_limit_correction(points):
     return out
 
 
-def exact_creep_function(points):
+def exact_creep_function(points, lateral_elements=None):
     """Exact-theory values at table points (n, 5) in the quarter s >= 0, |theta| <= pi/2,
     tau >= 0: (f_par, f_perp, spin moment ratio, stick area fraction); see
     :mod:`railcontact.exact_table`.
@@ -532,7 +532,8 @@ def exact_creep_function(points):
     creepage and spin the forces and moment are anchored to Kalker's linear theory
     (:func:`exact_linear_limit_correction`). The stick area fraction is the last fine grid's
     element count. At s = 1 (infinite creepage) the values are the full-sliding limit,
-    :func:`exact_full_sliding_limit` (no solver).
+    :func:`exact_full_sliding_limit` (no solver). ``lateral_elements`` (optional) sets my at
+    every point instead (a reference on finer grids, ``exact_table_accuracy --converged``).
     """
     from railcontact.creep3d import REFERENCE_CONTACT  # noqa: PLC0415
     from railcontact.exact_table import exact_table_inverse  # noqa: PLC0415
@@ -551,7 +552,8 @@ def exact_creep_function(points):
     for name in ("creepage_longitudinal", "creepage_lateral", "spin", "friction_coefficient"):
         phys[name] = phys[name] * lam
     previous = {}
-    lateral = exact_solver_lateral_elements(points[:, 0], points[:, 4])
+    lateral = (exact_solver_lateral_elements(points[:, 0], points[:, 4])
+               if lateral_elements is None else np.full(len(points), int(lateral_elements)))
 
     for i in np.nonzero(finite)[0]:
         kw = {k: float(v[i]) for k, v in phys.items()}

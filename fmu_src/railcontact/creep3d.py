@@ -940,9 +940,9 @@ def _exact_table_solver(*args, sensitivities=False):
                                 extrapolate=True, grid_shifts=2, tolerance=1e-4,
                                 sensitivities=sensitivities)
         if out is None:
-            out = {k: np.zeros(narrow.shape + np.shape(getattr(sol, k))[1:]) for k in (
+            out = {k: np.zeros(narrow.shape) for k in (
                 "tx", "ty", "spin_moment", "stick_area_fraction", "normalised_creepage")}
-            out["sensitivity"] = (np.zeros(narrow.shape + (3, 3)) if sensitivities else None)
+            out["sensitivity"] = np.zeros(narrow.shape + (3, 3)) if sensitivities else None
         for k in out:
             if out[k] is not None:
                 out[k][mask] = getattr(sol, k)
