@@ -161,10 +161,11 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 #: a0/b0 = 0.1: my = 20 1.29, 27 0.63, 36 0.17; 0.18: 1.51, 0.68, 0.20; 0.32: 0.69, 0.29,
 #: 0.15; 0.56: 0.37, 0.20, 0.12; 1: 0.20, 0.10, 0.05; 1.8: 0.10 with 20 (the forces along
 #: such a scan at a0/b0 = 0.18, tau = 9.5 alternate by up to 1 % of mu N with 20 elements,
-#: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.75 and
-#: |tau| > 2.75 (between the nodes 0.56 and 1 of a0/b0 and 2.5 and 3 of tau; rebuilt in two
+#: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.87 and
+#: |tau| > 2.75 (between the nodes 0.75 and 1 of a0/b0 and 2.5 and 3 of tau; rebuilt in
 #: steps: a0/b0 < 0.45, 62,370 solver points of the computed quarter, then the node 0.56,
-#: 20,790; from tau = 1.3 it would have been 1.7 times as many) the table's solver
+#: 20,790 (threshold 0.75 until the node 0.75 came, 2026-11-28); from tau = 1.3 it would
+#: have been 1.7 times as many) the table's solver
 #: uses 36 lateral elements: EXACT_LATERAL_ELEMENTS_NARROW, EXACT_NARROW_ASPECT_MAX,
 #: EXACT_NARROW_SPIN_MIN (imported from railcontact.creep_common, which the table's solver
 #: beyond its axes shares).
@@ -173,7 +174,7 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=None,
                                   spin_min=None):
     """Lateral elements ``my`` of the table's solver at table points: 36 where a0/b0 <
-    ``aspect_max`` and |tau| > ``spin_min`` (default :data:`EXACT_NARROW_ASPECT_MAX` = 0.75,
+    ``aspect_max`` and |tau| > ``spin_min`` (default :data:`EXACT_NARROW_ASPECT_MAX` = 0.87,
     :data:`EXACT_NARROW_SPIN_MIN` = 2.75; :data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20.
     [-]"""
     aspect_max = EXACT_NARROW_ASPECT_MAX if aspect_max is None else aspect_max
@@ -184,7 +185,7 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (9, 5, 23, 21, 25),   # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (11, 5, 23, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 2 and 6
     # more nodes since 2026-11-27 (below)
@@ -192,6 +193,15 @@ _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/
 }
 EXACT_TAU_MAX = 20.0
 EXACT_ASPECT_RANGE = (0.1, 10.0)
+#: ln(a0/b0) nodes where they are not uniform over EXACT_ASPECT_RANGE: the uniform 9 (a0/b0
+#: 0.1, 0.18, 0.32, 0.56, 1, 1.8, 3.2, 5.6, 10) and, since 2026-11-28, the midpoints 0.42 and
+#: 0.75 of the two intervals where large spin changes the force fastest with a0/b0 (the stick
+#: area shrinks from ~0.1 to ~0.03 of the ellipse between a0/b0 0.7 and 0.8 at tau 2.5-3):
+#: one-axis cubic fits through the solver's values along ln(a0/b0) at the worst random cases
+#: erred by 0.75 % of mu N (a0/b0 0.43, tau 4.1) and 0.55 % (0.79, tau 6.8) on the uniform
+#: nodes, 0.23 % and 0.10 % with the intervals halved
+_EXACT_ASPECT_UNIFORM = {"coarse": 4, "default": 9, "fine": 13}
+_EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5)}   # in steps of the uniform grid from a0/b0 = 0.1
 _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (inf: full
     # sliding), w = sqrt(1 + tau^2). Graded towards 0: without spin the force's curvature jumps
     # there (Carter's 2 r - r |r|), and the spline's slope at 0 errs in proportion to the first
@@ -211,10 +221,13 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
     # 0.875, 1.45, 2.25 and 16.5 added 2026-11-27 (midway errors up to 0.5-0.8 % of mu N in
     # those intervals, at most 0.1 % in the others but 13.5-20: 0.2 %); 0.003 and 0.01 too:
     # along pure spin the force leaves the linear theory by 0.8 % within tau = 0.03 at a0/b0
-    # = 10, and with the first node there the slope d Ty / d phi at zero (C23) erred 0.85 %
+    # = 10, and with the first node there the slope d Ty / d phi at zero (C23) erred 0.85 %;
+    # 1.8 added 2026-11-28 (a one-axis fit along tau through the solver's values erred by
+    # 0.72 % of mu N at a0/b0 4.3, tau 1.88 and 0.37 % at a0/b0 2.8, tau 1.77 with the
+    # interval 1.6-2; 0.20 and 0.09 % with the intervals halved)
     "coarse": [0.0, 1.0, 2.5, 6.0, 20.0],
-    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 2.0,
-                2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
+    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 1.8,
+                2.0, 2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
     "fine": [0.0, 0.03, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.25, 2.5, 2.8,
              3.2, 3.6, 4.1, 4.7, 5.5, 7.0, 10.0, 14.0, 20.0],
 }
@@ -248,13 +261,18 @@ def _exact_quarter(resolution):
     from railcontact.exact_table import creepage_coordinate  # noqa: PLC0415
 
     n_g, n_nu, n_r, n_t, n_s = _EXACT_COUNTS[resolution]
+    lo, hi = np.log(EXACT_ASPECT_RANGE)
+    n_u = _EXACT_ASPECT_UNIFORM[resolution]
+    g = np.sort(np.r_[np.linspace(lo, hi, n_u),
+                      lo + np.asarray(_EXACT_ASPECT_EXTRA.get(resolution, ()), dtype=float)
+                      * (hi - lo) / (n_u - 1)])
     rho = np.asarray(_EXACT_RHO[resolution])
     tau = np.asarray(_EXACT_TAU[resolution])
-    assert len(rho) == n_r and len(tau) == n_s and tau[-1] == EXACT_TAU_MAX
+    assert len(rho) == n_r and len(tau) == n_s and tau[-1] == EXACT_TAU_MAX and len(g) == n_g
     theta = (np.radians(_EXACT_THETA[resolution]) if resolution in _EXACT_THETA
              else np.linspace(-0.5 * np.pi, 0.5 * np.pi, n_t))
     assert len(theta) == n_t and np.allclose(theta, -theta[::-1])
-    return (np.linspace(*np.log(EXACT_ASPECT_RANGE), n_g), np.linspace(0.0, 0.5, n_nu),
+    return (g, np.linspace(0.0, 0.5, n_nu),
             creepage_coordinate(rho), theta, tau)
 
 
@@ -659,7 +677,8 @@ _EXACT_METHOD = _exact_method(EXACT_NARROW_ASPECT_MAX, EXACT_NARROW_SPIN_MIN)
 #: Earlier methods of the exact table and their narrow-contact rule ((a0/b0 max, |tau| min)
 #: of the 36 lateral elements; None: 20 everywhere), for --reuse-nodes across a change.
 _EXACT_EARLIER_METHODS = {_EXACT_METHOD_MY20: None,
-                          _exact_method(0.45, 2.75): (0.45, 2.75)}   # 2026-11-27, 70ae614
+                          _exact_method(0.45, 2.75): (0.45, 2.75),   # 2026-11-27, 70ae614
+                          _exact_method(0.75, 2.75): (0.75, 2.75)}   # 2026-11-27, 4b9f815
 
 
 def _exact_reusable_points(attrs, points):

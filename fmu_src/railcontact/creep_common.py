@@ -38,9 +38,10 @@ JACOBIAN_RHO_MIN = 1e-6
 #: EXACT_TABLE_NARROW_SPIN_MIN (narrow contacts with large spin: with 20 elements across
 #: 2.16 b0 the discrete solution depends on where the spin pole falls between element rows,
 #: up to 1.5 % of mu N at a0/b0 = 0.18; with 36 up to 0.2 %; tablegen.specs and
-#: railcontact.creep3d.load_exact_table's solver beyond the table both follow it). [-]
+#: railcontact.creep3d.load_exact_table's solver beyond the table both follow it; 0.87, between
+#: the table's nodes 0.75 and 1 of a0/b0, since 2026-11-27, was 0.75). [-]
 EXACT_TABLE_LATERAL_ELEMENTS_NARROW = 36
-EXACT_TABLE_NARROW_ASPECT_MAX = 0.75
+EXACT_TABLE_NARROW_ASPECT_MAX = 0.87
 EXACT_TABLE_NARROW_SPIN_MIN = 2.75
 
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
