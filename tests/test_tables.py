@@ -200,7 +200,7 @@ def _copy_with(tmp_path, edit):
 
 def test_wrong_version_clear_error(tmp_path):
     dst = _copy_with(tmp_path, lambda nc: nc.setncattr("railcontact_table_format", np.int32(99)))
-    with pytest.raises(TableFileError, match=r"edited.nc.*version 99.*versions \[1, 2\]"):
+    with pytest.raises(TableFileError, match=r"edited.nc.*version 99.*versions \[1, 2, 3\]"):
         Table.from_file(dst)
 
 
@@ -469,7 +469,7 @@ def test_creep_table_array_b0_1e_300(method):
 
 @pytest.mark.parametrize("edit, match", [
     (lambda nc: nc.setncattr("railcontact_table_format", "abc"),
-     r"edited.nc' has table format version 'abc', this reader understands versions \[1, 2\]"),
+     r"edited.nc' has table format version 'abc', this reader understands versions \[1, 2, 3\]"),
     (lambda nc: nc.setncattr("spline_degree", "three"),
      r"edited.nc': attribute spline_degree must be 3; got 'three'"),
     (lambda nc: nc.variables["normalised_creepage"].setncattr("double_knots", "abc"),
