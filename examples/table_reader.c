@@ -4,8 +4,9 @@
  *   global  table_axes          axis names, in order, separated by blanks
  *   global  table_variables     variable names
  *   global  spline_degree       3 (cubic)
- *   global  railcontact_table_format  1 or 2 (refuse other versions; 2 stores the node
- *                                     values on a block, which this reader does not read)
+ *   global  railcontact_table_format  1, 2 or 3 (refuse other versions; 2 stores the node
+ *                                     values on a block, 3 none: this reader reads only the
+ *                                     coefficients)
  *   axis A  A:spline_knots      name of its knot vector (A_knots, length = nodes + 4)
  *   var V   V:bspline_coefficients  name of its coefficient array (C order, axes as listed)
  *
@@ -127,7 +128,7 @@ int main(int argc, char **argv)
     int ncid;
     CHECK(nc_open(argv[1], NC_NOWRITE, &ncid));
     int format = int_attribute(ncid, NC_GLOBAL, "railcontact_table_format");
-    if ((format != 1 && format != 2) || int_attribute(ncid, NC_GLOBAL, "spline_degree") != 3) {
+    if ((format < 1 || format > 3) || int_attribute(ncid, NC_GLOBAL, "spline_degree") != 3) {
         fprintf(stderr, "%s: unsupported table format or spline degree\n", argv[1]);
         return 1;
     }

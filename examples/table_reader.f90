@@ -1,8 +1,8 @@
 ! Evaluate a railcontact table (a .nc file in tables/) from Fortran with netCDF-Fortran.
 !
 ! The same reader as examples/table_reader.c, from the same documented attributes:
-!   global table_axes, spline_degree (= 3), railcontact_table_format (= 1 or 2: 2 stores
-!   the node values on a block, which this reader does not read);
+!   global table_axes, spline_degree (= 3), railcontact_table_format (= 1, 2 or 3: 2 stores
+!   the node values on a block, 3 none; this reader reads only the coefficients);
 !   axis A: attribute spline_knots (name of its knot vector, length = nodes + 4);
 !   variable V: attribute bspline_coefficients (name of its coefficient array).
 ! The coefficients are read as one flat buffer in the file's (C) order, the last axis varying
@@ -39,7 +39,7 @@ program table_reader
   call check(nf90_open(trim(path), nf90_nowrite, ncid))
   call check(nf90_get_att(ncid, nf90_global, 'railcontact_table_format', version))
   call check(nf90_get_att(ncid, nf90_global, 'spline_degree', degree))
-  if ((version /= 1 .and. version /= 2) .or. degree /= 3) then
+  if (version < 1 .or. version > 3 .or. degree /= 3) then
     write (0, '(a)') 'unsupported table format or spline degree'
     stop 1
   end if

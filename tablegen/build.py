@@ -134,16 +134,27 @@ def _reused_node_values(spec, path, points):
                              f"{attrs.get('method')!r})")
         index, found = [], np.ones(len(points), dtype=bool)
         # the node values' own dimensions: the axes, or the blocks of them a table with
-        # symmetries stores (``<axis>_block``, coordinates the nodes there)
-        for k, name in enumerate(ds[spec.variables[0].name].dimensions):
+        # symmetries stores (``<axis>_block``, coordinates the nodes there); a file without
+        # node values (format 3): the axes, and the spline at the nodes
+        spline_only = ds[spec.variables[0].name].ndim == 0
+        dims = (str(attrs["table_axes"]).split() if spline_only
+                else ds[spec.variables[0].name].dimensions)
+        for k, name in enumerate(dims):
             nodes = np.asarray(ds[name][:], dtype=float)
             if spec.reuse_coordinates is not None:     # a changed coordinate, same points
                 nodes = np.asarray(spec.reuse_coordinates(attrs, name, nodes), dtype=float)
             j = np.abs(points[:, k][:, None] - nodes[None, :]).argmin(axis=1)
             found &= np.abs(nodes[j] - points[:, k]) <= 1e-12
             index.append(j)
-        values = np.stack([np.asarray(ds[v.name][:], dtype=float)[tuple(index)]
-                           for v in spec.variables], axis=-1)
+        if not spline_only:
+            values = np.stack([np.asarray(ds[v.name][:], dtype=float)[tuple(index)]
+                               for v in spec.variables], axis=-1)
+    if spline_only:   # the file's own nodes, through its spline
+        from railcontact.tables import Table  # noqa: PLC0415
+
+        table = Table.from_file(path, expected_name=spec.name)
+        at = np.stack([a["nodes"][j] for a, j in zip(table.axes, index)], axis=1)
+        values = table.spline.evaluate(np.ascontiguousarray(at), check=False)
     analytic = (np.asarray(spec.analytic_points(points), dtype=bool)
                 if spec.analytic_points is not None else np.zeros(len(points), dtype=bool))
     reusable = np.asarray(reusable, dtype=bool)
@@ -156,8 +167,9 @@ def _reused_node_values(spec, path, points):
         f"build of this table with "
         f"{'the same method' if same else 'the method ' + repr(attrs.get('method'))} "
         f"({path.name}, source {attrs.get('source')}, "
-        f"history {attrs.get('history')!r}; stored in "
-        f"{'float32' if spec.node_values_float32 else 'float64'}), "
+        f"history {attrs.get('history')!r}; "
+        + ("the spline at its nodes (a file without node values)" if spline_only else
+           f"stored in {'float32' if spec.node_values_float32 else 'float64'}") + "), "
         f"{int(analytic.sum())} analytic points recomputed, {n_new} points that are not nodes "
         f"of that file computed, {n_changed} points whose method changed computed; the check "
         "points are computed anew")}

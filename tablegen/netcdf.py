@@ -13,7 +13,10 @@ Layout (``railcontact_table_format = 1``, or 2 with node values on a block, belo
   axis where that block is not the whole axis the dimension is ``A_block``, with the
   coordinate variable ``A_block`` (a contiguous run of ``A``'s nodes); the other nodes'
   values follow from the symmetries (global attribute ``node_values_block``) or from the
-  spline;
+  spline. A table whose spec does not store node values (format 3,
+  ``TableSpec.node_values_stored = False``) writes ``V`` as a scalar variable with the same
+  attributes (its ``bspline_coefficients`` names the coefficients; no node values), and the
+  coefficients with HDF5 Fletcher-32 checksums;
 * ``V_bspline_coefficients`` (dims ``A1_bspline..AD_bspline``): tensor-product B-spline
   coefficients, so that ``V(x) = sum c[i1..iD] B_i1(x1) ... B_iD(xD)`` with the cubic B-splines
   of the knot vectors (de Boor 1978).
@@ -35,7 +38,8 @@ from pathlib import Path
 import numpy as np
 
 from railcontact import __version__ as _rc_version
-from railcontact.tables import SPLINE_DEGREE, TABLE_FORMAT_VERSION
+from railcontact.tables import (SPLINE_DEGREE, TABLE_FORMAT_SPLINE_ONLY,
+                                TABLE_FORMAT_VERSION)
 
 __all__ = ["write_table", "git_revision"]
 
@@ -96,7 +100,10 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "comment": (f"a contiguous run of the nodes {a.name}: the block of the grid that was "
                         "computed; the other nodes' values follow by the table's symmetries "
                         "(global attribute node_values_block) or from the spline")})
-    blocked = vdims != dims
+    stored = getattr(spec, "node_values_stored", True)
+    blocked = vdims != dims and stored
+    if not stored:
+        coords = {k: v for k, v in coords.items() if not k.endswith("_block")}
     for a, t in zip(axes, knots):
         coords[a.name] = (a.name, a.nodes, {
             "units": a.units, "long_name": a.long_name,
@@ -123,7 +130,11 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         met = acc["max_abs_error"] <= v.error_target
         single = getattr(spec, "node_values_float32", False)
         node_values = np.asarray(values[k])[block]
-        data_vars[v.name] = (vdims, node_values.astype(np.float32) if single else node_values, {
+        if not stored:   # format 3: a scalar that carries the attributes
+            vdims, node_values = (), np.int32(0)
+        elif single:
+            node_values = node_values.astype(np.float32)
+        data_vars[v.name] = (vdims, node_values, {
             "units": v.units, "long_name": v.long_name,
             "bspline_coefficients": f"{v.name}_bspline_coefficients",
             "method": spec.method,
@@ -140,8 +151,11 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 f"{int(acc['n_check_points'])} seeded random off-grid points"
                 + ("" if met else "; TARGET NOT MET")),
             "comment": v.comment,
-            **({"node_value_precision": "float32"} if single else {}),
-            **({"significant_digits": np.int32(quantised[v.name])} if digits else {})})
+            **({"node_values": "not stored (railcontact_table_format 3): the spline at the "
+                               "nodes gives them"} if not stored else {}),
+            **({"node_value_precision": "float32"} if single and stored else {}),
+            **({"significant_digits": np.int32(quantised[v.name])}
+               if digits and stored else {})})
         single_coef = getattr(spec, "coefficients_float32", False)
         data_vars[f"{v.name}_bspline_coefficients"] = (cdims, (
             coefficients[k].astype(np.float32) if single_coef else coefficients[k]), {
@@ -161,9 +175,13 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         "references": spec.references,
         "comment": ("Smooth lookup table. Evaluate the cubic B-spline given by the "
                     "*_bspline_coefficients variables and the <axis>_knots vectors (any de Boor "
-                    "evaluator); the node values alone allow a cruder linear interpolation"
+                    "evaluator)"
+                    + ("; the node values alone allow a cruder linear interpolation"
+                       if stored else "; the node values are not stored (the spline at the "
+                       "nodes gives them)")
                     + (" (on the block they are stored on)." if blocked else ".")),
-        "railcontact_table_format": np.int32(TABLE_FORMAT_VERSION if blocked else 1),
+        "railcontact_table_format": np.int32(TABLE_FORMAT_SPLINE_ONLY if not stored
+                                             else TABLE_FORMAT_VERSION if blocked else 1),
         "table_name": spec.name,
         "table_axes": " ".join(dims),
         "table_variables": " ".join(v.name for v in spec.variables),
@@ -193,6 +211,8 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
                 # netCDF-4 quantisation: trailing mantissa bits zeroed (any reader reads floats)
                 encoding[name].update(significant_digits=quantised[name],
                                       quantize_mode="GranularBitRound", complevel=9)
+            if not stored:   # format 3: no node values to check the coefficients against
+                encoding[name].update(fletcher32=True)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")
     ds.to_netcdf(tmp, format="NETCDF4", encoding=encoding)

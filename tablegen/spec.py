@@ -145,6 +145,12 @@ class TableSpec:
         plain floats). Declared by the variables' attribute ``significant_digits``; the
         reader checks the nodes to ``10^(1 - digits)``. The spline stays exactly C2 (its
         coefficients change by at most about ``10^-digits`` of their size).
+    node_values_stored : bool
+        Store the node values (default). False writes only the spline (format 3): each
+        variable ``V`` is then a scalar variable that carries the attributes and names its
+        coefficient array, and the coefficients carry HDF5 Fletcher-32 checksums in place of
+        the load's check against the node values; the node values are the spline at the
+        nodes. For a table whose file would pass its size limit with them.
     reduce : callable, optional
         ``reduce(axes) -> (points, assemble)`` for tables with symmetries: ``function`` is
         called only on ``points`` (m, D), and ``assemble(values)`` maps the (m, n_var) results
@@ -186,6 +192,7 @@ class TableSpec:
     node_values_float32: bool = False
     coefficients_float32: bool = False
     significant_digits: int | None = None
+    node_values_stored: bool = True
     analytic_points: Callable | None = None
     reuse_coordinates: Callable | None = None
     reusable_points: Callable | None = None

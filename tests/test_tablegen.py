@@ -429,6 +429,7 @@ def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path
         return cheap(points)
 
     monkeypatch.setattr(spec, "function", counting)
+    monkeypatch.setattr(spec, "node_values_stored", True)   # format 2 (the shipped: 3)
     res = build_table("creep_exact", "coarse", output_dir=tmp_path / "a",
                       scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
     axes, _ = spec.grid("coarse")
@@ -449,9 +450,9 @@ def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path
     shape = tuple(len(np.unique(quarter[:, k])) for k in range(5))
     assert table.values["force_ratio_parallel"].shape == shape
     want = cheap(quarter).reshape(shape + (4,))
-    for k, v in enumerate(table.variables):        # stored to 5 (stick area 3) digits
+    for k, v in enumerate(table.variables):        # stored to 5 (stick area 2) digits
         np.testing.assert_allclose(table.values[v], want[..., k], rtol=0,
-                                   atol=1e-4 if k < 3 else 5e-3)
+                                   atol=1e-4 if k < 3 else 5e-2)
     # the spline at a point and at its mirror images (the symmetries the file states)
     p = np.array([[0.3, 0.2, 0.4, 0.5, 1.7]])
     mirrors = np.array([[0.3, 0.2, -0.4, 0.5 - np.pi, 1.7],      # (-s, theta + pi): -, -
@@ -480,4 +481,80 @@ def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path
         ds["creepage_angle_block"][0] = ds["creepage_angle_block"][0] - 0.01
     with pytest.raises(TableFileError, match="not a contiguous run of the nodes of "
                                              "'creepage_angle'"):
+        Table.from_file(bad)
+
+
+def _cheap_exact_values(points):
+    """A smooth stand-in for the exact solver with the exact table's symmetries."""
+    p = np.asarray(points, dtype=float)
+    g, nu, s, th, tau = p.T
+    return np.column_stack([s * (1.0 + 0.1 * g) * (1.0 + 0.2 * np.cos(2 * th)),
+                            0.3 * s * np.sin(2 * th) * (1.0 + nu) + 0.01 * tau * s * np.cos(th),
+                            0.05 * tau / (1.0 + tau) * (1.0 - s ** 2),
+                            (1.0 - s) * (1.0 + 0.0 * tau)])
+
+
+def test_table_without_node_values_stores_the_spline_only(tmp_path, monkeypatch):
+    """Format 3 (``node_values_stored = False``, the shipped exact table since 2026-11-28):
+    each variable is a scalar carrying its attributes and naming its coefficients, the
+    coefficients carry Fletcher-32 checksums, and the spline is the one format 2 stores
+    (the same coefficients) in a smaller file; a rebuild reusing the file takes the spline at
+    the nodes and computes only the analytic and check points; a corrupted file is refused."""
+    import netCDF4  # noqa: PLC0415
+
+    spec = REGISTRY["creep_exact"]
+    assert spec.node_values_stored is False
+    calls = []
+
+    def counting(points):
+        calls.append(len(points))
+        return _cheap_exact_values(points)
+
+    monkeypatch.setattr(spec, "function", counting)
+    res = build_table("creep_exact", "coarse", output_dir=tmp_path / "a",
+                      scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
+    with netCDF4.Dataset(res["path"]) as ds:
+        assert int(ds.getncattr("railcontact_table_format")) == 3
+        assert "node_values_block" not in ds.ncattrs()
+        assert not any(d.endswith("_block") for d in ds.dimensions)
+        for v in spec.variables:
+            assert ds[v.name].ndim == 0
+            assert ds[v.name].getncattr("bspline_coefficients") == \
+                f"{v.name}_bspline_coefficients"
+            assert "not stored" in ds[v.name].getncattr("node_values")
+            assert 0.0 <= float(ds[v.name].getncattr("max_abs_error")) < 1.0
+            assert ds[f"{v.name}_bspline_coefficients"].filters()["fletcher32"]
+    table = Table.from_file(res["path"])
+    assert table.values == {}
+    monkeypatch.setattr(spec, "node_values_stored", True)
+    res2 = build_table("creep_exact", "coarse", output_dir=tmp_path / "b",
+                       scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
+    np.testing.assert_array_equal(table.coefficients, Table.from_file(res2["path"]).coefficients)
+    assert res["size_bytes"] < res2["size_bytes"]
+    axes, _ = spec.grid("coarse")
+    quarter, _ = spec.reduce(axes)
+    got = table.spline.evaluate(quarter)
+    want = _cheap_exact_values(quarter)
+    np.testing.assert_allclose(got[:, :3], want[:, :3], rtol=0, atol=1e-4)
+    np.testing.assert_allclose(got[:, 3], want[:, 3], rtol=0, atol=5e-2)   # 2 digits
+
+    monkeypatch.setattr(spec, "node_values_stored", False)
+    calls.clear()
+    monkeypatch.setattr(spec, "analytic_points", lambda pts: np.asarray(pts)[:, 2] >= 1.0)
+    again = build_table("creep_exact", "coarse", output_dir=tmp_path / "c",
+                        scheduler="synchronous", workdir=tmp_path / "w1", progress=False,
+                        reuse_nodes=res["path"])
+    assert sum(calls) == int(np.count_nonzero(quarter[:, 2] >= 1.0)) + spec.n_check["coarse"]
+    with netCDF4.Dataset(again["path"]) as ds:
+        assert "the spline at its nodes" in ds.getncattr("build_reused_nodes")
+    pts = np.random.default_rng(3).uniform([-2.3, 0.0, -1.0, -np.pi, -20.0],
+                                           [2.3, 0.5, 1.0, np.pi, 20.0], (50, 5))
+    np.testing.assert_allclose(Table.from_file(again["path"]).spline.evaluate(pts)[:, :3],
+                               table.spline.evaluate(pts)[:, :3], rtol=0, atol=2e-4)
+
+    data = bytearray(res["path"].read_bytes())   # the coefficients are most of the file
+    data[len(data) // 2] ^= 0xFF
+    bad = tmp_path / "bad.nc"
+    bad.write_bytes(bytes(data))
+    with pytest.raises(TableFileError, match="truncated or corrupt"):
         Table.from_file(bad)

@@ -152,11 +152,12 @@ def test_ncdump_reads_table_and_attributes(path):
     out = subprocess.run(["ncdump", "-h", str(path)], capture_output=True, text=True,
                          check=True).stdout
     assert ':Conventions = "CF-1.8"' in out
-    # format 2: node values on the computed block (creep_exact), described for any reader
-    fmt = 2 if path.stem == "creep_exact" else 1
+    # format 3: no node values (creep_exact: the spline's coefficients, checksummed, and
+    # the symmetries it was filled by), described for any reader
+    fmt = 3 if path.stem == "creep_exact" else 1
     assert f":railcontact_table_format = {fmt}" in out
-    if fmt == 2:
-        assert ":node_values_block = " in out and ":symmetry = " in out
+    if fmt == 3:
+        assert ":symmetry = " in out and ":node_values = \"not stored" in out
     for key in ("title", "source", "history", "references"):
         assert f":{key} = " in out
     table = Table.from_file(path)
@@ -200,7 +201,7 @@ def _copy_with(tmp_path, edit):
 
 def test_wrong_version_clear_error(tmp_path):
     dst = _copy_with(tmp_path, lambda nc: nc.setncattr("railcontact_table_format", np.int32(99)))
-    with pytest.raises(TableFileError, match=r"edited.nc.*version 99.*versions \[1, 2\]"):
+    with pytest.raises(TableFileError, match=r"edited.nc.*version 99.*versions \[1, 2, 3\]"):
         Table.from_file(dst)
 
 
@@ -469,7 +470,7 @@ def test_creep_table_array_b0_1e_300(method):
 
 @pytest.mark.parametrize("edit, match", [
     (lambda nc: nc.setncattr("railcontact_table_format", "abc"),
-     r"edited.nc' has table format version 'abc', this reader understands versions \[1, 2\]"),
+     r"edited.nc' has table format version 'abc', this reader understands versions \[1, 2, 3\]"),
     (lambda nc: nc.setncattr("spline_degree", "three"),
      r"edited.nc': attribute spline_degree must be 3; got 'three'"),
     (lambda nc: nc.variables["normalised_creepage"].setncattr("double_knots", "abc"),

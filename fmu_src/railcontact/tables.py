@@ -4,7 +4,9 @@ A table file is a CF-1.8 netCDF file (see :data:`TABLE_FORMAT_VERSION`) holding,
 tabulated variable,
 
 * its values at the grid nodes (a variable on the coordinate dimensions; a table with
-  symmetries, format 2, stores them on the block of the grid that was computed), and
+  symmetries, format 2, stores them on the block of the grid that was computed; format 3
+  stores none: the variable is a scalar carrying the attributes, for a table that would pass
+  its size limit with them), and
 * the coefficients of the tensor-product cubic B-spline that interpolates them
   (``<variable>_bspline_coefficients``), with one knot vector per axis (``<axis>_knots``).
 
@@ -19,7 +21,8 @@ Evaluation here is pure numpy/numba (no netCDF or xarray after loading): a compi
 tensor-product de Boor kernel (:mod:`railcontact._spline_kernels`, loaded on the first
 evaluation) evaluates all variables of a table at once, with first and second partial
 derivatives. Loading checks the stored spline against the node values, for a 1-D table with
-scipy's ``NdBSpline``: reading the modified strip theory's table needs no numba.
+scipy's ``NdBSpline``: reading the modified strip theory's table needs no numba (a format-3
+file: the HDF5 checksums of its coefficients, and that they are finite).
 
 Out-of-grid behaviour (an explicit choice per axis, attribute ``out_of_range``):
 
@@ -54,7 +57,7 @@ from scipy.interpolate import NdBSpline, make_interp_spline
 from ._validation import check_range
 
 __all__ = [
-    "TABLE_FORMAT_VERSION", "TableFileError", "bspline_knots", "fit_tensor_bspline",
+    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError", "bspline_knots", "fit_tensor_bspline",
     "TensorSpline", "Table", "default_table_path",
     "tables_directory", "periodic_bspline_knots", "periodic_stored_nodes",
 ]
@@ -64,8 +67,12 @@ __all__ = [
 #: :mod:`tablegen.netcdf`). Bumped when the layout changes incompatibly. Version 1 (every
 #: node's value stored) is still written for the other tables and read.
 TABLE_FORMAT_VERSION = 2
+#: Version of the layout without node values (the spline's coefficients only, with HDF5
+#: Fletcher-32 checksums; each variable a scalar that carries its attributes): tables whose
+#: file would pass its size limit with the node values (``creep_exact`` since 2026-11-28).
+TABLE_FORMAT_SPLINE_ONLY = 3
 #: The versions this reader understands.
-TABLE_FORMAT_VERSIONS_READ = (1, 2)
+TABLE_FORMAT_VERSIONS_READ = (1, 2, 3)
 
 #: Environment variable naming a directory searched first for table files.
 TABLES_DIR_ENV = "RAILCONTACT_TABLES_DIR"
@@ -528,10 +535,10 @@ def _declared_digits(where, name, attrs, coef_attrs):
         digits = {int(np.asarray(g).item()) for g in got}
     except (TypeError, ValueError):
         digits = set()
-    if len(digits) != 1 or not 3 <= next(iter(digits)) <= 7:
+    if len(digits) != 1 or not 2 <= next(iter(digits)) <= 7:
         raise TableFileError(
             f"{where}: variable {name!r} and its coefficients must declare the same "
-            f"significant_digits, an integer in [3, 7]; got {got}")
+            f"significant_digits, an integer in [2, 7]; got {got}")
     return digits.pop()
 
 
@@ -591,7 +598,8 @@ class Table:
         Per-variable attributes, including the recorded accuracy (``max_abs_error``,
         ``rms_error``, ``error_target``, ``error_target_met``).
     values : dict of ndarray
-        Node values per variable, at the nodes ``node_block`` selects.
+        Node values per variable, at the nodes ``node_block`` selects (empty for a file
+        without node values, format 3: evaluate ``spline`` at the nodes).
     node_block : tuple of slice
         Per axis, the nodes whose values the file stores: every node (``slice(None)``), or,
         for a table with symmetries (format 2), the block that was computed (the spline
@@ -685,6 +693,7 @@ class Table:
         shape = tuple(len(a["nodes"]) for a in axes)
         coefs = np.empty((len(var_names),) + shape)
         block = None
+        spline_only = _as_int(version) == TABLE_FORMAT_SPLINE_ONLY
         for k_var, name in enumerate(var_names):
             cname = f"{name}_bspline_coefficients"
             for needed in (name, cname):
@@ -692,6 +701,21 @@ class Table:
                     raise TableFileError(f"{where} lacks the variable {needed!r}")
             vdims, val, a = ncvars[name]
             _, coef, ca = ncvars[cname]
+            if spline_only:   # format 3: the coefficients alone (checksummed by HDF5)
+                if vdims != () or coef.shape != shape:
+                    raise TableFileError(
+                        f"{where}: variable {name!r} must be a scalar (format 3) and its "
+                        f"coefficients of shape {shape}; got dimensions {list(vdims)} and "
+                        f"{coef.shape} (truncated?)")
+                if not (str(ca.get("coefficient_precision", "")) == "float32"
+                        and coef.dtype == np.float32):
+                    _check_float64(where, cname, coef)
+                if not np.all(np.isfinite(coef)):
+                    raise TableFileError(f"{where}: variable {cname!r} holds values that are "
+                                         "not finite; the file is corrupt")
+                coefs[k_var] = coef
+                vattrs[name] = a
+                continue
             var_block = _node_block(where, name, vdims, axes, ncvars)
             block = var_block if block is None else block
             want = tuple(len(range(*sl.indices(n))) for sl, n in zip(var_block, shape))
@@ -717,6 +741,9 @@ class Table:
         table = cls(path, attrs, axes, var_names, vattrs, values, coefs,
                     node_block=block)
         if store is None:    # from the user cache: this content passed the check below
+            return table
+        if spline_only:      # checked above (shapes, finite) and by HDF5 (checksums)
+            store()
             return table
         # integrity: the stored spline reproduces the stored node values (every node, or for
         # large tables the corners and a fixed sample of 20,000: a load stays fast)
