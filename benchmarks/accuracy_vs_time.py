@@ -521,8 +521,10 @@ def family_3d(quick, workdir):
             t1 = per_call(lambda: tab.creep_force_3d(*args1))
             tb = per_call(lambda: tab.creep_force_3d(*sub)) / int(ok.sum())
             shape = "x".join(str(len(a["nodes"])) for a in tab.table.axes)
+            from railcontact.creep_common import (  # noqa: PLC0415
+                EXACT_TABLE_NARROW_ASPECT_MAX as g_max, EXACT_TABLE_NARROW_SPIN_MIN as t_min)
             note = ("solver 30x20 -> 60x20 extrapolated on two shifted grids at the nodes "
-                    "(30x36 -> 60x36 at a/b < 0.75 with spin coordinate > 2.75), "
+                    f"(30x36 -> 60x36 at a/b < {g_max:g} with spin coordinate > {t_min:g}), "
                     "anchored to Kalker's linear theory near zero; every a/b, nu, sign")
             add("table: exact theory (C2 spline)", f"{label} ({shape})", tx, ty, t1, tb, note)
         except Exception as exc:

@@ -542,7 +542,7 @@ def exact_creep_function(points, lateral_elements=None):
 
     Calls :func:`railcontact.reference.rolling3d.solve_rolling_3d` on the reference contact
     (:data:`railcontact.creep3d.REFERENCE_CONTACT`) at 30 x my and 60 x my elements (my =
-    20, or 36 where a0/b0 < 0.75 and |tau| > 2.75: :func:`exact_solver_lateral_elements`),
+    20, or 36 where a0/b0 < 0.87 and |tau| > 2.75: :func:`exact_solver_lateral_elements`),
     extrapolates once (Richardson, first order in the rolling-direction element size) and
     averages the grids moved by :data:`EXACT_GRID_SHIFTS` (what ``creep_solution_3d(...,
     method="exact")`` does by default, but for my); each grid starts from the previous point's

@@ -53,6 +53,34 @@ def _args(xi, eta, phi, **over):
 # Coordinates and symmetries (no table needed)
 # --------------------------------------------------------------------------------------------
 
+def test_the_coefficients_are_held_once(table):
+    """The reader's own coefficient layout (variables last, for its compiled kernel) and the
+    table's (variables first, for ``table.table.spline``) are one array: the exact table's
+    coefficients are 174 MB in float64. The spline made from the shared view gives what the
+    reader gives; a view of another shape is refused."""
+    assert np.shares_memory(table.table.coefficients, table._coef)
+    assert table.table.coefficients.shape == (4,) + table._coef.shape[:-1]
+    np.testing.assert_array_equal(table.table.coefficients[:, 1, 1, 2, 3, 4],
+                                  table._coef[1, 1, 2, 3, 4])
+    pts = np.array([[0.3, 0.2, 0.4, 0.5, 1.7], [-1.0, 0.4, -0.2, 2.0, -3.0]])
+    tx, ty = [], []
+    for p in pts:   # the reader's own path, in table coordinates on the reference contact
+        phys = exact_table_inverse(*p, contact=REFERENCE_CONTACT)
+        f = table.creep_force_3d(*(float(phys[k]) for k in (
+            "creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+            "youngs_modulus", "poisson_ratio", "friction_coefficient")))
+        mu_n = REFERENCE_CONTACT["normal_load"] * REFERENCE_CONTACT["friction_coefficient"]
+        tx.append(f.tx / mu_n)
+        ty.append(f.ty / mu_n)
+    v = table.table.spline.evaluate(pts)   # (f_par, f_perp) in the creepage frame (to the
+    # round trip through physical inputs)
+    c, s = np.cos(pts[:, 3]), np.sin(pts[:, 3])
+    np.testing.assert_allclose(-(v[:, 0] * c - v[:, 1] * s), tx, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(-(v[:, 0] * s + v[:, 1] * c), ty, rtol=0, atol=1e-6)
+    with pytest.raises(ValueError, match=r"coefficients must have shape \(4, "):
+        table.table.share_coefficients(table._coef)
+
+
 def test_creepage_coordinate_inverse_and_limits():
     rho = np.array([0.0, 1e-9, 0.3, 1.0, 7.0, 1e3, 1e6, np.inf])
     s = creepage_coordinate(rho)
@@ -380,7 +408,7 @@ def test_jacobian_against_finite_differences_of_the_solver(table):
 @needs_table
 def test_beyond_the_spin_axis_the_solver_answers(table):
     """|tau| > 20: the documented fallback, the solver at the table's setting (36 lateral
-    elements for a0/b0 < 0.75); without a solver attached, a ValueError naming the spin and
+    elements for a0/b0 < 0.87); without a solver attached, a ValueError naming the spin and
     the table's range."""
     from railcontact import creep_solution_3d
 

@@ -328,7 +328,7 @@ def test_anchored_point_function_has_kalkers_slope_and_a_small_fading_correction
 
 
 def test_narrow_contacts_with_large_spin_need_more_lateral_elements(monkeypatch):
-    """Why the exact table's solver uses 36 lateral elements at a0/b0 < 0.75, |tau| > 2.75
+    """Why the exact table's solver uses 36 lateral elements at a0/b0 < 0.87, |tau| > 2.75
     (grid convergence, independent of the table): along a creepage scan at a0/b0 = 0.18,
     nu = 0.5, theta = -30 deg, tau = 20, the 30 (60) x 20 solution is off the 30 (60) x 80
     one by more than 1 % of mu N (measured 1.51 % over 12 points; the spin pole crosses
@@ -344,18 +344,21 @@ def test_narrow_contacts_with_large_spin_need_more_lateral_elements(monkeypatch)
                            np.full_like(r, theta), np.full_like(r, tau)])
     np.testing.assert_array_equal(sp.exact_solver_lateral_elements(pts[:, 0], pts[:, 4]), 36)
     lateral = sp.exact_solver_lateral_elements(
-        np.log([0.1, 0.316, 0.562, 0.562, 1.0, 0.316, 0.316]),
-        [3.0, 20.0, -3.0, 20.0, 20.0, 2.5, 0.0])
-    np.testing.assert_array_equal(lateral, [36, 36, 36, 36, 20, 20, 20])
+        np.log([0.1, 0.316, 0.562, 0.562, 0.75, 1.0, 0.316, 0.316]),
+        [3.0, 20.0, -3.0, 20.0, 20.0, 20.0, 2.5, 0.0])
+    np.testing.assert_array_equal(lateral, [36, 36, 36, 36, 36, 20, 20, 20])
     # a file of an earlier rule is reused exactly where its lateral elements are today's
-    grid = np.column_stack([np.log([0.1, 0.562, 0.1, 1.0]), [0.0] * 4, [0.5] * 4, [0.0] * 4,
-                            [3.0, 3.0, 2.5, 3.0]])
+    grid = np.column_stack([np.log([0.1, 0.562, 0.1, 1.0, 0.75]), [0.0] * 5, [0.5] * 5,
+                            [0.0] * 5, [3.0, 3.0, 2.5, 3.0, 3.0]])
     np.testing.assert_array_equal(
         sp._exact_reusable_points({"method": sp._EXACT_METHOD_MY20}, grid),
-        [False, False, True, True])
+        [False, False, True, True, False])
     np.testing.assert_array_equal(
         sp._exact_reusable_points({"method": sp._exact_method(0.45, 2.75)}, grid),
-        [True, False, True, True])
+        [True, False, True, True, False])
+    np.testing.assert_array_equal(   # the node 0.75 came with the threshold 0.87
+        sp._exact_reusable_points({"method": sp._exact_method(0.75, 2.75)}, grid),
+        [True, True, True, True, False])
     assert sp._exact_reusable_points({"method": "something else"}, grid) is None
     values = {}
     for my in (20, 36, 80):

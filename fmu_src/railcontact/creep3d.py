@@ -419,7 +419,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         4-20, 20 lateral elements err against 80 by up to 1.5 % of mu N at a0/b0 = 0.18,
         0.7 % at 0.32, 0.4 % at 0.56 and 0.2 % at 1 (the discrete solution depends on where
         the spin pole falls between element rows), 36 by up to 0.2 % (at about 1.8 times the
-        cost); the table ``creep_exact`` uses 36 at a0/b0 < 0.75 with |tau| > 2.75.
+        cost); the table ``creep_exact`` uses 36 at a0/b0 < 0.87 with |tau| > 2.75.
         A plain solve on one grid: ``extrapolate=False, grid_shifts=1``. From 32 x 16 elements
         a grid starts from a solve on half the elements (``coarse_start`` of the solver).
     extrapolate : bool, keyword-only
@@ -898,7 +898,7 @@ def load_exact_table(path=None, directory=None):
     shipped file, :func:`railcontact.tables.default_table_path`), loaded once per path and
     process. Beyond its a0/b0 range or spin axis it answers with
     ``creep_solution_3d(..., method="exact", tolerance=1e-4)`` (30x20 -> 60x20 on two shifted
-    grids; 30x36 -> 60x36 where a0/b0 < 0.75), the setting the table was built with, so
+    grids; 30x36 -> 60x36 where a0/b0 < 0.87), the setting the table was built with, so
     every finite input gets the exact theory.
 
     Parameters
@@ -925,7 +925,7 @@ def load_exact_table(path=None, directory=None):
 
 def _exact_table_solver(*args, sensitivities=False):
     """The exact solver at the table's setting (the table's answer beyond its axes): 36
-    lateral elements where a0/b0 < 0.75 (``EXACT_TABLE_*`` of :mod:`railcontact.creep_common`;
+    lateral elements where a0/b0 < 0.87 (``EXACT_TABLE_*`` of :mod:`railcontact.creep_common`;
     beyond the table such a contact has a0/b0 < 0.1 or |tau| > 20, which the table's rule
     gives 36 too), else 20. Returns the fields the table reads (tx, ty, spin_moment,
     stick_area_fraction, normalised_creepage, sensitivity)."""

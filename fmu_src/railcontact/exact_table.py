@@ -255,7 +255,7 @@ class ExactCreepTable:
     The table (see the module docstring for its coordinates) was computed by the discretised
     solver :func:`railcontact.reference.rolling3d.solve_rolling_3d` at the exact method's
     default setting (Richardson-extrapolated from 30 x 20 and 60 x 20 elements on two grids
-    moved -1/4 and +1/4 of an element; 36 lateral elements where a0/b0 < 0.75 and |tau| >
+    moved -1/4 and +1/4 of an element; 36 lateral elements where a0/b0 < 0.87 and |tau| >
     2.75; the file attribute ``solver_grid`` says which setting a file was built with); its
     recorded accuracy (file attributes, per variable: ``max_abs_error``, ``rms_error`` on
     off-node check points against that solver) and the solver's own error against the
@@ -309,6 +309,9 @@ class ExactCreepTable:
         self._poly_list = [basis_polynomials(t) for t in self._knot_list]
         self._poly = np.ascontiguousarray(np.concatenate(self._poly_list))
         self._coef = np.ascontiguousarray(np.moveaxis(table.coefficients, 0, -1))
+        # one copy (174 MB in float64 on the grid of 2026-11-28): the table's (variable first,
+        # for table.spline, made again on first use) becomes a view of this one
+        table.share_coefficients(np.moveaxis(self._coef, -1, 0))
         self._empty_slab = np.zeros((1, 1, 1, 4))
         self._g_range = tuple(float(np.exp(table.axes[0]["nodes"][k])) for k in (0, -1))
         self._log_g = (float(table.axes[0]["nodes"][0]), float(table.axes[0]["nodes"][-1]))

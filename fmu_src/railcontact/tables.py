@@ -619,7 +619,27 @@ class Table:
                            else (slice(None),) * len(axes))
         #: B-spline coefficients, shape (n_var, n_1, ..., n_D) (float64). [variable units]
         self.coefficients = np.asarray(coefficients, dtype=float)
-        self.spline = TensorSpline(axes, coefficients, variables, source=str(self.path))
+        self._spline = None
+
+    @property
+    def spline(self):
+        """The :class:`TensorSpline` of every variable (made on first use, from
+        :attr:`coefficients`)."""
+        if self._spline is None:
+            self._spline = TensorSpline(self.axes, self.coefficients, self.variables,
+                                        source=str(self.path))
+        return self._spline
+
+    def share_coefficients(self, coefficients):
+        """Hold ``coefficients`` (the same values, e.g. a view of a reader's own layout) in
+        place of this table's copy, and drop the spline made from it (made again on first
+        use): a large table is then held once. [variable units]"""
+        coefficients = np.asarray(coefficients)
+        if coefficients.shape != self.coefficients.shape:
+            raise ValueError(f"coefficients must have shape {self.coefficients.shape}; got "
+                             f"{coefficients.shape}")
+        self.coefficients = coefficients
+        self._spline = None
 
     @classmethod
     def from_file(cls, path, expected_name=None):
