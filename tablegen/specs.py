@@ -164,7 +164,7 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 #: smooth with 40). With tau <= 1 20 elements are within 0.13 %. So where a0/b0 < 0.87 and
 #: |tau| > 2.75 (between the nodes 0.75 and 1 of a0/b0 and 2.5 and 3 of tau; rebuilt in
 #: steps: a0/b0 < 0.45, 62,370 solver points of the computed quarter, then the node 0.56,
-#: 20,790 (threshold 0.75 until the node 0.75 came, 2026-11-28); from tau = 1.3 it would
+#: 20,790 (threshold 0.75 until the node 0.75 came, 2026-11-27); from tau = 1.3 it would
 #: have been 1.7 times as many) the table's solver
 #: uses 36 lateral elements: EXACT_LATERAL_ELEMENTS_NARROW, EXACT_NARROW_ASPECT_MAX,
 #: EXACT_NARROW_SPIN_MIN (imported from railcontact.creep_common, which the table's solver
@@ -194,7 +194,7 @@ _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/
 EXACT_TAU_MAX = 20.0
 EXACT_ASPECT_RANGE = (0.1, 10.0)
 #: ln(a0/b0) nodes where they are not uniform over EXACT_ASPECT_RANGE: the uniform 9 (a0/b0
-#: 0.1, 0.18, 0.32, 0.56, 1, 1.8, 3.2, 5.6, 10) and, since 2026-11-28, the midpoints 0.42 and
+#: 0.1, 0.18, 0.32, 0.56, 1, 1.8, 3.2, 5.6, 10) and, since 2026-11-27, the midpoints 0.42 and
 #: 0.75 of the two intervals where large spin changes the force fastest with a0/b0 (the stick
 #: area shrinks from ~0.1 to ~0.03 of the ellipse between a0/b0 0.7 and 0.8 at tau 2.5-3):
 #: one-axis cubic fits through the solver's values along ln(a0/b0) at the worst random cases
@@ -222,7 +222,7 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
     # those intervals, at most 0.1 % in the others but 13.5-20: 0.2 %); 0.003 and 0.01 too:
     # along pure spin the force leaves the linear theory by 0.8 % within tau = 0.03 at a0/b0
     # = 10, and with the first node there the slope d Ty / d phi at zero (C23) erred 0.85 %;
-    # 1.8 added 2026-11-28 (a one-axis fit along tau through the solver's values erred by
+    # 1.8 added 2026-11-27 (a one-axis fit along tau through the solver's values erred by
     # 0.72 % of mu N at a0/b0 4.3, tau 1.88 and 0.37 % at a0/b0 2.8, tau 1.77 with the
     # interval 1.6-2; 0.20 and 0.09 % with the intervals halved)
     "coarse": [0.0, 1.0, 2.5, 6.0, 20.0],
@@ -706,7 +706,7 @@ register(TableSpec(
     significant_digits=5,          # the file stays under 20 MB. (4 digits made the spline 3e-8
     # off zero near v = 0: combinations of coefficients that cancel there keep their rounding,
     # and the slope taken at |v| = 1e-6 of the saturation creepage was 1 % off)
-    node_values_stored=False,      # since 2026-11-28 (format 3): the node values took 3.5 of
+    node_values_stored=False,      # since 2026-11-27 (format 3): the node values took 3.5 of
     # the 19.7 MB; without them, and with the stick area to 2 digits (3.1 -> 2.2 MB), the
     # finer grid fits (the spline at the nodes gives them back, to the coefficients' rounding)
     variables=[

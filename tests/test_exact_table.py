@@ -263,7 +263,7 @@ def test_c1_across_zero_longitudinal_creepage(table, phi):
     1e-3 of creepage); Tx too. With eta = 1e-4 the creepage's direction turns by 90 degrees
     within xi ~ 1e-4, so at h = 1e-6 the second-order one-sided quotients read their own
     error (h^2 times the third derivative over 3: for Ty at phi = 0 a "jump" of 2.8e-3 on the
-    grid of 2026-11-28, 9e-4 before; 2.5e-4 at h = 3e-7, 2.8e-5 at 1e-7). It falls as h^2,
+    grid of 2026-11-27, 9e-4 before; 2.5e-4 at h = 3e-7, 2.8e-5 at 1e-7). It falls as h^2,
     so the slope is continuous; a kink keeps its jump as h falls. At h = 1e-7 the quotients
     agree to 2e-4, and their difference is at most 5 % of the one at h = 1e-6."""
     def ty(xi):

@@ -495,7 +495,7 @@ def _cheap_exact_values(points):
 
 
 def test_table_without_node_values_stores_the_spline_only(tmp_path, monkeypatch):
-    """Format 3 (``node_values_stored = False``, the shipped exact table since 2026-11-28):
+    """Format 3 (``node_values_stored = False``, the shipped exact table since 2026-11-27):
     each variable is a scalar carrying its attributes and naming its coefficients, the
     coefficients carry Fletcher-32 checksums, and the spline is the one format 2 stores
     (the same coefficients) in a smaller file; a rebuild reusing the file takes the spline at

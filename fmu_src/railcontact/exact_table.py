@@ -309,7 +309,7 @@ class ExactCreepTable:
         self._poly_list = [basis_polynomials(t) for t in self._knot_list]
         self._poly = np.ascontiguousarray(np.concatenate(self._poly_list))
         self._coef = np.ascontiguousarray(np.moveaxis(table.coefficients, 0, -1))
-        # one copy (174 MB in float64 on the grid of 2026-11-28): the table's (variable first,
+        # one copy (174 MB in float64 on the grid of 2026-11-27): the table's (variable first,
         # for table.spline, made again on first use) becomes a view of this one
         table.share_coefficients(np.moveaxis(self._coef, -1, 0))
         self._empty_slab = np.zeros((1, 1, 1, 4))

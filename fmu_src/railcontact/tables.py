@@ -57,8 +57,8 @@ from scipy.interpolate import NdBSpline, make_interp_spline
 from ._validation import check_range
 
 __all__ = [
-    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError", "bspline_knots", "fit_tensor_bspline",
-    "TensorSpline", "Table", "default_table_path",
+    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError", "bspline_knots",
+    "fit_tensor_bspline", "TensorSpline", "Table", "default_table_path",
     "tables_directory", "periodic_bspline_knots", "periodic_stored_nodes",
 ]
 
@@ -69,7 +69,7 @@ __all__ = [
 TABLE_FORMAT_VERSION = 2
 #: Version of the layout without node values (the spline's coefficients only, with HDF5
 #: Fletcher-32 checksums; each variable a scalar that carries its attributes): tables whose
-#: file would pass its size limit with the node values (``creep_exact`` since 2026-11-28).
+#: file would pass its size limit with the node values (``creep_exact`` since 2026-11-27).
 TABLE_FORMAT_SPLINE_ONLY = 3
 #: The versions this reader understands.
 TABLE_FORMAT_VERSIONS_READ = (1, 2, 3)
