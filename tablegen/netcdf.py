@@ -87,7 +87,9 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
     coords, data_vars = {}, {}
     dims = [a.name for a in axes]
     cdims = [f"{a.name}_bspline" for a in axes]
-    block = tuple(node_block) if node_block is not None else (slice(None),) * len(axes)
+    stored = getattr(spec, "node_values_stored", True)
+    block = (tuple(node_block) if node_block is not None and stored
+             else (slice(None),) * len(axes))   # (format 3: no node values, no blocks)
     vdims = []
     for a, sl in zip(axes, block):
         part = a.nodes[sl]
@@ -100,10 +102,7 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "comment": (f"a contiguous run of the nodes {a.name}: the block of the grid that was "
                         "computed; the other nodes' values follow by the table's symmetries "
                         "(global attribute node_values_block) or from the spline")})
-    stored = getattr(spec, "node_values_stored", True)
-    blocked = vdims != dims and stored
-    if not stored:
-        coords = {k: v for k, v in coords.items() if not k.endswith("_block")}
+    blocked = vdims != dims
     for a, t in zip(axes, knots):
         coords[a.name] = (a.name, a.nodes, {
             "units": a.units, "long_name": a.long_name,
@@ -129,11 +128,11 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
         acc = accuracy[v.name]
         met = acc["max_abs_error"] <= v.error_target
         single = getattr(spec, "node_values_float32", False)
-        node_values = np.asarray(values[k])[block]
         if not stored:   # format 3: a scalar that carries the attributes
             vdims, node_values = (), np.int32(0)
-        elif single:
-            node_values = node_values.astype(np.float32)
+        else:
+            node_values = np.asarray(values[k])[block]
+            node_values = node_values.astype(np.float32) if single else node_values
         data_vars[v.name] = (vdims, node_values, {
             "units": v.units, "long_name": v.long_name,
             "bspline_coefficients": f"{v.name}_bspline_coefficients",

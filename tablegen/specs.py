@@ -200,8 +200,8 @@ EXACT_ASPECT_RANGE = (0.1, 10.0)
 #: one-axis cubic fits through the solver's values along ln(a0/b0) at the worst random cases
 #: erred by 0.75 % of mu N (a0/b0 0.43, tau 4.1) and 0.55 % (0.79, tau 6.8) on the uniform
 #: nodes, 0.23 % and 0.10 % with the intervals halved
-_EXACT_ASPECT_UNIFORM = {"coarse": 4, "default": 9, "fine": 13}
 _EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5)}   # in steps of the uniform grid from a0/b0 = 0.1
+# (the uniform grid has the count of _EXACT_COUNTS less these)
 _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (inf: full
     # sliding), w = sqrt(1 + tau^2). Graded towards 0: without spin the force's curvature jumps
     # there (Carter's 2 r - r |r|), and the spline's slope at 0 errs in proportion to the first
@@ -262,13 +262,12 @@ def _exact_quarter(resolution):
 
     n_g, n_nu, n_r, n_t, n_s = _EXACT_COUNTS[resolution]
     lo, hi = np.log(EXACT_ASPECT_RANGE)
-    n_u = _EXACT_ASPECT_UNIFORM[resolution]
-    g = np.sort(np.r_[np.linspace(lo, hi, n_u),
-                      lo + np.asarray(_EXACT_ASPECT_EXTRA.get(resolution, ()), dtype=float)
-                      * (hi - lo) / (n_u - 1)])
+    extra = np.asarray(_EXACT_ASPECT_EXTRA.get(resolution, ()), dtype=float)
+    n_u = n_g - len(extra)
+    g = np.sort(np.r_[np.linspace(lo, hi, n_u), lo + extra * (hi - lo) / (n_u - 1)])
     rho = np.asarray(_EXACT_RHO[resolution])
     tau = np.asarray(_EXACT_TAU[resolution])
-    assert len(rho) == n_r and len(tau) == n_s and tau[-1] == EXACT_TAU_MAX and len(g) == n_g
+    assert len(rho) == n_r and len(tau) == n_s and tau[-1] == EXACT_TAU_MAX
     theta = (np.radians(_EXACT_THETA[resolution]) if resolution in _EXACT_THETA
              else np.linspace(-0.5 * np.pi, 0.5 * np.pi, n_t))
     assert len(theta) == n_t and np.allclose(theta, -theta[::-1])

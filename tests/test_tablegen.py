@@ -402,6 +402,16 @@ def test_quantised_tables_are_declared_read_and_smaller(tmp_path, monkeypatch):
                     workdir=tmp_path / "w", progress=False)
 
 
+def _cheap_exact_values(points):
+    """A smooth stand-in for the exact solver with the exact table's symmetries."""
+    p = np.asarray(points, dtype=float)
+    g, nu, s, th, tau = p.T
+    return np.column_stack([s * (1.0 + 0.1 * g) * (1.0 + 0.2 * np.cos(2 * th)),
+                            0.3 * s * np.sin(2 * th) * (1.0 + nu) + 0.01 * tau * s * np.cos(th),
+                            0.05 * tau / (1.0 + tau) * (1.0 - s ** 2),
+                            (1.0 - s) * (1.0 + 0.0 * tau)])
+
+
 def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path,
                                                                         monkeypatch):
     """A table with symmetries (``spec.reduce``; the exact creep table, coarse, with a cheap
@@ -413,15 +423,7 @@ def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path
     import netCDF4  # noqa: PLC0415
 
     spec = REGISTRY["creep_exact"]
-
-    def cheap(points):
-        p = np.asarray(points, dtype=float)
-        g, nu, s, th, tau = p.T
-        return np.column_stack([s * (1.0 + 0.1 * g) * (1.0 + 0.2 * np.cos(2 * th)),
-                                0.3 * s * np.sin(2 * th) * (1.0 + nu) + 0.01 * tau * s * np.cos(th),
-                                0.05 * tau / (1.0 + tau) * (1.0 - s ** 2),
-                                (1.0 - s) * (1.0 + 0.0 * tau)])
-
+    cheap = _cheap_exact_values
     calls = []
 
     def counting(points):
@@ -482,16 +484,6 @@ def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path
     with pytest.raises(TableFileError, match="not a contiguous run of the nodes of "
                                              "'creepage_angle'"):
         Table.from_file(bad)
-
-
-def _cheap_exact_values(points):
-    """A smooth stand-in for the exact solver with the exact table's symmetries."""
-    p = np.asarray(points, dtype=float)
-    g, nu, s, th, tau = p.T
-    return np.column_stack([s * (1.0 + 0.1 * g) * (1.0 + 0.2 * np.cos(2 * th)),
-                            0.3 * s * np.sin(2 * th) * (1.0 + nu) + 0.01 * tau * s * np.cos(th),
-                            0.05 * tau / (1.0 + tau) * (1.0 - s ** 2),
-                            (1.0 - s) * (1.0 + 0.0 * tau)])
 
 
 def test_table_without_node_values_stores_the_spline_only(tmp_path, monkeypatch):

@@ -727,35 +727,32 @@ class Table:
                         f"{where}: variable {name!r} must be a scalar (format 3) and its "
                         f"coefficients of shape {shape}; got dimensions {list(vdims)} and "
                         f"{coef.shape} (truncated?)")
-                if not (str(ca.get("coefficient_precision", "")) == "float32"
-                        and coef.dtype == np.float32):
-                    _check_float64(where, cname, coef)
                 if not np.all(np.isfinite(coef)):
                     raise TableFileError(f"{where}: variable {cname!r} holds values that are "
                                          "not finite; the file is corrupt")
-                coefs[k_var] = coef
-                vattrs[name] = a
-                continue
-            var_block = _node_block(where, name, vdims, axes, ncvars)
-            block = var_block if block is None else block
-            want = tuple(len(range(*sl.indices(n))) for sl, n in zip(var_block, shape))
-            if var_block != block or val.shape != want or coef.shape != shape:
-                raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
-                                     f"expected {want} (truncated?)")
-            single = str(a.get("node_value_precision", "")) == "float32"
-            digits = _declared_digits(where, name, a, ca) if single else None
-            if single and val.dtype == np.float32:
-                # declared float32 node values (viewers only); declared quantised to
-                # ``digits`` significant digits (node values and coefficients): 10^(1 - digits)
-                tolerance.append(1e-6 if digits is None else 10.0 ** (1 - digits))
+                single = True        # (no node values: float32 coefficients may stand alone)
             else:
-                _check_float64(where, name, val)
-                tolerance.append(1e-9)
+                var_block = _node_block(where, name, vdims, axes, ncvars)
+                block = var_block if block is None else block
+                want = tuple(len(range(*sl.indices(n))) for sl, n in zip(var_block, shape))
+                if var_block != block or val.shape != want or coef.shape != shape:
+                    raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
+                                         f"expected {want} (truncated?)")
+                single = str(a.get("node_value_precision", "")) == "float32"
+                digits = _declared_digits(where, name, a, ca) if single else None
+                if single and val.dtype == np.float32:
+                    # declared float32 node values (viewers only); declared quantised to
+                    # ``digits`` significant digits (node values and coefficients):
+                    # 10^(1 - digits)
+                    tolerance.append(1e-6 if digits is None else 10.0 ** (1 - digits))
+                else:
+                    _check_float64(where, name, val)
+                    tolerance.append(1e-9)
+                values[name] = np.asarray(val, float)
             if not (str(ca.get("coefficient_precision", "")) == "float32"
                     and coef.dtype == np.float32 and single):
                 _check_float64(where, cname, coef)     # (declared float32 coefficients: a
                 # large table halved again; evaluated in float64, checked to 1e-6 below)
-            values[name] = np.asarray(val, float)
             coefs[k_var] = coef
             vattrs[name] = a
         table = cls(path, attrs, axes, var_names, vattrs, values, coefs,
