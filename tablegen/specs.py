@@ -185,7 +185,7 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (11, 5, 23, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (12, 5, 23, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 2 and 6
     # more nodes since 2026-11-27 (below)
@@ -200,7 +200,7 @@ EXACT_ASPECT_RANGE = (0.1, 10.0)
 #: one-axis cubic fits through the solver's values along ln(a0/b0) at the worst random cases
 #: erred by 0.75 % of mu N (a0/b0 0.43, tau 4.1) and 0.55 % (0.79, tau 6.8) on the uniform
 #: nodes, 0.23 % and 0.10 % with the intervals halved
-_EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5)}   # in steps of the uniform grid from a0/b0 = 0.1
+_EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5, 7.5)}   # in steps of the uniform grid from a0/b0 = 0.1
 # (the uniform grid has the count of _EXACT_COUNTS less these)
 _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (inf: full
     # sliding), w = sqrt(1 + tau^2). Graded towards 0: without spin the force's curvature jumps
