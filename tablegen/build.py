@@ -331,6 +331,7 @@ def fit_grid_values(spec, axes, grid_vals, assemble=None):
                                periodic=[a.periodic for a in axes])
     stored = [dataclasses.replace(a, nodes=periodic_stored_nodes(a.nodes)) if a.periodic
               else a for a in axes]
+    coefs = rounded_coefficients(spec, stored, coefs)
     spline = TensorSpline([dict(name=a.name, nodes=a.nodes, knots=t, units=a.units,
                                 out_of_range=a.out_of_range) for a, t in zip(stored, knots)],
                           coefs, [v.name for v in spec.variables], source=spec.name)
@@ -340,6 +341,23 @@ def fit_grid_values(spec, axes, grid_vals, assemble=None):
         values = np.moveaxis(spline.evaluate(pts, check=False).reshape(
             coefs.shape[1:] + (len(spec.variables),)), -1, 0)
     return values, stored, knots, coefs, spline
+
+
+def rounded_coefficients(spec, stored_axes, coefs):
+    """The coefficients (n_var, n_1, ..., n_D) with each variable's ``absolute_precision``
+    applied: rounded to multiples of it outside ``spec.relative_precision_region`` (see
+    :class:`tablegen.spec.Variable`); unchanged for variables without one."""
+    precisions = [getattr(v, "absolute_precision", None) for v in spec.variables]
+    if all(q is None for q in precisions):
+        return coefs
+    region = getattr(spec, "relative_precision_region", None)
+    keep = (np.zeros((1,) * (coefs.ndim - 1), dtype=bool) if region is None
+            else np.asarray(region(stored_axes), dtype=bool))
+    out = np.array(coefs, dtype=float, copy=True)
+    for k, q in enumerate(precisions):
+        if q is not None:
+            out[k] = np.where(keep, out[k], np.round(out[k] / q) * q)
+    return out
 
 
 def check_table(name, path=None, n_points=None, seed=1, scheduler=None, workers=None,

@@ -163,6 +163,12 @@ def write_table(path, spec, axes, knots, values, coefficients, accuracy, command
             "comment": "value = sum over i of c[i1,...,iD] * prod_d B(d, i_d)(x_d), with the "
                        "degree-3 B-splines of the knot vectors <axis>_knots",
             **({"coefficient_precision": "float32"} if single_coef else {}),
+            **({"absolute_precision": float(v.absolute_precision),
+                "absolute_precision_comment": (
+                    "coefficients rounded to multiples of absolute_precision (the spline moves "
+                    "by at most half of it) except "
+                    + (getattr(spec, "relative_precision_comment", "") or "nowhere"))}
+               if getattr(v, "absolute_precision", None) else {}),
             **({"significant_digits": np.int32(quantised[v.name])} if digits else {})})
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {

@@ -82,6 +82,14 @@ class Variable:
     significant_digits : int, optional
         This variable's digits where the spec quantises (``TableSpec.significant_digits``);
         default the spec's.
+    absolute_precision : float, optional
+        A power of two ``q``: the spline coefficients are rounded to multiples of ``q`` (the
+        B-splines sum to one, so the spline moves by at most ``q / 2``, in units of the
+        variable) except where ``TableSpec.relative_precision_region`` keeps them to the
+        significant digits. Many small coefficients then cost few bits, where relative digits
+        would keep each of them to ``10^-digits`` of its own size. Declared by the coefficient
+        variable's attribute ``absolute_precision``; the build's accuracy check measures the
+        rounded spline.
     """
 
     name: str
@@ -91,6 +99,13 @@ class Variable:
     error_target: float = 1e-4
     comment: str = ""
     significant_digits: int | None = None
+    absolute_precision: float | None = None
+
+    def __post_init__(self):
+        q = self.absolute_precision
+        if q is not None and not (q > 0.0 and np.log2(q) == np.round(np.log2(q))):
+            raise ValueError(f"variable {self.name!r}: absolute_precision must be a power of "
+                             f"two > 0 [units of the variable]; got {q!r}")
 
 
 @dataclass
@@ -167,6 +182,15 @@ class TableSpec:
         this spec's (a solver setting changed in part of the domain), the grid points whose
         earlier values this method would give too; ``None`` refuses the file. Default: only a
         file of the same ``method`` is reused.
+    relative_precision_region : callable, optional
+        ``relative_precision_region(axes) -> bool array`` broadcastable to the coefficient
+        grid (one entry per stored node of each axis): the coefficients that keep their
+        significant digits although their variable has an ``absolute_precision`` (next to a
+        zero of the function, where combinations of coefficients cancel and the slope is read
+        from values far below the absolute quantum). Default: none.
+    relative_precision_comment : str
+        Where ``relative_precision_region`` is, in words (the coefficient attribute
+        ``absolute_precision_comment`` quotes it).
     analytic_points : callable, optional
         ``analytic_points(points) -> bool mask`` of the points that ``function`` answers
         without its expensive solver (limits). A build that reuses an earlier file's node
@@ -193,6 +217,8 @@ class TableSpec:
     coefficients_float32: bool = False
     significant_digits: int | None = None
     node_values_stored: bool = True
+    relative_precision_region: Callable | None = None
+    relative_precision_comment: str = ""
     analytic_points: Callable | None = None
     reuse_coordinates: Callable | None = None
     reusable_points: Callable | None = None

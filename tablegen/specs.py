@@ -303,6 +303,20 @@ def _exact_axes(resolution):
     ]
 
 
+#: The exact table's forces and moment are stored to multiples of this (over mu N, resp. mu N
+#: sqrt(a0 b0)): the spline within 1.5e-5 of them, 300 times below the 0.5 % target.
+EXACT_ABSOLUTE_PRECISION = 2.0**-15
+
+
+def _near_zero_creepage(axes):
+    """Coefficients next to zero creepage (|s| < 0.005), kept to significant digits, as a
+    mask broadcastable to the exact table's coefficient grid."""
+    s = np.asarray(next(a.nodes for a in axes if a.name == "creepage_coordinate"))
+    shape = [1] * len(axes)
+    shape[[a.name for a in axes].index("creepage_coordinate")] = len(s)
+    return (np.abs(s) < 0.005).reshape(shape)
+
+
 def _exact_reduce(axes):
     """Quarter points for the solver, and the assembly of the full grid by symmetry (see
     :mod:`railcontact.exact_table`)."""
@@ -708,16 +722,27 @@ register(TableSpec(
     node_values_stored=False,      # since 2026-11-27 (format 3): the node values took 3.5 of
     # the 19.7 MB; without them, and with the stick area to 2 digits (3.1 -> 2.2 MB), the
     # finer grid fits (the spline at the nodes gives them back, to the coefficients' rounding)
+    # Forces and moment to multiples of 2^-15 (the spline within 1.5e-5 of mu N) since
+    # 2026-11-27, but next to zero creepage (|s| < 0.005: the nodes 0 to rho / w = 0.006),
+    # where they keep 5 digits: on the 11-node grid 16.3 -> 12.7 MB for the three (the
+    # perpendicular force's many small coefficients cost 7.3 MB at 5 relative digits)
+    relative_precision_region=_near_zero_creepage,
+    relative_precision_comment=(
+        "where |creepage_coordinate| < 0.005 (the nodes rho / w = 0 to 0.006), which keep "
+        "significant_digits: there the force is the small difference of coefficients and "
+        "its slope is Kalker's"),
     variables=[
         Variable("force_ratio_parallel", "1", "force on the wheel over the Coulomb limit, "
                  "component opposing the combined creepage v: f_par = -T.e/(mu N), e = "
                  "(cos theta, sin theta)", error_target=5e-3,
+                 absolute_precision=EXACT_ABSOLUTE_PRECISION,
                  comment="T/(mu N) = -(f_par e + f_perp e_perp); see railcontact.exact_table"),
         Variable("force_ratio_perpendicular", "1", "force on the wheel over the Coulomb limit, "
                  "component along -e_perp, e_perp = (-sin theta, cos theta)",
-                 error_target=5e-3),
+                 error_target=5e-3, absolute_precision=EXACT_ABSOLUTE_PRECISION),
         Variable("spin_moment_ratio", "1", "spin moment on the wheel about the ellipse "
-                 "centre over mu N sqrt(a0 b0)", error_target=5e-3),
+                 "centre over mu N sqrt(a0 b0)", error_target=5e-3,
+                 absolute_precision=EXACT_ABSOLUTE_PRECISION),
         Variable("stick_area_fraction", "1", "adhesion area over contact area (element counts of "
                  "the 60 x my solution on the grid moved +1/4 of an element)",
                  error_target=5e-2, significant_digits=2,

@@ -412,6 +412,56 @@ def _cheap_exact_values(points):
                             (1.0 - s) * (1.0 + 0.0 * tau)])
 
 
+def test_absolute_precision_rounds_the_coefficients_outside_the_relative_region(
+        tmp_path, monkeypatch):
+    """A variable's ``absolute_precision`` q (the exact table's forces and moment: 2^-15)
+    rounds its coefficients to multiples of q, except in the spec's relative-precision region
+    (next to zero creepage), where they equal the unrounded fit's; the spline moves by at most
+    q / 2 (the B-splines sum to one), checked at random points against the unrounded build;
+    the file declares q; a q that is not a power of two is refused by name."""
+    import netCDF4  # noqa: PLC0415
+
+    from tablegen.spec import Variable  # noqa: PLC0415
+
+    spec = REGISTRY["creep_exact"]
+    q = 2.0**-15
+    assert [v.absolute_precision for v in spec.variables] == [q, q, q, None]
+    monkeypatch.setattr(spec, "function", _cheap_exact_values)
+    # without the decimal quantisation on top (GranularBitRound keeps 5 digits from the
+    # leading decimal digit: up to 3e-5 at |c| ~ 1), so that only q and float32 act
+    monkeypatch.setattr(spec, "significant_digits", None)
+    res = build_table("creep_exact", "coarse", output_dir=tmp_path / "a",
+                      scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
+    for v in spec.variables:
+        monkeypatch.setattr(v, "absolute_precision", None)
+    ref = build_table("creep_exact", "coarse", output_dir=tmp_path / "b",
+                      scheduler="synchronous", workdir=tmp_path / "w0", progress=False)
+    got, want = Table.from_file(res["path"]), Table.from_file(ref["path"])
+    s = np.asarray(got.axes[2]["nodes"])
+    near = np.abs(s) < 0.005
+    assert 1 <= np.count_nonzero(near) < len(s)
+    for k in range(3):
+        c, c0 = got.coefficients[k], want.coefficients[k]
+        np.testing.assert_array_equal(c[:, :, near], c0[:, :, near])
+        far = c[:, :, ~near]
+        np.testing.assert_array_equal(far / q, np.round(far / q))
+        assert np.abs(far - c0[:, :, ~near]).max() <= 0.5 * q + 1e-6   # + float32
+        assert not np.array_equal(far, c0[:, :, ~near])
+    np.testing.assert_array_equal(got.coefficients[3], want.coefficients[3])
+    pts = np.random.default_rng(5).uniform([-2.3, 0.0, -1.0, -np.pi, -20.0],
+                                           [2.3, 0.5, 1.0, np.pi, 20.0], (400, 5))
+    diff = np.abs(got.spline.evaluate(pts) - want.spline.evaluate(pts))
+    assert diff[:, :3].max() <= 0.5 * q + 1e-6 and diff[:, 3].max() == 0.0
+    with netCDF4.Dataset(res["path"]) as ds:
+        coef = ds["force_ratio_perpendicular_bspline_coefficients"]
+        assert coef.getncattr("absolute_precision") == q
+        assert "creepage_coordinate| < 0.005" in coef.getncattr("absolute_precision_comment")
+        assert "absolute_precision" not in ds["stick_area_fraction_bspline_coefficients"].ncattrs()
+    with pytest.raises(ValueError, match=r"'f': absolute_precision must be a power of two > 0 "
+                                         r"\[units of the variable\]; got 3e-05"):
+        Variable("f", "1", "f", absolute_precision=3e-5)
+
+
 def test_table_with_symmetries_stores_node_values_on_the_computed_block(tmp_path,
                                                                         monkeypatch):
     """A table with symmetries (``spec.reduce``; the exact creep table, coarse, with a cheap
@@ -544,9 +594,22 @@ def test_table_without_node_values_stores_the_spline_only(tmp_path, monkeypatch)
     np.testing.assert_allclose(Table.from_file(again["path"]).spline.evaluate(pts)[:, :3],
                                table.spline.evaluate(pts)[:, :3], rtol=0, atol=2e-4)
 
-    data = bytearray(res["path"].read_bytes())   # the coefficients are most of the file
-    data[len(data) // 2] ^= 0xFF
-    bad = tmp_path / "bad.nc"
-    bad.write_bytes(bytes(data))
-    with pytest.raises(TableFileError, match="truncated or corrupt"):
-        Table.from_file(bad)
+    # one flipped byte at each of 24 places: refused, or (metadata the reader does not use,
+    # free space) the same coefficients; never other numbers read silently
+    original = res["path"].read_bytes()
+    refused = []
+    for i, at in enumerate(np.linspace(0.05, 0.95, 24) * len(original)):
+        data = bytearray(original)
+        data[int(at)] ^= 0xFF
+        bad = tmp_path / f"bad{i}.nc"
+        bad.write_bytes(bytes(data))
+        try:
+            read = Table.from_file(bad)
+        except TableFileError as exc:
+            refused.append(str(exc))
+        else:
+            np.testing.assert_array_equal(read.coefficients, table.coefficients)
+            for a, b in zip(read.axes, table.axes):
+                np.testing.assert_array_equal(a["knots"], b["knots"])
+                np.testing.assert_array_equal(a["nodes"], b["nodes"])
+    assert any("truncated or corrupt" in m for m in refused), refused

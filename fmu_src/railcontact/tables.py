@@ -488,7 +488,8 @@ def _read_netcdf_file(path):
             for vname, var in nc.variables.items():
                 variables[vname] = (tuple(var.dimensions), np.array(var[...]),
                                     {k: var.getncattr(k) for k in var.ncattrs()})
-    except (OSError, RuntimeError, IndexError) as exc:
+    except (OSError, RuntimeError, IndexError, KeyError, AttributeError, ValueError,
+            TypeError) as exc:   # a damaged header or attribute: netCDF4 raises any of these
         raise TableFileError(
             f"table file {str(path)!r} cannot be read as netCDF (truncated or corrupt?): "
             f"{exc}") from exc
