@@ -306,6 +306,10 @@ def _exact_axes(resolution):
 #: The exact table's forces and moment are stored to multiples of this (over mu N, resp. mu N
 #: sqrt(a0 b0)): the spline within 1.5e-5 of them, 300 times below the 0.5 % target.
 EXACT_ABSOLUTE_PRECISION = 2.0**-15
+#: ... and its stick area fraction to multiples of this (within 0.004, against its target
+#: 0.05; its many small coefficients had taken 3.1 of 17.3 MB at 2 significant digits, 1.4
+#: with this)
+EXACT_STICK_AREA_ABSOLUTE_PRECISION = 2.0**-7
 
 
 def _near_zero_creepage(axes):
@@ -722,10 +726,11 @@ register(TableSpec(
     node_values_stored=False,      # since 2026-11-27 (format 3): the node values took 3.5 of
     # the 19.7 MB; without them, and with the stick area to 2 digits (3.1 -> 2.2 MB), the
     # finer grid fits (the spline at the nodes gives them back, to the coefficients' rounding)
-    # Forces and moment to multiples of 2^-15 (the spline within 1.5e-5 of mu N) since
-    # 2026-11-27, but next to zero creepage (|s| < 0.005: the nodes 0 to rho / w = 0.006),
-    # where they keep 5 digits: on the 11-node grid 16.3 -> 12.7 MB for the three (the
-    # perpendicular force's many small coefficients cost 7.3 MB at 5 relative digits)
+    # Since 2026-11-27 (fifth session) the forces and moment to multiples of 2^-15 (the spline
+    # within 1.5e-5 of mu N) and the stick area to 2^-7, but next to zero creepage (|s| <
+    # 0.005: the nodes rho / w = 0 to 0.006), where they keep their digits: on the 11-node
+    # grid 16.3 -> 12.7 MB for the three (the perpendicular force's many small coefficients
+    # cost 7.3 MB at 5 relative digits), the stick area 3.1 -> 1.4 MB on 12 a0/b0 nodes
     relative_precision_region=_near_zero_creepage,
     relative_precision_comment=(
         "where |creepage_coordinate| < 0.005 (the nodes rho / w = 0 to 0.006), which keep "
@@ -746,6 +751,7 @@ register(TableSpec(
         Variable("stick_area_fraction", "1", "adhesion area over contact area (element counts of "
                  "the 60 x my solution on the grid moved +1/4 of an element)",
                  error_target=5e-2, significant_digits=2,
+                 absolute_precision=EXACT_STICK_AREA_ABSOLUTE_PRECISION,
                  comment="piecewise constant in the solver (element count), so only "
                          "approximately smooth"),
     ],

@@ -72,11 +72,14 @@ def test_the_coefficients_are_held_once(table):
         mu_n = REFERENCE_CONTACT["normal_load"] * REFERENCE_CONTACT["friction_coefficient"]
         tx.append(f.tx / mu_n)
         ty.append(f.ty / mu_n)
-    v = table.table.spline.evaluate(pts)   # (f_par, f_perp) in the creepage frame (to the
-    # round trip through physical inputs)
+    v = table.table.spline.evaluate(pts)   # (f_par, f_perp) in the creepage frame
+    # (the reader takes s >= 0: the second point, s < 0, is read from the other half of the
+    # double cover, (-s, theta + pi), whose coefficients were rounded on their own, each to
+    # multiples of 2^-15 (absolute_precision), so the two halves agree to 2^-15)
     c, s = np.cos(pts[:, 3]), np.sin(pts[:, 3])
-    np.testing.assert_allclose(-(v[:, 0] * c - v[:, 1] * s), tx, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(-(v[:, 0] * s + v[:, 1] * c), ty, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(-(v[:, 0] * c - v[:, 1] * s), tx, rtol=0, atol=2.0**-15)
+    np.testing.assert_allclose(-(v[:, 0] * s + v[:, 1] * c), ty, rtol=0, atol=2.0**-15)
+    np.testing.assert_allclose(-(v[0, 0] * c[0] - v[0, 1] * s[0]), tx[0], rtol=0, atol=1e-12)
     with pytest.raises(ValueError, match=r"coefficients must have shape \(4, "):
         table.table.share_coefficients(table._coef)
 
