@@ -187,8 +187,8 @@ _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/
     "coarse": (4, 4, 7, 5, 5),
     "default": (12, 5, 26, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
-    # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 2 and 6
-    # more nodes since 2026-11-27 (below)
+    # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 5 and 7
+    # more nodes and a0/b0 with 3 since 2026-11-27 (below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -199,8 +199,9 @@ EXACT_ASPECT_RANGE = (0.1, 10.0)
 #: area shrinks from ~0.1 to ~0.03 of the ellipse between a0/b0 0.7 and 0.8 at tau 2.5-3):
 #: one-axis cubic fits through the solver's values along ln(a0/b0) at the worst random cases
 #: erred by 0.75 % of mu N (a0/b0 0.43, tau 4.1) and 0.55 % (0.79, tau 6.8) on the uniform
-#: nodes, 0.23 % and 0.10 % with the intervals halved
-_EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5, 7.5)}   # in steps of the uniform grid from a0/b0 = 0.1
+#: nodes, 0.23 % and 0.10 % with the intervals halved; and (fifth session of 2026-11-27)
+#: 7.5, the midpoint of 5.6-10, where the worst random cases against the converged theory lay
+_EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5, 7.5)}   # in steps of the uniform grid from 0.1
 # (the uniform grid has the count of _EXACT_COUNTS less these)
 _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (inf: full
     # sliding), w = sqrt(1 + tau^2). Graded towards 0: without spin the force's curvature jumps
@@ -208,11 +209,14 @@ _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (i
     # interval (0.08 put it 4.5 % below Kalker's coefficients; 0.006 up to 0.8 % at a0/b0 =
     # 10, where the lateral force bends within rho ~ 0.01: 0.0007 and 0.002 added, which
     # leaves 0.05 % in a 1-D fit of the solver's values); crowded near r = 1, the onset of
-    # full sliding without spin
+    # full sliding without spin; 0.13, 0.22 and 0.36 added (fifth session of 2026-11-27)
+    # where moderate spin makes the adhesion area collapse below saturation (a/b 10, tau 1.3:
+    # from 0.70 to 0.05 of the ellipse between rho / w 0.22 and 0.27; a 1-D fit through the
+    # solver's values along rho erred 3.7 and 3.1 % of mu N on the old nodes, 0.7 and 1.2 %)
     "coarse": [0.0, 0.5, 0.9, 1.1, 1.6, 3.0, np.inf],
     "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.13, 0.17, 0.22, 0.28, 0.36,
-                0.45, 0.62, 0.77,
-                0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5, 3.6, 6.0, np.inf],
+                0.45, 0.62, 0.77, 0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5, 3.6, 6.0,
+                np.inf],
     "fine": [0.0, 0.004, 0.012, 0.03, 0.06, 0.1, 0.15, 0.3, 0.45, 0.58, 0.7, 0.8, 0.88, 0.94,
              0.99, 1.03, 1.07, 1.12, 1.2, 1.32, 1.5, 1.8, 2.5, 4.0, np.inf],
 }
