@@ -185,7 +185,7 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (12, 5, 23, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (12, 5, 26, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 2 and 6
     # more nodes since 2026-11-27 (below)
@@ -210,7 +210,8 @@ _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (i
     # leaves 0.05 % in a 1-D fit of the solver's values); crowded near r = 1, the onset of
     # full sliding without spin
     "coarse": [0.0, 0.5, 0.9, 1.1, 1.6, 3.0, np.inf],
-    "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.17, 0.28, 0.45, 0.62, 0.77,
+    "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.13, 0.17, 0.22, 0.28, 0.36,
+                0.45, 0.62, 0.77,
                 0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5, 3.6, 6.0, np.inf],
     "fine": [0.0, 0.004, 0.012, 0.03, 0.06, 0.1, 0.15, 0.3, 0.45, 0.58, 0.7, 0.8, 0.88, 0.94,
              0.99, 1.03, 1.07, 1.12, 1.2, 1.32, 1.5, 1.8, 2.5, 4.0, np.inf],
