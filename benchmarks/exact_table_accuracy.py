@@ -206,7 +206,8 @@ def axis_errors(table, n_per, rng):
 
 #: creepage scans known to cross a sharp kink between the creepage nodes: at a0/b0 = 10 with
 #: moderate spin the adhesion area collapses (0.70 -> 0.05 of the ellipse between rho / w =
-#: 0.22 and 0.27 at theta = 90 deg, tau = 1.3) between the nodes rho / w = 0.17 and 0.28
+#: 0.22 and 0.27 at theta = 90 deg, tau = 1.3), between the creepage nodes rho / w = 0.22 and
+#: 0.28 (0.17 and 0.28 until the nodes 0.13, 0.22, 0.36 came, fifth session of 2026-11-27)
 #: (a0/b0, nu, theta [deg], tau)
 KINK_SCANS = [(10.0, 0.25, 90.0, 1.3), (10.0, 0.25, 135.0, 1.3), (10.0, 0.375, 123.0, 2.0)]
 
