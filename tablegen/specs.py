@@ -317,13 +317,21 @@ EXACT_ABSOLUTE_PRECISION = 2.0**-15
 EXACT_STICK_AREA_ABSOLUTE_PRECISION = 2.0**-7
 
 
+#: |s| below which the exact table's coefficients keep their significant digits (the nodes
+#: rho / w = 0 to 0.006)
+EXACT_RELATIVE_PRECISION_S_MAX = 0.005
+
+
 def _near_zero_creepage(axes):
-    """Coefficients next to zero creepage (|s| < 0.005), kept to significant digits, as a
-    mask broadcastable to the exact table's coefficient grid."""
-    s = np.asarray(next(a.nodes for a in axes if a.name == "creepage_coordinate"))
+    """Coefficients next to zero creepage (|s| < :data:`EXACT_RELATIVE_PRECISION_S_MAX`),
+    kept to significant digits, as a mask broadcastable to the exact table's coefficient
+    grid."""
+    names = [a.name for a in axes]
+    k = names.index("creepage_coordinate")
+    s = np.asarray(axes[k].nodes)
     shape = [1] * len(axes)
-    shape[[a.name for a in axes].index("creepage_coordinate")] = len(s)
-    return (np.abs(s) < 0.005).reshape(shape)
+    shape[k] = len(s)
+    return (np.abs(s) < EXACT_RELATIVE_PRECISION_S_MAX).reshape(shape)
 
 
 def _exact_reduce(axes):
@@ -738,7 +746,8 @@ register(TableSpec(
     # cost 7.3 MB at 5 relative digits), the stick area 3.1 -> 1.4 MB on 12 a0/b0 nodes
     relative_precision_region=_near_zero_creepage,
     relative_precision_comment=(
-        "where |creepage_coordinate| < 0.005 (the nodes rho / w = 0 to 0.006), which keep "
+        f"where |creepage_coordinate| < {EXACT_RELATIVE_PRECISION_S_MAX:g} (the nodes rho / w "
+        "= 0 to 0.006), which keep "
         "significant_digits: there the force is the small difference of coefficients and "
         "its slope is Kalker's"),
     variables=[
