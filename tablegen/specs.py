@@ -185,7 +185,7 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (12, 5, 26, 21, 26),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (12, 5, 26, 23, 26),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5 since 2026-11-27 (below); rho and tau with 5 and 7
     # more nodes and a0/b0 with 3 since 2026-11-27 (below)
@@ -247,8 +247,8 @@ _EXACT_THETA = {
     # there (a0/b0 0.1 and 10, tau 3-16.5, at nodes of the other axes), with +-7.5 and +-82.5
     # by up to 0.64 % (a0/b0 0.1, near theta = 0) and 0.60 % (a0/b0 10, near 68 degrees), with
     # all four pairs by up to 0.33 % (10 such profiles)
-    "default": [-90.0, -82.5, -75.0, -67.5, -60.0, -45.0, -30.0, -15.0, -7.5, -3.75, 0.0, 3.75,
-                7.5, 15.0, 30.0, 45.0, 60.0, 67.5, 75.0, 82.5, 90.0],
+    "default": [-90.0, -86.25, -82.5, -75.0, -67.5, -60.0, -45.0, -30.0, -15.0, -7.5, -3.75,
+                0.0, 3.75, 7.5, 15.0, 30.0, 45.0, 60.0, 67.5, 75.0, 82.5, 86.25, 90.0],
 }
 
 
