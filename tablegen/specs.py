@@ -340,43 +340,76 @@ def _near_zero_creepage(axes):
 
 def _exact_reduce(axes):
     """Quarter points for the solver, and the assembly of the full grid by symmetry (see
-    :mod:`railcontact.exact_table`)."""
+    :mod:`railcontact.exact_table`).
+
+    The three symmetries (the double cover D, the mirror in y S1, the reversal of x at fixed
+    spin S3) generate a group of eight maps of the grid onto itself. A quarter node on one of
+    its mirror planes (tau = 0, theta = +-pi/2, s = 0) has mirror images inside the quarter,
+    and the solver computes each of them on its own (its grid, shifted by a quarter element,
+    is not symmetric): they agree only to its tolerance, about 5e-6 of mu N. ``assemble``
+    therefore averages every quarter value over its images (the group average, a projection),
+    so the full grid, and with it the fitted spline, has every symmetry exactly: T(-v, -phi)
+    = -T(v, phi) to rounding, and f_perp = 0 on theta = +-pi/2 where S3 demands it.
+    """
     g, nu, s, theta, tau = (a.nodes for a in axes)
     s_q, th_q, tau_q = s[s >= 0.0], theta[np.abs(theta) <= 0.5 * np.pi + 1e-12], tau[tau >= 0.0]
     mesh = np.meshgrid(g, nu, s_q, th_q, tau_q, indexing="ij")
     points = np.stack([m.ravel() for m in mesh], axis=1)
     shape_q = (len(g), len(nu), len(s_q), len(th_q), len(tau_q))
 
+    def reduced(ss, tt, uu):
+        """Quarter node indices of the full node (ss, tt, uu) and the multipliers of f_par,
+        f_perp, moment (the stick area is even)."""
+        fs, fp, fm = 1.0, 1.0, 1.0
+        if ss < 0.0:                  # double cover
+            ss, tt, fs, fp = -ss, tt + np.pi, -fs, -fp
+        tt = (tt + np.pi) % (2.0 * np.pi) - np.pi
+        if uu < 0.0:                  # S1: mirror y
+            uu, tt, fp, fm = -uu, -tt, -fp, -fm
+        if abs(tt) > 0.5 * np.pi + 1e-9:  # S3: reverse x at fixed spin
+            tt, fp = (np.pi - tt + np.pi) % (2.0 * np.pi) - np.pi, -fp
+        jj = int(np.argmin(np.abs(th_q - tt)))
+        ii = int(np.argmin(np.abs(s_q - ss)))
+        kk = int(np.argmin(np.abs(tau_q - uu)))
+        assert abs(th_q[jj] - tt) < 1e-9 and abs(s_q[ii] - ss) < 1e-12 \
+            and abs(tau_q[kk] - uu) < 1e-12
+        return (ii, jj, kk), (fs, fp, fm, 1.0)
+
     # index maps: every full node (s, theta, tau) to a quarter node and sign pattern
     n_s, n_t, n_u = len(s), len(theta), len(tau)
     src = np.zeros((n_s, n_t, n_u, 3), dtype=int)
-    sgn = np.zeros((n_s, n_t, n_u, 3))        # multipliers of f_par, f_perp, moment
+    sgn = np.zeros((n_s, n_t, n_u, 4))        # multipliers of f_par, f_perp, moment, stick
     for i, s_i in enumerate(s):
         for j, t_j in enumerate(theta):
             for k, u_k in enumerate(tau):
-                fs, fp, fm = 1.0, 1.0, 1.0
-                ss, tt, uu = s_i, t_j, u_k
-                if ss < 0.0:                  # double cover
-                    ss, tt, fs, fp = -ss, tt + np.pi, -fs, -fp
-                tt = (tt + np.pi) % (2.0 * np.pi) - np.pi
-                if uu < 0.0:                  # S1: mirror y
-                    uu, tt, fp, fm = -uu, -tt, -fp, -fm
-                if abs(tt) > 0.5 * np.pi + 1e-9:  # S3: reverse x at fixed spin
-                    tt, fp = (np.pi - tt + np.pi) % (2.0 * np.pi) - np.pi, -fp
-                jj = int(np.argmin(np.abs(th_q - tt)))
-                ii = int(np.argmin(np.abs(s_q - ss)))
-                kk = int(np.argmin(np.abs(tau_q - uu)))
-                assert abs(th_q[jj] - tt) < 1e-9 and abs(s_q[ii] - ss) < 1e-12 \
-                    and abs(tau_q[kk] - uu) < 1e-12
-                src[i, j, k] = (ii, jj, kk)
-                sgn[i, j, k] = (fs, fp, fm)
+                src[i, j, k], sgn[i, j, k] = reduced(s_i, t_j, u_k)
+
+    # the group average on the quarter: each quarter node x and each of the eight maps h
+    # (h(x) a full node, h's own multipliers), reduced back to the quarter
+    n_q = (len(s_q), len(th_q), len(tau_q))
+    img = np.zeros((8,) + n_q + (3,), dtype=int)
+    img_sgn = np.zeros((8,) + n_q + (4,))
+    for i, s_i in enumerate(s_q):
+        for j, t_j in enumerate(th_q):
+            for k, u_k in enumerate(tau_q):
+                for h in range(8):
+                    ss, tt, uu, f = s_i, t_j, u_k, np.ones(4)
+                    if h & 4:                 # S3: (s, pi - theta, tau), f_perp reversed
+                        tt, f = np.pi - tt, f * (1.0, -1.0, 1.0, 1.0)
+                    if h & 2:                 # S1: (s, -theta, -tau), f_perp, moment
+                        tt, uu, f = -tt, -uu, f * (1.0, -1.0, -1.0, 1.0)
+                    if h & 1:                 # D: (-s, theta + pi), f_par, f_perp
+                        ss, tt, f = -ss, tt + np.pi, f * (-1.0, -1.0, 1.0, 1.0)
+                    tt = (tt + np.pi) % (2.0 * np.pi) - np.pi
+                    img[h, i, j, k], back = reduced(ss, tt, uu)
+                    # value(h x) = f value(x) and value(h x) = back q[img]
+                    img_sgn[h, i, j, k] = f * np.asarray(back)
 
     def assemble(values):
         q = np.asarray(values, dtype=float).reshape(shape_q + (4,))
+        q = np.mean(q[:, :, img[..., 0], img[..., 1], img[..., 2], :] * img_sgn, axis=2)
         full = q[:, :, src[..., 0], src[..., 1], src[..., 2], :]   # (g, nu, s, t, u, 4)
-        full[..., 0] *= sgn[..., 0]
-        full[..., 1] *= sgn[..., 1]
-        full[..., 2] *= sgn[..., 2]
+        full *= sgn
         # the periodic seam: theta = -pi and theta = pi are the same node
         full[:, :, :, -1] = full[:, :, :, 0]
         return np.moveaxis(full, -1, 0)
