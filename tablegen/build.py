@@ -331,6 +331,8 @@ def fit_grid_values(spec, axes, grid_vals, assemble=None):
                                periodic=[a.periodic for a in axes])
     stored = [dataclasses.replace(a, nodes=periodic_stored_nodes(a.nodes)) if a.periodic
               else a for a in axes]
+    if getattr(spec, "coefficient_symmetry", None) is not None:
+        coefs = spec.coefficient_symmetry(stored, knots, coefs)
     coefs = rounded_coefficients(spec, stored, coefs)
     spline = TensorSpline([dict(name=a.name, nodes=a.nodes, knots=t, units=a.units,
                                 out_of_range=a.out_of_range) for a, t in zip(stored, knots)],

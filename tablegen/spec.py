@@ -191,6 +191,14 @@ class TableSpec:
     relative_precision_comment : str
         Where ``relative_precision_region`` is, in words (the coefficient attribute
         ``absolute_precision_comment`` quotes it).
+    coefficient_symmetry : callable, optional
+        ``coefficient_symmetry(stored_axes, knots, coefficients) -> coefficients``, applied
+        to the fitted coefficients (n_var, n_1, ..., n_D) before they are rounded: makes a
+        symmetry of the table hold bit for bit in the coefficients, so that rounding (which
+        is odd, round(-x) = -round(x)) keeps it. The fit of exactly symmetric values is
+        symmetric only to round-off, and a coefficient that lies within round-off of a
+        rounding tie (as a rebuild's reused node values make many) rounds one way and its
+        image the other. Default: none.
     analytic_points : callable, optional
         ``analytic_points(points) -> bool mask`` of the points that ``function`` answers
         without its expensive solver (limits). A build that reuses an earlier file's node
@@ -219,6 +227,7 @@ class TableSpec:
     node_values_stored: bool = True
     relative_precision_region: Callable | None = None
     relative_precision_comment: str = ""
+    coefficient_symmetry: Callable | None = None
     analytic_points: Callable | None = None
     reuse_coordinates: Callable | None = None
     reusable_points: Callable | None = None

@@ -312,12 +312,14 @@ def _exact_axes(resolution):
 
 
 #: The exact table's forces and moment are stored to multiples of this (over mu N, resp. mu N
-#: sqrt(a0 b0)): the spline within 1.5e-5 of them, 300 times below the 0.5 % target.
-EXACT_ABSOLUTE_PRECISION = 2.0**-15
+#: sqrt(a0 b0)): the spline within 6.1e-5 of them, 80 times below the 0.5 % target. 2^-15
+#: until the sixth session of 2026-11-27; 2^-13 broke T(-v, -phi) = -T(v, phi) (1.7e-5 of
+#: mu N) until the coefficients were made exactly symmetric (_exact_coefficient_symmetry):
+#: 16.4 MB against 18.5 at 2^-15 with the angle nodes +-86.25
+EXACT_ABSOLUTE_PRECISION = 2.0**-13
 #: ... and its stick area fraction to multiples of this (within 0.008, against its target
 #: 0.05; its many small coefficients had taken 3.1 of 17.3 MB at 2 significant digits, 1.9
-#: of 18.4 at 2^-7 and 1.5 at 2^-6, which makes room for the angle nodes +-86.25 under the
-#: 20 MB limit; a coarser force precision breaks the table's oddness test, see tables.md)
+#: of 18.4 at 2^-7, 1.5 at 2^-6)
 EXACT_STICK_AREA_ABSOLUTE_PRECISION = 2.0**-6
 
 
@@ -415,6 +417,42 @@ def _exact_reduce(axes):
         return np.moveaxis(full, -1, 0)
 
     return points, assemble
+
+
+#: Multipliers of (f_par, f_perp, moment, stick area) under T(-v, -phi) = -T(v, phi) written
+#: at the same s: (s, theta, tau) -> (s, theta + pi, -tau) (e(theta + pi) = -e(theta), so the
+#: components keep their sign and the moment changes it)
+_EXACT_REFLECTION_SIGNS = (1.0, 1.0, -1.0, 1.0)
+
+
+def _exact_coefficient_symmetry(axes, knots, coefs):
+    """The coefficients made exactly symmetric, bit for bit, under the point reflection
+    T(-v, -phi) = -T(v, phi) as the reader evaluates it: -v at the same s and at theta + pi
+    (half a period along the periodic angle axis: coefficient index + n / 2 modulo its n
+    distinct ones), -phi at the reversed spin index.
+
+    ``(c + sign c[P]) / 2`` is exact for both signs (a + b = b + a and a - b = -(b - a) in
+    floating point), so the rounding that follows, odd itself, keeps the symmetry; without
+    this the fit's round-off put coefficients that sit on a rounding tie (a rebuild's reused
+    node values put many there) on both sides of it, and T(-v, -phi) + T(v, phi) reached
+    1.7e-5 of mu N with the forces at 2^-13 (3.6e-8 at 2^-15; 1e-13 with this, the
+    evaluation's round-off).
+    """
+    names = [a.name for a in axes]
+    i_t, i_u = names.index("creepage_angle"), names.index("spin_coordinate")
+    t = np.asarray(knots[i_t])
+    n_c = np.shape(coefs)[1 + i_t]
+    n_per = n_c - 3                    # distinct coefficients of the periodic axis
+    half = n_per // 2
+    if n_per % 2 or not np.allclose(t[half:half + n_c + 4 - half] - t[:n_c + 4 - half], np.pi,
+                                    rtol=0.0, atol=1e-9):
+        raise ValueError("creepage_angle: the knots are not invariant under theta -> theta "
+                         "+ pi")
+    c = np.asarray(coefs, dtype=float)
+    image = np.take(c, (np.arange(n_c) + half) % n_per, axis=1 + i_t)
+    image = np.flip(image, axis=1 + i_u)
+    sign = np.asarray(_EXACT_REFLECTION_SIGNS).reshape((-1,) + (1,) * (c.ndim - 1))
+    return (c + sign * image) / 2.0
 
 
 def exact_full_sliding_limit(points):
@@ -776,13 +814,14 @@ register(TableSpec(
     node_values_stored=False,      # since 2026-11-27 (format 3): the node values took 3.5 of
     # the 19.7 MB; without them, and with the stick area to 2 digits (3.1 -> 2.2 MB), the
     # finer grid fits (the spline at the nodes gives them back, to the coefficients' rounding)
-    # Since 2026-11-27 (fifth session) the forces and moment to multiples of 2^-15 (the spline
-    # within 1.5e-5 of mu N) and the stick area to 2^-7 (2^-6 since the angle nodes
-    # +-86.25), but next to zero creepage (|s| < 0.005: the nodes rho / w = 0 to 0.006),
+    # Since 2026-11-27 (fifth session) the forces and moment to multiples of 2^-15 (2^-13
+    # since the sixth) and the stick area to 2^-7 (2^-6 since the sixth), but next to zero
+    # creepage (|s| < 0.005: the nodes rho / w = 0 to 0.006),
     # where they keep their digits: on the 11-node
     # grid 16.3 -> 12.7 MB for the three (the perpendicular force's many small coefficients
     # cost 7.3 MB at 5 relative digits), the stick area 3.1 -> 1.4 MB on 12 a0/b0 nodes
     relative_precision_region=_near_zero_creepage,
+    coefficient_symmetry=_exact_coefficient_symmetry,
     relative_precision_comment=(
         f"where |creepage_coordinate| < {EXACT_RELATIVE_PRECISION_S_MAX:g} (the nodes rho / w "
         "= 0 to 0.006), which keep "
