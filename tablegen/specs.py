@@ -419,40 +419,56 @@ def _exact_reduce(axes):
     return points, assemble
 
 
-#: Multipliers of (f_par, f_perp, moment, stick area) under T(-v, -phi) = -T(v, phi) written
-#: at the same s: (s, theta, tau) -> (s, theta + pi, -tau) (e(theta + pi) = -e(theta), so the
-#: components keep their sign and the moment changes it)
-_EXACT_REFLECTION_SIGNS = (1.0, 1.0, -1.0, 1.0)
+#: The exact table's symmetries as maps of its coefficient grid, with the multipliers of
+#: (f_par, f_perp, moment, stick area): the point reflection T(-v, -phi) = -T(v, phi) as the
+#: reader evaluates it (-v at the same s and at theta + pi, -phi at -tau: e(theta + pi) =
+#: -e(theta), so the components keep their sign and the moment changes it), the double cover
+#: (-s, theta + pi) = (s, theta) (both components change sign), and the mirror in y
+#: (theta -> -theta, tau -> -tau: f_perp and the moment change sign)
+_EXACT_COEFFICIENT_SYMMETRIES = (
+    (("half_turn", "flip_tau"), (1.0, 1.0, -1.0, 1.0)),
+    (("flip_s", "half_turn"), (-1.0, -1.0, 1.0, 1.0)),
+    (("flip_theta", "flip_tau"), (1.0, -1.0, -1.0, 1.0)),
+)
 
 
 def _exact_coefficient_symmetry(axes, knots, coefs):
-    """The coefficients made exactly symmetric, bit for bit, under the point reflection
-    T(-v, -phi) = -T(v, phi) as the reader evaluates it: -v at the same s and at theta + pi
-    (half a period along the periodic angle axis: coefficient index + n / 2 modulo its n
-    distinct ones), -phi at the reversed spin index.
+    """The coefficients made exactly symmetric, bit for bit, under the table's symmetries
+    (:data:`_EXACT_COEFFICIENT_SYMMETRIES`) as maps of the coefficient grid: s and tau
+    reversed (symmetric knots), theta reversed or turned by half a period (the periodic
+    axis's coefficient index + n / 2 modulo its n distinct ones).
 
-    ``(c + sign c[P]) / 2`` is exact for both signs (a + b = b + a and a - b = -(b - a) in
-    floating point), so the rounding that follows, odd itself, keeps the symmetry; without
-    this the fit's round-off put coefficients that sit on a rounding tie (a rebuild's reused
-    node values put many there) on both sides of it, and T(-v, -phi) + T(v, phi) reached
-    1.7e-5 of mu N with the forces at 2^-13 (3.6e-8 at 2^-15; 1e-13 with this, the
-    evaluation's round-off).
+    Each map P in turn: ``(c + sign c[P]) / 2``, exact for both signs (a + b = b + a and a - b
+    = -(b - a) in floating point) and keeping the earlier maps' symmetry (the maps commute,
+    and negation is exact), so the rounding that follows, odd itself, keeps them all.
+    Without this the fit's round-off put coefficients that sit on a rounding tie (a
+    rebuild's reused node values put many there) on both sides of it: T(-v, -phi) + T(v,
+    phi) reached 1.7e-5 of mu N with the forces at 2^-13 (3.6e-8 at 2^-15; 1e-13 with this,
+    the evaluation's round-off).
     """
     names = [a.name for a in axes]
-    i_t, i_u = names.index("creepage_angle"), names.index("spin_coordinate")
-    t = np.asarray(knots[i_t])
-    n_c = np.shape(coefs)[1 + i_t]
+    i_s, i_t, i_u = (1 + names.index(n) for n in ("creepage_coordinate", "creepage_angle",
+                                                    "spin_coordinate"))
+    t = np.asarray(knots[i_t - 1])
+    c = np.array(coefs, dtype=float)
+    n_c = c.shape[i_t]
     n_per = n_c - 3                    # distinct coefficients of the periodic axis
     half = n_per // 2
     if n_per % 2 or not np.allclose(t[half:half + n_c + 4 - half] - t[:n_c + 4 - half], np.pi,
-                                    rtol=0.0, atol=1e-9):
+                                    rtol=0.0, atol=1e-9) \
+            or not np.allclose(t, -t[::-1], rtol=0.0, atol=1e-9):
         raise ValueError("creepage_angle: the knots are not invariant under theta -> theta "
-                         "+ pi")
-    c = np.asarray(coefs, dtype=float)
-    image = np.take(c, (np.arange(n_c) + half) % n_per, axis=1 + i_t)
-    image = np.flip(image, axis=1 + i_u)
-    sign = np.asarray(_EXACT_REFLECTION_SIGNS).reshape((-1,) + (1,) * (c.ndim - 1))
-    return (c + sign * image) / 2.0
+                         "+ pi and theta -> -theta")
+    maps = {"half_turn": lambda a: np.take(a, (np.arange(n_c) + half) % n_per, axis=i_t),
+            "flip_theta": lambda a: np.flip(a, axis=i_t),
+            "flip_s": lambda a: np.flip(a, axis=i_s),
+            "flip_tau": lambda a: np.flip(a, axis=i_u)}
+    for steps, signs in _EXACT_COEFFICIENT_SYMMETRIES:
+        image = c
+        for step in steps:
+            image = maps[step](image)
+        c = (c + np.asarray(signs).reshape((-1,) + (1,) * (c.ndim - 1)) * image) / 2.0
+    return c
 
 
 def exact_full_sliding_limit(points):

@@ -75,11 +75,12 @@ def test_the_coefficients_are_held_once(table):
         ty.append(f.ty / mu_n)
     v = table.table.spline.evaluate(pts)   # (f_par, f_perp) in the creepage frame
     # (the reader takes s >= 0: the second point, s < 0, is read from the other half of the
-    # double cover, (-s, theta + pi), whose coefficients were rounded on their own, each to
-    # multiples of 2^-15 (absolute_precision), so the two halves agree to 2^-15)
+    # double cover, (-s, theta + pi); the coefficients are symmetric under it bit for bit
+    # since 2026-11-27, so the halves agree to the evaluation's round-off; before, each half
+    # was rounded on its own and they agreed to 2^-15)
     c, s = np.cos(pts[:, 3]), np.sin(pts[:, 3])
-    np.testing.assert_allclose(-(v[:, 0] * c - v[:, 1] * s), tx, rtol=0, atol=2.0**-15)
-    np.testing.assert_allclose(-(v[:, 0] * s + v[:, 1] * c), ty, rtol=0, atol=2.0**-15)
+    np.testing.assert_allclose(-(v[:, 0] * c - v[:, 1] * s), tx, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(-(v[:, 0] * s + v[:, 1] * c), ty, rtol=0, atol=1e-12)
     np.testing.assert_allclose(-(v[0, 0] * c[0] - v[0, 1] * s[0]), tx[0], rtol=0, atol=1e-12)
     with pytest.raises(ValueError, match=r"coefficients must have shape \(4, "):
         table.table.share_coefficients(table._coef)
@@ -251,10 +252,12 @@ def test_symmetry_fill_gives_the_full_grid_every_symmetry_exactly():
     np.testing.assert_allclose(again, full, rtol=0, atol=1e-14)
 
 
-def test_coefficients_are_symmetric_bit_for_bit_under_the_point_reflection():
-    """T(-v, -phi) = -T(v, phi) as the reader evaluates it (-v at theta + pi, -phi at the
-    reversed spin index): the build makes the coefficients obey it exactly, and rounding to
-    any power of two keeps it (a tie breaks the same way for a value and its image)."""
+def test_coefficients_are_symmetric_bit_for_bit():
+    """The build makes the coefficients obey the table's symmetries exactly, as the reader
+    evaluates them: T(-v, -phi) = -T(v, phi) (-v at theta + pi, -phi at the reversed spin
+    index), the double cover (-s, theta + pi) = (s, theta) and the mirror in y (theta and
+    tau reversed); rounding to a power of two keeps them (a tie breaks the same way for a
+    value and its image). Stated here as index operations on the stored coefficients."""
     from tablegen.build import rounded_coefficients
     from tablegen.registry import get_spec
     from railcontact.tables import periodic_bspline_knots, periodic_stored_nodes
@@ -272,15 +275,21 @@ def test_coefficients_are_symmetric_bit_for_bit_under_the_point_reflection():
     raw = (rng.integers(-9000, 9000, shape) + 0.5) * 2.0**-13
     raw *= 1.0 + rng.choice([-1.0, 0.0, 1.0], shape) * 2.0**-52
     raw[:, :, :, :, n_per:] = raw[:, :, :, :, :3]                # periodic wrap
+    turn = (np.arange(n_c) + n_per // 2) % n_per                 # theta -> theta + pi
+
+    def check(c):
+        sign = np.array([1.0, 1.0, -1.0, 1.0]).reshape(4, 1, 1, 1, 1, 1)
+        assert np.array_equal(sign * c[:, :, :, :, turn][..., ::-1], c)
+        sign = np.array([-1.0, -1.0, 1.0, 1.0]).reshape(4, 1, 1, 1, 1, 1)
+        assert np.array_equal(sign * c[:, :, :, ::-1][:, :, :, :, turn], c)
+        sign = np.array([1.0, -1.0, -1.0, 1.0]).reshape(4, 1, 1, 1, 1, 1)
+        assert np.array_equal(sign * c[:, :, :, :, ::-1][..., ::-1], c)
+        assert np.array_equal(c[:, :, :, :, n_per:], c[:, :, :, :, :3])
+
     c = spec.coefficient_symmetry(stored, knots, raw)
-    image = c[:, :, :, :, (np.arange(n_c) + n_per // 2) % n_per][..., ::-1]
-    sign = np.array([1.0, 1.0, -1.0, 1.0]).reshape(4, 1, 1, 1, 1, 1)
-    assert np.array_equal(sign * image, c)
-    assert np.array_equal(c[:, :, :, :, n_per:], c[:, :, :, :, :3])
+    check(c)
     assert np.max(np.abs(c - raw)) > 1e-6      # the raw values were not symmetric
-    r = rounded_coefficients(spec, stored, c)
-    image = r[:, :, :, :, (np.arange(n_c) + n_per // 2) % n_per][..., ::-1]
-    assert np.array_equal(sign * image, r)
+    check(rounded_coefficients(spec, stored, c))
     with pytest.raises(ValueError, match="creepage_angle: the knots are not invariant"):
         spec.coefficient_symmetry(stored, [k if k is None else k + 0.01 * np.arange(len(k))
                                            for k in knots], raw)
@@ -342,11 +351,12 @@ def test_c1_across_zero_spin(table, eta):
 def test_c1_across_zero_longitudinal_creepage(table, phi):
     """Ty as a function of xi through xi = 0 with spin (the old table: slope jump 0.003 per
     1e-3 of creepage); Tx too. With eta = 1e-4 the creepage's direction turns by 90 degrees
-    within xi ~ 1e-4, so at h = 1e-6 the second-order one-sided quotients read their own
-    error (h^2 times the third derivative over 3: for Ty at phi = 0 a "jump" of 2.8e-3 on the
-    grid of 2026-11-27, 9e-4 before; 2.5e-4 at h = 3e-7, 2.8e-5 at 1e-7). It falls as h^2,
-    so the slope is continuous; a kink keeps its jump as h falls. At h = 1e-7 the quotients
-    agree to 2e-4, and their difference is at most 5 % of the one at h = 1e-6."""
+    within xi ~ 1e-4, so the second-order one-sided quotients read their own error (h^2 times
+    the third derivative over 3): for Ty at phi = 0 a "jump" of 7.4e-2 at h = 1e-6 since the
+    angle nodes +-86.25 deg (sixth session of 2026-11-27; 2.8e-3 before, 9e-4 on the grid
+    before that), 7.4e-4 at 1e-7, 6.7e-5 at 3e-8. It falls as h^2, so the slope is
+    continuous; a kink keeps its jump as h falls. At h = 3e-8 the quotients agree to 2e-4,
+    and their difference is at most 5 % of the one at h = 3e-7."""
     def ty(xi):
         return table.creep_force_3d(*_args(xi, 1e-4, phi)).ty / MU_N
 
@@ -354,9 +364,9 @@ def test_c1_across_zero_longitudinal_creepage(table, phi):
         return table.creep_force_3d(*_args(xi, 1e-4, phi)).tx / MU_N
 
     for f in (ty, tx):
-        left, right = _one_sided(f, 0.0, 1e-7)
+        left, right = _one_sided(f, 0.0, 3e-8)
         assert left == pytest.approx(right, abs=2e-4 * max(1.0, abs(left)))
-        coarse = np.subtract(*_one_sided(f, 0.0, 1e-6))
+        coarse = np.subtract(*_one_sided(f, 0.0, 3e-7))
         assert abs(left - right) <= 0.05 * abs(coarse) + 2e-6   # falls as h^2: no kink
 
 
