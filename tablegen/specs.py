@@ -315,7 +315,7 @@ def _exact_axes(resolution):
 #: sqrt(a0 b0)): the spline within 6.1e-5 of them, 80 times below the 0.5 % target. 2^-15
 #: until the sixth session of 2026-11-27; 2^-13 broke T(-v, -phi) = -T(v, phi) (1.7e-5 of
 #: mu N) until the coefficients were made exactly symmetric (_exact_coefficient_symmetry):
-#: 16.4 MB against 18.5 at 2^-15 with the angle nodes +-86.25
+#: 15.8 MB against 18.5 at 2^-15 with the angle nodes +-86.25
 EXACT_ABSOLUTE_PRECISION = 2.0**-13
 #: ... and its stick area fraction to multiples of this (within 0.008, against its target
 #: 0.05; its many small coefficients had taken 3.1 of 17.3 MB at 2 significant digits, 1.9
