@@ -311,6 +311,18 @@ def computed_node_block(axes, points):
     return tuple(block)
 
 
+def spline_axes(axes):
+    """The knot vectors of a spec's axes and the axes as stored: a periodic axis gets
+    :func:`railcontact.tables.periodic_bspline_knots` and its stored nodes
+    (:func:`railcontact.tables.periodic_stored_nodes`, as many as its coefficients), the
+    others :func:`railcontact.tables.bspline_knots` and their own nodes."""
+    knots = [periodic_bspline_knots(a.nodes) if a.periodic
+             else bspline_knots(a.nodes, a.double_knots) for a in axes]
+    stored = [dataclasses.replace(a, nodes=periodic_stored_nodes(a.nodes)) if a.periodic
+              else a for a in axes]
+    return knots, stored
+
+
 def fit_grid_values(spec, axes, grid_vals, assemble=None):
     """Spline of a spec's computed values: ``(values, stored_axes, knots, coefficients,
     spline)``.
@@ -325,12 +337,9 @@ def fit_grid_values(spec, axes, grid_vals, assemble=None):
         values = np.moveaxis(grid_vals.reshape(shape + (len(spec.variables),)), -1, 0)
     else:
         values = np.asarray(assemble(grid_vals), dtype=float)
-    knots = [periodic_bspline_knots(a.nodes) if a.periodic
-             else bspline_knots(a.nodes, a.double_knots) for a in axes]
+    knots, stored = spline_axes(axes)
     coefs = fit_tensor_bspline(values, [a.nodes for a in axes], knots,
                                periodic=[a.periodic for a in axes])
-    stored = [dataclasses.replace(a, nodes=periodic_stored_nodes(a.nodes)) if a.periodic
-              else a for a in axes]
     if getattr(spec, "coefficient_symmetry", None) is not None:
         coefs = spec.coefficient_symmetry(stored, knots, coefs)
     coefs = rounded_coefficients(spec, stored, coefs)

@@ -248,7 +248,7 @@ _EXACT_THETA = {
     # a periodic cubic through the solver's values along theta erred by up to 3.6 % of mu N
     # there (a0/b0 0.1 and 10, tau 3-16.5, at nodes of the other axes), with +-7.5 and +-82.5
     # by up to 0.64 % (a0/b0 0.1, near theta = 0) and 0.60 % (a0/b0 10, near 68 degrees), with
-    # all four pairs by up to 0.33 % (10 such profiles); +-86.25 added 2026-11-27 (second
+    # all four pairs by up to 0.33 % (10 such profiles); +-86.25 added 2026-11-27 (sixth
     # session): the worst random case left (a0/b0 8.8, tau 12.9, theta 87 deg, 0.79 % of mu N)
     # was this axis; a periodic cubic through the solver's values (a0/b0 10, rho/w 0.88,
     # tau 13.5, theta 60-120 deg) erred 1.25 % without the pair, 0.12 % with it
@@ -342,6 +342,31 @@ def _near_zero_creepage(axes):
     return (np.abs(s) < EXACT_RELATIVE_PRECISION_S_MAX).reshape(shape)
 
 
+#: Multipliers of (f_par, f_perp, moment, stick area) under the exact table's three
+#: symmetries (:func:`_exact_symmetry_image`): the double cover D (e(theta + pi) = -e(theta),
+#: so both components change sign), the mirror in y S1 and the reversal of x at fixed spin S3
+_EXACT_SYMMETRY_SIGNS = {"D": np.array([-1.0, -1.0, 1.0, 1.0]),
+                         "S1": np.array([1.0, -1.0, -1.0, 1.0]),
+                         "S3": np.array([1.0, -1.0, 1.0, 1.0])}
+
+
+def _exact_symmetry_image(s, theta, tau, signs, op):
+    """The grid point (s, theta, tau) and the multipliers ``signs`` under one of the exact
+    table's symmetries: D, the double cover (-s, theta + pi); S1, the mirror in y (s, -theta,
+    -tau); S3, the reversal of x at fixed spin (s, pi - theta, tau). Theta is not wrapped."""
+    signs = signs * _EXACT_SYMMETRY_SIGNS[op]
+    if op == "D":
+        return -s, theta + np.pi, tau, signs
+    if op == "S1":
+        return s, -theta, -tau, signs
+    return s, np.pi - theta, tau, signs
+
+
+def _wrapped(theta):
+    """theta in [-pi, pi)."""
+    return (theta + np.pi) % (2.0 * np.pi) - np.pi
+
+
 def _exact_reduce(axes):
     """Quarter points for the solver, and the assembly of the full grid by symmetry (see
     :mod:`railcontact.exact_table`).
@@ -364,20 +389,21 @@ def _exact_reduce(axes):
     def reduced(ss, tt, uu):
         """Quarter node indices of the full node (ss, tt, uu) and the multipliers of f_par,
         f_perp, moment (the stick area is even)."""
-        fs, fp, fm = 1.0, 1.0, 1.0
-        if ss < 0.0:                  # double cover
-            ss, tt, fs, fp = -ss, tt + np.pi, -fs, -fp
-        tt = (tt + np.pi) % (2.0 * np.pi) - np.pi
-        if uu < 0.0:                  # S1: mirror y
-            uu, tt, fp, fm = -uu, -tt, -fp, -fm
-        if abs(tt) > 0.5 * np.pi + 1e-9:  # S3: reverse x at fixed spin
-            tt, fp = (np.pi - tt + np.pi) % (2.0 * np.pi) - np.pi, -fp
+        f = np.ones(4)
+        if ss < 0.0:
+            ss, tt, uu, f = _exact_symmetry_image(ss, tt, uu, f, "D")
+        tt = _wrapped(tt)
+        if uu < 0.0:
+            ss, tt, uu, f = _exact_symmetry_image(ss, tt, uu, f, "S1")
+        if abs(tt) > 0.5 * np.pi + 1e-9:
+            ss, tt, uu, f = _exact_symmetry_image(ss, tt, uu, f, "S3")
+            tt = _wrapped(tt)
         jj = int(np.argmin(np.abs(th_q - tt)))
         ii = int(np.argmin(np.abs(s_q - ss)))
         kk = int(np.argmin(np.abs(tau_q - uu)))
         assert abs(th_q[jj] - tt) < 1e-9 and abs(s_q[ii] - ss) < 1e-12 \
             and abs(tau_q[kk] - uu) < 1e-12
-        return (ii, jj, kk), (fs, fp, fm, 1.0)
+        return (ii, jj, kk), f
 
     # index maps: every full node (s, theta, tau) to a quarter node and sign pattern
     n_s, n_t, n_u = len(s), len(theta), len(tau)
@@ -398,14 +424,10 @@ def _exact_reduce(axes):
             for k, u_k in enumerate(tau_q):
                 for h in range(8):
                     ss, tt, uu, f = s_i, t_j, u_k, np.ones(4)
-                    if h & 4:                 # S3: (s, pi - theta, tau), f_perp reversed
-                        tt, f = np.pi - tt, f * (1.0, -1.0, 1.0, 1.0)
-                    if h & 2:                 # S1: (s, -theta, -tau), f_perp, moment
-                        tt, uu, f = -tt, -uu, f * (1.0, -1.0, -1.0, 1.0)
-                    if h & 1:                 # D: (-s, theta + pi), f_par, f_perp
-                        ss, tt, f = -ss, tt + np.pi, f * (-1.0, -1.0, 1.0, 1.0)
-                    tt = (tt + np.pi) % (2.0 * np.pi) - np.pi
-                    img[h, i, j, k], back = reduced(ss, tt, uu)
+                    for bit, op in ((4, "S3"), (2, "S1"), (1, "D")):
+                        if h & bit:
+                            ss, tt, uu, f = _exact_symmetry_image(ss, tt, uu, f, op)
+                    img[h, i, j, k], back = reduced(ss, _wrapped(tt), uu)
                     # value(h x) = f value(x) and value(h x) = back q[img]
                     img_sgn[h, i, j, k] = f * np.asarray(back)
 
@@ -421,16 +443,14 @@ def _exact_reduce(axes):
     return points, assemble
 
 
-#: The exact table's symmetries as maps of its coefficient grid, with the multipliers of
-#: (f_par, f_perp, moment, stick area): the point reflection T(-v, -phi) = -T(v, phi) as the
-#: reader evaluates it (-v at the same s and at theta + pi, -phi at -tau: e(theta + pi) =
-#: -e(theta), so the components keep their sign and the moment changes it), the double cover
-#: (-s, theta + pi) = (s, theta) (both components change sign), and the mirror in y
-#: (theta -> -theta, tau -> -tau: f_perp and the moment change sign)
+#: The exact table's symmetries as maps of its coefficient grid, with the symmetries of
+#: :data:`_EXACT_SYMMETRY_SIGNS` whose multipliers they carry: the point reflection T(-v,
+#: -phi) = -T(v, phi) as the reader evaluates it (-v at the same s and at theta + pi, -phi at
+#: -tau: S1 then S3), the double cover D and the mirror in y S1
 _EXACT_COEFFICIENT_SYMMETRIES = (
-    (("half_turn", "flip_tau"), (1.0, 1.0, -1.0, 1.0)),
-    (("flip_s", "half_turn"), (-1.0, -1.0, 1.0, 1.0)),
-    (("flip_theta", "flip_tau"), (1.0, -1.0, -1.0, 1.0)),
+    (("half_turn", "flip_tau"), ("S1", "S3")),
+    (("flip_s", "half_turn"), ("D",)),
+    (("flip_theta", "flip_tau"), ("S1",)),
 )
 
 
@@ -465,11 +485,12 @@ def _exact_coefficient_symmetry(axes, knots, coefs):
             "flip_theta": lambda a: np.flip(a, axis=i_t),
             "flip_s": lambda a: np.flip(a, axis=i_s),
             "flip_tau": lambda a: np.flip(a, axis=i_u)}
-    for steps, signs in _EXACT_COEFFICIENT_SYMMETRIES:
+    for steps, ops in _EXACT_COEFFICIENT_SYMMETRIES:
         image = c
         for step in steps:
             image = maps[step](image)
-        c = (c + np.asarray(signs).reshape((-1,) + (1,) * (c.ndim - 1)) * image) / 2.0
+        sign = np.prod([_EXACT_SYMMETRY_SIGNS[op] for op in ops], axis=0)
+        c = (c + sign.reshape((-1,) + (1,) * (c.ndim - 1)) * image) / 2.0
     return c
 
 
@@ -834,17 +855,16 @@ register(TableSpec(
     # finer grid fits (the spline at the nodes gives them back, to the coefficients' rounding)
     # Since 2026-11-27 (fifth session) the forces and moment to multiples of 2^-15 (2^-13
     # since the sixth) and the stick area to 2^-7 (2^-6 since the sixth), but next to zero
-    # creepage (|s| < 0.005: the nodes rho / w = 0 to 0.006),
-    # where they keep their digits: on the 11-node
-    # grid 16.3 -> 12.7 MB for the three (the perpendicular force's many small coefficients
-    # cost 7.3 MB at 5 relative digits), the stick area 3.1 -> 1.4 MB on 12 a0/b0 nodes
+    # creepage (|s| < 0.005: the nodes rho / w = 0 to 0.006), where they keep their digits:
+    # on the 11-node grid 16.3 -> 12.7 MB for the three (the perpendicular force's many
+    # small coefficients cost 7.3 MB at 5 relative digits), the stick area 3.1 -> 1.4 MB on
+    # 12 a0/b0 nodes
     relative_precision_region=_near_zero_creepage,
     coefficient_symmetry=_exact_coefficient_symmetry,
     relative_precision_comment=(
         f"where |creepage_coordinate| < {EXACT_RELATIVE_PRECISION_S_MAX:g} (the nodes rho / w "
-        "= 0 to 0.006), which keep "
-        "significant_digits: there the force is the small difference of coefficients and "
-        "its slope is Kalker's"),
+        "= 0 to 0.006), which keep significant_digits: there the force is the small "
+        "difference of coefficients and its slope is Kalker's"),
     variables=[
         Variable("force_ratio_parallel", "1", "force on the wheel over the Coulomb limit, "
                  "component opposing the combined creepage v: f_par = -T.e/(mu N), e = "

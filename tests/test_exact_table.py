@@ -3,7 +3,6 @@ smoothness across the symmetry planes, slopes at zero against Kalker's published
 Jacobian, the solver fallback, accuracy against CONTACT's converged values)."""
 
 import csv
-import dataclasses
 import math
 from pathlib import Path
 
@@ -258,15 +257,12 @@ def test_coefficients_are_symmetric_bit_for_bit():
     index), the double cover (-s, theta + pi) = (s, theta) and the mirror in y (theta and
     tau reversed); rounding to a power of two keeps them (a tie breaks the same way for a
     value and its image). Stated here as index operations on the stored coefficients."""
-    from tablegen.build import rounded_coefficients
+    from tablegen.build import rounded_coefficients, spline_axes
     from tablegen.registry import get_spec
-    from railcontact.tables import periodic_bspline_knots, periodic_stored_nodes
 
     spec = get_spec("creep_exact")
     axes, _ = spec.grid("coarse")
-    stored = [dataclasses.replace(a, nodes=periodic_stored_nodes(a.nodes)) if a.periodic
-              else a for a in axes]
-    knots = [periodic_bspline_knots(a.nodes) if a.periodic else None for a in axes]
+    knots, stored = spline_axes(axes)
     shape = (4,) + tuple(len(a.nodes) for a in stored)
     n_c = shape[4]
     n_per = n_c - 3
@@ -291,8 +287,7 @@ def test_coefficients_are_symmetric_bit_for_bit():
     assert np.max(np.abs(c - raw)) > 1e-6      # the raw values were not symmetric
     check(rounded_coefficients(spec, stored, c))
     with pytest.raises(ValueError, match="creepage_angle: the knots are not invariant"):
-        spec.coefficient_symmetry(stored, [k if k is None else k + 0.01 * np.arange(len(k))
-                                           for k in knots], raw)
+        spec.coefficient_symmetry(stored, [k + 0.01 * np.arange(len(k)) for k in knots], raw)
 
 
 def test_periodic_axis_fit_is_scipys_periodic_spline_and_c2_across_the_seam():
