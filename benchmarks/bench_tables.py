@@ -105,6 +105,29 @@ def exact_lookups(args):
     t_api = per_call(lambda: creep_force_3d(*args, method="exact_table"), 20000)
     print(f"creep_force_3d(method='exact_table')       : {t_api * 1e6:7.2f} us "
           f"({t_api / t_bare:.1f}x the bare kernel)")
+    # a contact whose a0/b0 changes at every call (a wheel profile's contact): the kernel of
+    # any contact (the 5-D spline); a contact's buffer (the table summed over a0/b0 and nu)
+    # is made only once the contact has been asked for SLAB_AFTER_POINTS points
+    from railcontact.exact_table import SLAB_AFTER_POINTS
+
+    moving = ExactCreepTable.from_file()
+    a0s = [float(v) for v in a0 * (1.0 + 0.01 * np.random.default_rng(3).standard_normal(
+        50_000))]
+    rest = list(args)
+
+    def run_moving():
+        for v in a0s:
+            rest[4] = v
+            moving.step_values(*rest)
+
+    run_moving()
+    t_mov = min(timeit.repeat(run_moving, number=1, repeat=3)) / len(a0s)
+    print(f"ExactCreepTable.step, a0/b0 new each call  : {t_mov * 1e6:7.2f} us "
+          f"({t_mov / t_step:.1f}x a kept contact; {len(moving._buffers)} buffers made)")
+    t_slab = per_call(lambda: ex._slab_of(coords[0] + 1e-9, coords[1]), 3)
+    print(f"  a contact's buffer (its slab), made once : {t_slab * 1e3:7.2f} ms = "
+          f"{t_slab / max(t_mov - t_step, 1e-9):.0f} steps' extra cost "
+          f"(made after {SLAB_AFTER_POINTS} points)")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t_sol = per_call(lambda: creep_force_3d(*args, method="exact"), 3)

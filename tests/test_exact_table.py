@@ -463,6 +463,112 @@ def test_scalar_and_vectorised_paths_agree(table):
         np.testing.assert_allclose(jac, vec.sensitivity[k], rtol=1e-10, atol=1e-6)
 
 
+def _random_contacts(rng, n):
+    """n random scalar calls over the table's domain (a0/b0 0.1-10, nu 0-0.5, spin within
+    |tau| <= 20 for the most part)."""
+    g = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
+    b0 = rng.uniform(2e-3, 8e-3, n)
+    out = []
+    for k in range(n):
+        out.append((float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)),
+                    float(rng.normal(0, 0.5)), float(rng.uniform(2e4, 1.5e5)),
+                    float(g[k] * b0[k]), float(b0[k]), 210e9, float(rng.uniform(0.0, 0.5)),
+                    float(rng.uniform(0.1, 0.5))))
+    return out
+
+
+def test_kernels_kalker_interpolant_is_kalker_coefficients():
+    """The scalar kernel of any contact evaluates Kalker's coefficients itself, from the data
+    of railcontact.kalker's interpolant: the same values as kalker_coefficients (random and
+    edge points of a0/b0 0.1-10 and nu 0-0.5, the interpolant's breakpoints included)."""
+    from railcontact import _exact_kernels as kernels
+    from railcontact.kalker import _NU_NODES, _spline
+
+    spline = _spline()
+    kx, kc = np.ascontiguousarray(spline.x), np.ascontiguousarray(spline.c)
+    rng = np.random.default_rng(23)
+    g = np.r_[np.exp(rng.uniform(np.log(0.1), np.log(10.0), 400)), np.exp(kx), 0.1, 10.0]
+    nu = np.r_[rng.uniform(0.0, 0.5, 400), np.full(kx.size, 0.28), 0.0, 0.5]
+    want = kalker_coefficients(g, nu)
+    got = np.zeros(3)
+    worst = 0.0
+    for k in range(g.size):
+        kernels._kalker_table_coefficients(kx, kc, _NU_NODES, math.log(g[k]), nu[k], got)
+        ref = np.array([want.c11[k], want.c22[k], want.c23[k]])
+        worst = max(worst, float(np.max(np.abs(got / ref - 1.0))))
+    assert worst < 1e-13
+
+
+@needs_table
+def test_a_new_contact_gets_the_tables_values_without_its_buffer(monkeypatch):
+    """A contact's first points come from the five-dimensional spline (the kernel of any
+    contact), later ones from its buffer (the table summed over a0/b0 and nu once): the same
+    values, to round-off, on 300 random contacts over the domain; forces, moment and stick area
+    relative to mu N, the Jacobian to its largest entry. Through both scalar entries (step and
+    creep_force_3d) and a small batch."""
+    import railcontact.exact_table as et
+
+    contacts = _random_contacts(np.random.default_rng(29), 200)
+    monkeypatch.setattr(et, "SLAB_AFTER_POINTS", 10**9)
+    fresh = ExactCreepTable.from_file(TABLE)
+    first = [fresh.step_values(*c) for c in contacts]
+    forces = [fresh.creep_force_3d(*c) for c in contacts if fresh.step_values(*c) is not None]
+    assert not fresh._buffers                      # none made: every value the 5-D spline's
+    monkeypatch.setattr(et, "SLAB_AFTER_POINTS", 1)
+    buffered = ExactCreepTable.from_file(TABLE)
+    answered = 0
+    for c, a, in zip(contacts, first):
+        b = buffered.step_values(*c)
+        assert (a is None) == (b is None)          # (|tau| > 20: the array path, the solver)
+        if a is None:
+            continue
+        answered += 1
+        mu_n = c[3] * c[8]
+        scale = max(abs(v) for v in b[5:])
+        assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-13 * mu_n
+        assert abs(a[2] - b[2]) < 1e-13 * mu_n * math.sqrt(c[4] * c[5])
+        assert abs(a[3] - b[3]) < 1e-13 and a[4] == pytest.approx(b[4], rel=1e-14)
+        assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-11 * scale
+    assert answered > 160 and len(forces) == answered
+    for c, f in zip((c for c, a in zip(contacts, first) if a is not None), forces):
+        assert (f.tx, f.ty) == pytest.approx(buffered.step_values(*c)[:2], rel=1e-12,
+                                             abs=1e-13 * c[3] * c[8])
+    # a batch of a few points at a new contact: the 5-D spline too, the same values
+    monkeypatch.setattr(et, "SLAB_AFTER_POINTS", 10**9)
+    c = contacts[0]
+    xs = np.array([c[0], -c[0], 0.5 * c[0]])
+    vec = fresh.creep_solution_3d(xs, c[1], c[2], *c[3:])
+    assert not fresh._buffers
+    for k, x in enumerate(xs):
+        want = buffered.step_values(float(x), *c[1:])
+        assert (vec.tx[k], vec.ty[k]) == pytest.approx(want[:2], rel=1e-12, abs=1e-9)
+
+
+@needs_table
+def test_a_contact_gets_its_buffer_once_it_has_been_asked_enough_points(monkeypatch):
+    """Ski rental: a contact's buffer is made once the contact has been asked for
+    SLAB_AFTER_POINTS points (scalar calls and batch points together), not before; a contact
+    that changes at every call never makes one."""
+    import railcontact.exact_table as et
+
+    monkeypatch.setattr(et, "SLAB_AFTER_POINTS", 8)
+    fresh = ExactCreepTable.from_file(TABLE)
+    args = _args(1e-3, 2e-4, 0.3)
+    key = (args[4] / args[5], args[7])
+    for _ in range(7):
+        fresh.step_values(*args)
+    assert key not in fresh._buffers
+    fresh.creep_force_3d(*args)
+    assert key in fresh._buffers
+    other = _args(1e-3, 2e-4, 0.3, a0=5e-3)
+    fresh.creep_solution_3d(np.full(8, 1e-3), 2e-4, 0.3, *other[3:])   # 8 points at once
+    assert (other[4] / other[5], other[7]) in fresh._buffers
+    moving = ExactCreepTable.from_file(TABLE)
+    for k in range(40):
+        moving.step_values(*_args(1e-3, 2e-4, 0.3, a0=5e-3 + k * 1e-6))
+    assert not moving._buffers
+
+
 @needs_table
 @pytest.mark.parametrize("point", [(1e-3, 2e-4, 0.3), (-4e-4, 1e-3, -1.2), (2e-3, -3e-3, 0.05),
                                    (1e-5, 0.0, 2.0)])

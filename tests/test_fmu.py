@@ -1083,25 +1083,28 @@ for scene in ("velocity_friction_table", "creep_exact_table", "corrugation_wear_
         out["numba_imported"] = "numba" in sys.modules
 compiled = importlib.import_module(f"{package}._compiled")
 out["aot"] = compiled.aot_module() is not None
-# the same kernels just in time (numba), on the same inputs
-exact = importlib.import_module(f"{package}.exact_table").ExactCreepTable.from_file()
-rng = np.random.default_rng(5)
-pairs = []
-for _ in range(200):
-    args = (float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)), float(rng.normal(0, 1.0)),
-            1e5, float(rng.uniform(3e-3, 8e-3)), 5e-3, 2.1e11, 0.28, 0.3)
-    pairs.append(exact.step_values(*args))
-compiled._AOT[:] = [None]                       # numba's kernels from here on
-jit = importlib.import_module(f"{package}.exact_table").ExactCreepTable.from_file()
-rng = np.random.default_rng(5)
-diff = 0.0
-for values in pairs:
-    args = (float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)), float(rng.normal(0, 1.0)),
-            1e5, float(rng.uniform(3e-3, 8e-3)), 5e-3, 2.1e11, 0.28, 0.3)
-    other = jit.step_values(*args)
-    scale = max(abs(v) for v in other)
-    diff = max(diff, max(abs(a - b) for a, b in zip(values, other)) / scale)
-out["exact_max_relative_difference"] = diff
+# the same kernels just in time (numba), on the same inputs: both scalar kernels, the one of
+# any contact (every contact new) and the one on a contact's buffer (made at once)
+exact_table = importlib.import_module(f"{package}.exact_table")
+
+
+def values_of(table, rng):
+    return [table.step_values(float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)),
+                              float(rng.normal(0, 1.0)), 1e5, float(rng.uniform(3e-3, 8e-3)),
+                              5e-3, 2.1e11, 0.28, 0.3) for _ in range(200)]
+
+
+for name, after in (("exact", 10**9), ("exact_buffer", 1)):
+    exact_table.SLAB_AFTER_POINTS = after
+    compiled._AOT[:] = []                       # the ahead-of-time copy
+    pairs = values_of(exact_table.ExactCreepTable.from_file(), np.random.default_rng(5))
+    compiled._AOT[:] = [None]                   # numba's kernels
+    other = values_of(exact_table.ExactCreepTable.from_file(), np.random.default_rng(5))
+    diff = 0.0
+    for values, jit in zip(pairs, other):
+        scale = max(abs(v) for v in jit)
+        diff = max(diff, max(abs(a - b) for a, b in zip(values, jit)) / scale)
+    out[name + "_max_relative_difference"] = diff
 # the corrugation response table's step kernel, both copies on the same random surfaces
 response = importlib.import_module(f"{package}.effects.response_table")
 compiled._AOT[:] = []                           # the ahead-of-time copy again
@@ -1128,8 +1131,8 @@ print("AOT", json.dumps(out))
 def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, tmp_path):
     # The build compiles the table kernels ahead of time from their numba source
     # (railcontact._compiled): a table scene then imports no numba, and the compiled copy
-    # gives the numba kernel's values (the exact table's scalar path with its Jacobian, 200
-    # random contacts, relative to the largest entry; the corrugation response table's step,
+    # gives the numba kernel's values (the exact table's two scalar kernels with the
+    # Jacobian, 200 random contacts each, relative to the largest entry; the corrugation response table's step,
     # 200 random three-harmonic surfaces, relative to each sum).
     proc = subprocess.run([sys.executable, "-c", _AOT_CHECK, str(fmu_path),
                            str(tmp_path / "x")], capture_output=True, text=True, timeout=600)
@@ -1142,5 +1145,6 @@ def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, t
                ("velocity_friction_table", "creep_exact_table", "corrugation_wear_table"))
     # (the ahead-of-time copy targets a generic CPU, numba's this one: the last bits may differ)
     assert out["exact_max_relative_difference"] < 1e-12
+    assert out["exact_buffer_max_relative_difference"] < 1e-12
     assert out["response_aot_used"]
     assert out["response_max_relative_difference"] < 1e-12

@@ -23,7 +23,8 @@ from types import SimpleNamespace
 import numpy as np
 
 __all__ = ["EXPORTS", "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
-           "creep_contact", "superposed_response", "exact_kernels", "build_aot"]
+           "creep_contact", "creep_table_point", "superposed_response", "exact_kernels",
+           "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -37,6 +38,8 @@ EXPORTS = (
     ("find_span", "_spline_kernels", "i8(f8[::1], i8, f8)"),
     ("cubic_basis", "_exact_kernels", "void(f8[::1], i8, f8, f8[::1], f8[::1], f8[::1])"),
     ("creep_contact", "_exact_kernels", "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
+    ("creep_table_point", "_exact_kernels",
+     "b1(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
     ("superposed_response", "_response_kernels",
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
 )
@@ -50,11 +53,14 @@ def aot_module():
     if not _AOT:
         try:   # made by the FMU build only
             from ._aot_kernels import (  # noqa: PLC0415
-                creep_contact, cubic_basis, find_span, superposed_response, tensor_eval)
+                creep_contact, creep_table_point, cubic_basis, find_span, superposed_response,
+                tensor_eval)
         except ImportError:
             _AOT.append(None)
         else:
-            _AOT.append(SimpleNamespace(creep_contact=creep_contact, cubic_basis=cubic_basis,
+            _AOT.append(SimpleNamespace(creep_contact=creep_contact,
+                                        creep_table_point=creep_table_point,
+                                        cubic_basis=cubic_basis,
                                         find_span=find_span, tensor_eval=tensor_eval,
                                         superposed_response=superposed_response))
     return _AOT[0]
@@ -111,6 +117,18 @@ def creep_contact(buf):
         return aot.creep_contact
     return _entry_point(exact_kernels().creep_contact, buf, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0,
                         1.0, False)
+
+
+def creep_table_point(tbuf, coef):
+    """The exact table's scalar kernel for any contact (``_exact_kernels.creep_table_point``:
+    the five-dimensional spline) as a plain callable: the ahead-of-time copy, or the entry
+    point of numba's signature for the table buffer ``tbuf`` and coefficients ``coef`` (see
+    :func:`creep_contact`)."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.creep_table_point
+    return _entry_point(exact_kernels().creep_table_point, tbuf, coef, 0.0, 0.0, 0.0, 1.0,
+                        1.0, 1.0, 1.0, 0.25, 1.0, False)
 
 
 def superposed_response(fbuf, ibuf, harm):

@@ -20,9 +20,10 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
 _TWO_OVER_PI = 2.0 / math.pi
 
-__all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_batch",
+__all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_table_point",
+           "creep_contact_batch",
            "creep_contact_batch_parallel", "creep_batch", "creep_batch_parallel",
-           "PARALLEL_CHUNK", "HEAD"]
+           "PARALLEL_CHUNK", "HEAD", "TABLE_HEAD"]
 
 #: Points per task of the parallel batch kernels (each task has its own scratch); the reader
 #: takes them for batches of at least two tasks.
@@ -356,27 +357,39 @@ def _buffer_views(buf):
 
 
 @njit(cache=True, inline="always")
+def _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                         friction_coefficient, nu):
+    """``w_sat = pi^2 (1 + nu) mu p0 / E`` [-] of one contact, or 0 where the inputs are not
+    finite or out of range, or it under- or overflows (the caller takes the array path)."""
+    inf = math.inf
+    if not (-inf < xi_x < inf and -inf < xi_y < inf and -inf < phi < inf
+            and 0.0 < normal_load < inf and 0.0 < a0 < inf and 0.0 < b0 < inf
+            and 0.0 < youngs_modulus < inf and 0.0 < friction_coefficient < inf):
+        return 0.0
+    mu_n = friction_coefficient * normal_load
+    den = a0 * b0 * youngs_modulus
+    if not (0.0 < den < inf and mu_n < inf):   # underflow or overflow: the array path
+        return 0.0
+    w_sat = 1.5 * math.pi * (1.0 + nu) * mu_n / den
+    return w_sat if 0.0 < w_sat < inf else 0.0
+
+
+@njit(cache=True, inline="always")
 def _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_load, a0, b0,
                    youngs_modulus, friction_coefficient, want_jacobian, res, work):
     """Checks, the saturation creepage and :func:`_creep_point` at one point of the contact
     in ``buf``; False where the caller takes the array path (inputs not finite or out of
     range, overflow, |tau| beyond the table)."""
     inf = math.inf
-    if not (-inf < xi_x < inf and -inf < xi_y < inf and -inf < phi < inf
-            and 0.0 < normal_load < inf and 0.0 < a0 < inf and 0.0 < b0 < inf
-            and 0.0 < youngs_modulus < inf and 0.0 < friction_coefficient < inf):
-        return False
     nu = buf[7]
-    mu_n = friction_coefficient * normal_load
-    den = a0 * b0 * youngs_modulus
-    if not (0.0 < den < inf and mu_n < inf):   # underflow or overflow: the array path
-        return False
-    w_sat = 1.5 * math.pi * (1.0 + nu) * mu_n / den
-    if not (0.0 < w_sat < inf):
+    w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                 friction_coefficient, nu)
+    if w_sat == 0.0:
         return False
     done = _creep_point(_NO_COEF, slab, True, _NO_KNOTS, _NO_KNOTS, t2, t3, t4, _NO_POLY,
-                        _NO_POLY, p2, p3, p4, buf[3], xi_x, xi_y, phi, mu_n, a0, b0, w_sat,
-                        buf[4], buf[5], buf[6], 0.0, nu, want_jacobian, res, work)
+                        _NO_POLY, p2, p3, p4, buf[3], xi_x, xi_y, phi,
+                        friction_coefficient * normal_load, a0, b0, w_sat, buf[4], buf[5],
+                        buf[6], 0.0, nu, want_jacobian, res, work)
     return done and -inf < res[0] < inf and -inf < res[1] < inf and -inf < res[2] < inf
 
 
@@ -389,6 +402,121 @@ def creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
     t2, t3, t4, p2, p3, p4, slab, res, work = _buffer_views(buf)
     return _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_load, a0,
                           b0, youngs_modulus, friction_coefficient, want_jacobian, res, work)
+
+
+#: Header of a table buffer (see :func:`creep_table_point`): the coefficient counts n0 .. n4
+#: of the five axes, tau_max, the a0/b0 axis's ends in ln(a0/b0), the count m of the
+#: breakpoints of Kalker's interpolant and its three nodes in nu; then the knots of the five
+#: axes, their basis polynomials, the interpolant's breakpoints (m) and coefficients
+#: (4 (m - 1) 9), res (14) and scratch (336).
+TABLE_HEAD = 12
+_NO_SLAB = np.zeros((1, 1, 1, 4))
+
+
+@njit(cache=True, inline="always")
+def _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, out):
+    """``out`` <- Kalker's (C11, C22, C23) within his table's a0/b0 range, from the
+    interpolant of :func:`railcontact.kalker.kalker_coefficients` (its ``_table_log``):
+    ``1 / C_k = sum_j L_j(nu) exp(-S_kj(ln g))``, ``S_kj`` the not-a-knot cubic spline of
+    ln C_kj at nu_j as scipy's CubicSpline holds it (breakpoints ``kx``, coefficients ``kc``
+    (4, m - 1, 3, 3), highest power first), ``L_j`` the quadratic Lagrange weights on
+    ``nu_nodes``. (The same data and form: the tests check it against kalker_coefficients.)"""
+    m = kx.shape[0]
+    lo = 0
+    hi = m - 2
+    while lo < hi:      # the last breakpoint <= log_g (scipy's interval, clipped to the ends)
+        mid = (lo + hi + 1) // 2
+        if kx[mid] <= log_g:
+            lo = mid
+        else:
+            hi = mid - 1
+    d = log_g - kx[lo]
+    n0 = nu_nodes[0]
+    n1 = nu_nodes[1]
+    n2 = nu_nodes[2]
+    l0 = (nu - n1) * (nu - n2) / ((n0 - n1) * (n0 - n2))
+    l1 = (nu - n0) * (nu - n2) / ((n1 - n0) * (n1 - n2))
+    l2 = (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1))
+    for k in range(3):
+        u = 0.0
+        for j in range(3):
+            sp = ((kc[0, lo, k, j] * d + kc[1, lo, k, j]) * d + kc[2, lo, k, j]) * d \
+                + kc[3, lo, k, j]
+            lj = l0 if j == 0 else (l1 if j == 1 else l2)
+            u += lj * math.exp(-sp)
+        out[k] = 1.0 / u
+
+
+@njit(cache=True, inline="always")
+def _table_views(tbuf):
+    """Views into a table buffer: (t0 .. t4, p0 .. p4, kx, kc, nu_nodes, res, work)."""
+    n0 = int(tbuf[0])
+    n1 = int(tbuf[1])
+    n2 = int(tbuf[2])
+    n3 = int(tbuf[3])
+    n4 = int(tbuf[4])
+    m = int(tbuf[8])
+    o = TABLE_HEAD
+    t0 = tbuf[o:o + n0 + 4]
+    o += n0 + 4
+    t1 = tbuf[o:o + n1 + 4]
+    o += n1 + 4
+    t2 = tbuf[o:o + n2 + 4]
+    o += n2 + 4
+    t3 = tbuf[o:o + n3 + 4]
+    o += n3 + 4
+    t4 = tbuf[o:o + n4 + 4]
+    o += n4 + 4
+    p0 = tbuf[o:o + n0 * 16].reshape((n0, 4, 4))
+    o += n0 * 16
+    p1 = tbuf[o:o + n1 * 16].reshape((n1, 4, 4))
+    o += n1 * 16
+    p2 = tbuf[o:o + n2 * 16].reshape((n2, 4, 4))
+    o += n2 * 16
+    p3 = tbuf[o:o + n3 * 16].reshape((n3, 4, 4))
+    o += n3 * 16
+    p4 = tbuf[o:o + n4 * 16].reshape((n4, 4, 4))
+    o += n4 * 16
+    kx = tbuf[o:o + m]
+    o += m
+    kc = tbuf[o:o + 36 * (m - 1)].reshape((4, m - 1, 3, 3))
+    o += 36 * (m - 1)
+    return (t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, tbuf[9:12], tbuf[o:o + 14],
+            tbuf[o + 14:o + 14 + 336])
+
+
+@njit(cache=True)
+def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                      poisson_ratio, friction_coefficient, want_jacobian):
+    """The scalar path of any contact, without a contact buffer: the five-dimensional spline
+    ``coef`` (n0, .., n4, 4) at one point, with Kalker's coefficients of a0/b0 and nu from
+    their interpolant (:func:`_kalker_table_coefficients`); everything else the table needs
+    is in ``tbuf`` (:data:`TABLE_HEAD`). About as fast as :func:`creep_contact` on a contact's
+    buffer, whose slab costs milliseconds to make: the reader takes this path for a contact
+    until it has asked for enough points to repay its buffer. Writes ``res`` inside ``tbuf``
+    (as :func:`creep_contact`); False where the caller takes the array path (also a0/b0
+    beyond the table's axis, nu outside [0, 0.5])."""
+    t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, res, work = _table_views(tbuf)
+    inf = math.inf
+    nu = poisson_ratio
+    if not (0.0 <= nu <= 0.5 and 0.0 < a0 < inf and 0.0 < b0 < inf):
+        return False
+    log_g = math.log(a0 / b0)
+    if not (tbuf[6] <= log_g <= tbuf[7]):
+        return False
+    w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                 friction_coefficient, nu)
+    if w_sat == 0.0:
+        return False
+    c = work[:3]
+    _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, c)
+    c11 = c[0]
+    c22 = c[1]
+    c23 = c[2]
+    done = _creep_point(coef, _NO_SLAB, False, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
+                        tbuf[5], xi_x, xi_y, phi, friction_coefficient * normal_load, a0, b0,
+                        w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work)
+    return done and -inf < res[0] < inf and -inf < res[1] < inf and -inf < res[2] < inf
 
 
 @njit(cache=True, inline="always")

@@ -81,6 +81,15 @@ from .creep_common import (  # noqa: E402,F401  (the kernels' too)
 _BATCH_LOCK = threading.Lock()
 _new_tuple = tuple.__new__
 
+#: Points a contact (a0/b0, nu) is asked for before the reader makes its buffer, the table
+#: summed over the a0/b0 and nu axes (a slab of the other three; 3.9 MB on the grid of
+#: 2026-11-27). The slab costs about as much as this many points cost more without it
+#: (measured 2026-11-27: 14-19 ms for the slab; a scalar point 7.7-8.6 us on the
+#: five-dimensional spline, 1.1-1.9 us on the slab), so a contact that stays pays at most
+#: about twice the least, and one whose a0/b0 changes at every call (a wheel profile's
+#: contact) pays no slab: until then every call made one, 14-17 ms a call.
+SLAB_AFTER_POINTS = 4096
+
 
 def _batch(name, n, *args):
     """Run the batch kernel ``name`` of :mod:`railcontact._exact_kernels` on ``n`` points:
@@ -271,6 +280,12 @@ class ExactCreepTable:
     exact theory itself is only C1 at zero creepage without spin, where the force bends as
     Carter's 2 r - r |r|: the C2 spline follows it on nodes graded towards zero.)
 
+    **Speed.** A contact (a0/b0, nu) is first evaluated on the five-dimensional spline (about
+    8 us a scalar call, Kalker's coefficients included); once it has been asked for
+    :data:`SLAB_AFTER_POINTS` points (scalar calls and batch points together) the reader sums
+    the table over a0/b0 and nu for it once (its buffer, 14-19 ms; 16 kept) and its calls
+    take about 1.5-2 us. The values are the same to round-off either way (tested).
+
     Parameters
     ----------
     table : railcontact.tables.Table
@@ -316,9 +331,11 @@ class ExactCreepTable:
         self._g_range = tuple(float(np.exp(table.axes[0]["nodes"][k])) for k in (0, -1))
         self._log_g = (float(table.axes[0]["nodes"][0]), float(table.axes[0]["nodes"][-1]))
         self.tau_max = float(table.axes[4]["nodes"][-1])
-        self._contacts = {}
         self._buffers = {}
-        self._kernel = None   # the compiled scalar kernel, resolved with the first contact
+        self._uses = {}       # points asked of each contact without a buffer yet
+        self._kernel = None   # the compiled scalar kernels, resolved with the first contact
+        self._point = None
+        self._tbuf = None     # the table buffer of creep_table_point, made with the first call
 
     @classmethod
     def from_file(cls, path=None, directory=None, solver=None):
@@ -334,22 +351,6 @@ class ExactCreepTable:
         return cls(Table.from_file(path, expected_name=TABLE_NAME), solver)
 
     # -- one contact's (ln g, nu) summed out once -------------------------------------------
-    def _contact(self, g, nu):
-        """``((C11, C22, C23), ln g, inside the a0/b0 axis, slab)`` of one contact, memoised
-        (a Hertz contact's a0/b0 = (a1 s)/(b1 s) takes a few rounded values as the load
-        changes: each keeps its entry)."""
-        key = (g, nu)
-        contact = self._contacts.get(key)
-        if contact is None:
-            log_g = math.log(g) if g > 0.0 else -math.inf
-            inside = self._log_g[0] <= log_g <= self._log_g[1]
-            contact = ((_kalker_pair(float(g), float(nu)) if inside else (0.0, 0.0, 0.0)),
-                       log_g, inside, self._slab_of(log_g, float(nu)) if inside else None)
-            if len(self._contacts) >= 16:
-                self._contacts.clear()
-            self._contacts[key] = contact
-        return contact
-
     def _slab_of(self, log_g, nu):
         """The coefficients summed over the (ln g, nu) axes at one contact: (n_s, n_theta,
         n_tau, 4)."""
@@ -386,7 +387,7 @@ class ExactCreepTable:
                 np.array(values[5:]).reshape(3, 3) if jacobian else None)
 
     def step_values(self, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                     poisson_ratio, friction_coefficient, jacobian=True, _inf=math.inf):
+                     poisson_ratio, friction_coefficient, jacobian=True):
         """:meth:`step`'s fast path, flat: the list ``[tx, ty, mz, stick_area_fraction,
         normalised_creepage, d(tx, ty, mz)/d(xi_x, xi_y, phi) row by row (9 entries)]``
         (units as :meth:`step`; the Jacobian entries are stale unless ``jacobian``), or None
@@ -397,13 +398,65 @@ class ExactCreepTable:
             key = (a0 / b0, poisson_ratio)
             entry = self._buffers.get(key)
             if entry is None:
-                entry = self._buffer(*key)
-            if entry is None or not self._kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0,
-                                                 youngs_modulus, friction_coefficient, jacobian):
+                entry = self._entry(key, 1)
+                if entry is None:       # the five-dimensional spline (any contact)
+                    if not self._table_point(xi_x, xi_y, phi, normal_load, a0, b0,
+                                             youngs_modulus, poisson_ratio,
+                                             friction_coefficient, jacobian):
+                        return None
+                    return self._tres.tolist()
+            if not self._kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0,
+                                youngs_modulus, friction_coefficient, jacobian):
                 return None
         except (TypeError, ValueError, ArithmeticError):
             return None
         return entry[1].tolist()
+
+    def _entry(self, key, n):
+        """The contact buffer of ``key = (a0/b0, nu)`` once the contact has been asked for
+        :data:`SLAB_AFTER_POINTS` points in all (then made, memoised), else None: the caller
+        evaluates the five-dimensional spline. (Ski rental: the buffer's slab costs about as
+        much as that many points cost more without it, so a contact that stays pays at most
+        twice the best, and one that changes every step, as a0/b0 of a wheel profile does,
+        never pays the slab.)"""
+        uses = self._uses.get(key, 0) + n
+        if uses < SLAB_AFTER_POINTS:
+            if len(self._uses) >= 1024:
+                self._uses.clear()
+            self._uses[key] = uses
+            return None
+        self._uses.pop(key, None)
+        return self._buffer(*key)
+
+    def _table_point(self, *args):
+        """:func:`railcontact._exact_kernels.creep_table_point` at one point (results in
+        ``self._tres``, ``self._tmv``)."""
+        if self._tbuf is None:
+            self._make_table_buffer()
+        return self._point(self._tbuf, self._coef, *args)
+
+    def _make_table_buffer(self):
+        """The buffer of :func:`railcontact._exact_kernels.creep_table_point`: the five axes'
+        knots and basis polynomials, Kalker's interpolant (the data of
+        :func:`railcontact.kalker.kalker_coefficients` within its table), res and scratch."""
+        from .kalker import _NU_NODES, _spline  # noqa: PLC0415
+
+        spline = _spline()
+        kx = np.ascontiguousarray(spline.x, dtype=float)
+        kc = np.ascontiguousarray(spline.c, dtype=float)
+        if kc.shape != (4, kx.size - 1, 3, 3):
+            raise RuntimeError(f"Kalker's interpolant has coefficients of shape {kc.shape}")
+        head = [len(t) - 4 for t in self._knot_list] + [
+            self.tau_max, self._log_g[0], self._log_g[1], kx.size] + list(_NU_NODES)
+        tbuf = np.concatenate([np.asarray(head, dtype=float)] + self._knot_list
+                              + [p.ravel() for p in self._poly_list]
+                              + [kx, kc.ravel(), np.zeros(14 + 336)])
+        o = tbuf.size - 350
+        self._tres = tbuf[o:o + 14]
+        self._tmv = memoryview(tbuf)[o:o + 14]
+        if self._point is None:
+            self._point = _compiled.creep_table_point(tbuf, self._coef)
+        self._tbuf = tbuf
 
     def _buffer(self, g, nu):
         """``(buffer, res view)`` of one contact for the kernel ``creep_contact``, memoised, or None
@@ -411,9 +464,11 @@ class ExactCreepTable:
         g, nu = float(g), float(nu)
         if not (0.0 <= nu <= 0.5 and 0.0 < g < math.inf):
             return None
-        (c11, c22, c23), _, inside, slab = self._contact(g, nu)
-        if not inside:
+        log_g = math.log(g)
+        if not self._log_g[0] <= log_g <= self._log_g[1]:
             return None
+        c11, c22, c23 = _kalker_pair(g, nu)
+        slab = self._slab_of(log_g, nu)
         t2, t3, t4 = self._knot_list[2:]
         head = [slab.shape[0], slab.shape[1], slab.shape[2], self.tau_max, c11, c22, c23, nu]
         buf = np.concatenate([np.asarray(head, dtype=float), t2, t3, t4]
@@ -422,7 +477,8 @@ class ExactCreepTable:
         o = buf.size - 350
         # (the results as a memoryview too: indexing it gives Python floats, cheaper than
         # numpy's scalars in the scalar path)
-        entry = (buf, buf[o:o + 14], memoryview(buf)[o:o + 14])
+        entry = (buf, buf[o:o + 14], memoryview(buf)[o:o + 14],
+                 buf[o - slab.size:o].reshape(slab.shape))
         if self._kernel is None:
             self._kernel = _compiled.creep_contact(buf)
         if len(self._buffers) >= 16:
@@ -449,11 +505,12 @@ class ExactCreepTable:
         n_load, a0, b0, e_mod, nu, mu = (float(v) for v in (n_load, a0, b0, e_mod, nu, mu))
         if not (b0 > 0.0 and a0 > 0.0):
             return None
-        entry = self._buffers.get((a0 / b0, nu)) or self._buffer(a0 / b0, nu)
-        if entry is None:
-            return None
         cre = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (xi_x, xi_y, phi)))
         shape = cre[0].shape
+        key = (a0 / b0, nu)
+        entry = self._buffers.get(key) or self._entry(key, max(cre[0].size, 1))
+        if entry is None:       # (a new contact, few points: the five-dimensional spline)
+            return None
         flat = [np.array(c, dtype=float).reshape(-1) for c in cre]  # copies: no broadcast
         # views into the compiled kernel (numba warns: they become read-only in numpy)
         r = np.empty((flat[0].size, 14))
@@ -489,9 +546,12 @@ class ExactCreepTable:
         ok = np.zeros(n, dtype=bool)
         if idx.size:
             one = bool(np.all(log_g[idx] == log_g[idx[0]]) and np.all(nu[idx] == nu[idx[0]]))
-            if one:
-                coeffs, _, _, slab = self._contact(float(g[idx[0]]), float(nu[idx[0]]))
-                c = [np.full(idx.size, v) for v in coeffs]
+            entry = None
+            if one:     # (without its buffer yet: the five-dimensional spline)
+                key = (float(g[idx[0]]), float(nu[idx[0]]))
+                entry = self._buffers.get(key)
+                slab = self._empty_slab if entry is None else entry[3]
+                c = [np.full(idx.size, v) for v in _kalker_pair(*key)]
             else:
                 from .kalker import kalker_coefficients  # noqa: PLC0415
 
@@ -502,7 +562,8 @@ class ExactCreepTable:
             r = np.zeros((idx.size, 14))
             o = np.zeros(idx.size, dtype=bool)
             with np.errstate(all="ignore"):
-                _batch("creep_batch", idx.size, self._coef, slab, one, self._knots,
+                _batch("creep_batch", idx.size, self._coef, slab, entry is not None,
+                       self._knots,
                        self._kstart, self._poly, self.tau_max, xi_x[idx], xi_y[idx], phi[idx],
                        mu[idx] * n_load[idx], a0[idx], b0[idx], w_sat[idx], c[0], c[1], c[2],
                        log_g[idx], nu[idx], jacobian, r, o)
@@ -541,12 +602,18 @@ class ExactCreepTable:
         """Creep force on the wheel, ``CreepForce3D(tx, ty)`` [N]; inputs as
         :func:`railcontact.creep_force_3d`."""
         try:    # the scalar path of step_values, reading only the two forces
-            entry = self._buffers.get((a0 / b0, poisson_ratio))
+            key = (a0 / b0, poisson_ratio)
+            entry = self._buffers.get(key)
             if entry is None:
-                entry = self._buffer(a0 / b0, poisson_ratio)
-            if entry is not None and self._kernel(
-                    entry[0], creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
-                    b0, youngs_modulus, friction_coefficient, False):
+                entry = self._entry(key, 1)
+            if entry is None:
+                if self._table_point(creepage_longitudinal, creepage_lateral, spin,
+                                     normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                     friction_coefficient, False):
+                    res = self._tmv
+                    return _new_tuple(CreepForce3D, (res[0], res[1]))
+            elif self._kernel(entry[0], creepage_longitudinal, creepage_lateral, spin,
+                              normal_load, a0, b0, youngs_modulus, friction_coefficient, False):
                 res = entry[2]
                 # (CreepForce3D(tx, ty) without namedtuple's Python-level __new__: 0.2 us)
                 return _new_tuple(CreepForce3D, (res[0], res[1]))
