@@ -185,10 +185,11 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (13, 5, 26, 23, 26),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (13, 5, 28, 23, 26),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5, +-86.25 since 2026-11-27 (below); rho and tau with 5 and 7
-    # more nodes and a0/b0 with 3 since 2026-11-27 (below)
+    # more nodes and a0/b0 with 3 since 2026-11-27 (below); rho with 0.25 and 0.32 since
+    # 2026-11-27 (seventh session, below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -214,11 +215,15 @@ _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (i
     # full sliding without spin; 0.13, 0.22 and 0.36 added (fifth session of 2026-11-27)
     # where moderate spin makes the adhesion area collapse below saturation (a/b 10, tau 1.3:
     # from 0.70 to 0.05 of the ellipse between rho / w 0.22 and 0.27; a 1-D fit through the
-    # solver's values along rho erred 3.7 and 3.1 % of mu N on the old nodes, 0.7 and 1.2 %)
+    # solver's values along rho erred 3.7 and 3.1 % of mu N on the old nodes, 0.7 and 1.2 %);
+    # 0.25 and 0.32 added (seventh session of 2026-11-27), the midpoints in s of 0.22-0.28 and
+    # 0.28-0.36, where that collapse still erred most: a build check point at a0/b0 4.3, tau
+    # 1.31 (0.86 % of mu N; one axis at a time, along s 1.1 %) and the known kink line a0/b0
+    # 10, tau 1.3, theta 135 deg (0.93 %, at rho / w 0.29, all other coordinates on nodes)
     "coarse": [0.0, 0.5, 0.9, 1.1, 1.6, 3.0, np.inf],
-    "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.13, 0.17, 0.22, 0.28, 0.36,
-                0.45, 0.62, 0.77, 0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5, 3.6, 6.0,
-                np.inf],
+    "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.13, 0.17, 0.22, 0.25, 0.28,
+                0.32, 0.36, 0.45, 0.62, 0.77, 0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5,
+                3.6, 6.0, np.inf],
     "fine": [0.0, 0.004, 0.012, 0.03, 0.06, 0.1, 0.15, 0.3, 0.45, 0.58, 0.7, 0.8, 0.88, 0.94,
              0.99, 1.03, 1.07, 1.12, 1.2, 1.32, 1.5, 1.8, 2.5, 4.0, np.inf],
 }
