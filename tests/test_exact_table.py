@@ -482,10 +482,9 @@ def test_kernels_kalker_interpolant_is_kalker_coefficients():
     of railcontact.kalker's interpolant: the same values as kalker_coefficients (random and
     edge points of a0/b0 0.1-10 and nu 0-0.5, the interpolant's breakpoints included)."""
     from railcontact import _exact_kernels as kernels
-    from railcontact.kalker import _NU_NODES, _spline
+    from railcontact.kalker import kalker_interpolant
 
-    spline = _spline()
-    kx, kc = np.ascontiguousarray(spline.x), np.ascontiguousarray(spline.c)
+    kx, kc, nu_nodes = kalker_interpolant()
     rng = np.random.default_rng(23)
     g = np.r_[np.exp(rng.uniform(np.log(0.1), np.log(10.0), 400)), np.exp(kx), 0.1, 10.0]
     nu = np.r_[rng.uniform(0.0, 0.5, 400), np.full(kx.size, 0.28), 0.0, 0.5]
@@ -493,7 +492,7 @@ def test_kernels_kalker_interpolant_is_kalker_coefficients():
     got = np.zeros(3)
     worst = 0.0
     for k in range(g.size):
-        kernels._kalker_table_coefficients(kx, kc, _NU_NODES, math.log(g[k]), nu[k], got)
+        kernels._kalker_table_coefficients(kx, kc, nu_nodes, math.log(g[k]), nu[k], got)
         ref = np.array([want.c11[k], want.c22[k], want.c23[k]])
         worst = max(worst, float(np.max(np.abs(got / ref - 1.0))))
     assert worst < 1e-13

@@ -439,15 +439,11 @@ class ExactCreepTable:
         """The buffer of :func:`railcontact._exact_kernels.creep_table_point`: the five axes'
         knots and basis polynomials, Kalker's interpolant (the data of
         :func:`railcontact.kalker.kalker_coefficients` within its table), res and scratch."""
-        from .kalker import _NU_NODES, _spline  # noqa: PLC0415
+        from .kalker import kalker_interpolant  # noqa: PLC0415
 
-        spline = _spline()
-        kx = np.ascontiguousarray(spline.x, dtype=float)
-        kc = np.ascontiguousarray(spline.c, dtype=float)
-        if kc.shape != (4, kx.size - 1, 3, 3):
-            raise RuntimeError(f"Kalker's interpolant has coefficients of shape {kc.shape}")
+        kx, kc, nu_nodes = kalker_interpolant()
         head = [len(t) - 4 for t in self._knot_list] + [
-            self.tau_max, self._log_g[0], self._log_g[1], kx.size] + list(_NU_NODES)
+            self.tau_max, self._log_g[0], self._log_g[1], kx.size] + list(nu_nodes)
         tbuf = np.concatenate([np.asarray(head, dtype=float)] + self._knot_list
                               + [p.ravel() for p in self._poly_list]
                               + [kx, kc.ravel(), np.zeros(14 + 336)])

@@ -61,7 +61,7 @@ from scipy.interpolate import CubicSpline
 from ._files import package_directory
 from ._validation import check_range
 
-__all__ = ["KalkerCoefficients", "kalker_coefficients", "kalker_table",
+__all__ = ["KalkerCoefficients", "kalker_coefficients", "kalker_interpolant", "kalker_table",
            "kalker_asymptotes", "A0_OVER_B0_MAX"]
 
 KalkerCoefficients = namedtuple("KalkerCoefficients", ["c11", "c22", "c23"])
@@ -161,6 +161,28 @@ def _spline():
     """One vector-valued not-a-knot cubic spline of ln C[k, j] in s = ln(a0/b0)."""
     g, _, c = kalker_table()
     return CubicSpline(np.log(g), np.log(np.moveaxis(c, -1, 0)), axis=0, bc_type="not-a-knot")
+
+
+def kalker_interpolant():
+    """The data of :func:`kalker_coefficients` within Kalker's table (a0/b0 0.1-10), for
+    compiled evaluators (the exact table's scalar kernel):
+    ``1 / C_k = sum_j L_j(nu) exp(-S_kj(ln(a0/b0)))``, ``L_j`` the quadratic Lagrange weights
+    on ``nu_nodes``, ``S_kj`` the not-a-knot cubic spline of ln C_kj as scipy's CubicSpline holds
+    it.
+
+    Returns
+    -------
+    breakpoints : ndarray, shape (m,)
+        Its breakpoints in ln(a0/b0). [-]
+    coefficients : ndarray, shape (4, m - 1, 3, 3)
+        Its polynomial coefficients per interval, highest power first, in (k, j) = (C11,
+        C22, C23) x nu node. [-]
+    nu_nodes : ndarray, shape (3,)
+        The Poisson ratios of Kalker's table, 0, 0.25, 0.5. [-]
+    """
+    spline = _spline()
+    return (np.array(spline.x, dtype=float), np.array(spline.c, dtype=float),
+            np.array(_NU_NODES, dtype=float))
 
 
 def _lagrange(nu):
