@@ -185,11 +185,11 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (13, 5, 28, 23, 26),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (13, 5, 28, 23, 27),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5, +-86.25 since 2026-11-27 (below); rho and tau with 5 and 7
-    # more nodes and a0/b0 with 3 since 2026-11-27 (below); rho with 0.25 and 0.32 since
-    # 2026-11-27 (seventh session, below)
+    # more nodes and a0/b0 with 3 since 2026-11-27 (below); rho with 0.25 and 0.32 and tau
+    # with 1.7 since 2026-11-27 (seventh session, below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -236,10 +236,13 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
     # = 10, and with the first node there the slope d Ty / d phi at zero (C23) erred 0.85 %;
     # 1.8 added 2026-11-27 (a one-axis fit along tau through the solver's values erred by
     # 0.72 % of mu N at a0/b0 4.3, tau 1.88 and 0.37 % at a0/b0 2.8, tau 1.77 with the
-    # interval 1.6-2; 0.20 and 0.09 % with the intervals halved)
+    # interval 1.6-2; 0.20 and 0.09 % with the intervals halved); 1.7 added (seventh session
+    # of 2026-11-27), the midpoint of 1.6-1.8: the build's worst check point left (a0/b0 1.63,
+    # tau 1.71, rho / w 0.10, 0.66 % of mu N; one axis at a time, along tau 0.87 %), where
+    # the adhesion area vanishes with growing spin
     "coarse": [0.0, 1.0, 2.5, 6.0, 20.0],
-    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 1.8,
-                2.0, 2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
+    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 1.7,
+                1.8, 2.0, 2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
     "fine": [0.0, 0.03, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.25, 2.5, 2.8,
              3.2, 3.6, 4.1, 4.7, 5.5, 7.0, 10.0, 14.0, 20.0],
 }
