@@ -333,24 +333,31 @@ _NO_POLY = np.zeros((1, 4, 4))
 
 
 @njit(cache=True, inline="always")
+def _knots_at(buf, o, n):
+    """The knot vector of an axis of ``n`` coefficients at offset ``o`` of a buffer, and the
+    offset after it."""
+    return buf[o:o + n + 4], o + n + 4
+
+
+@njit(cache=True, inline="always")
+def _polys_at(buf, o, n):
+    """The basis polynomials (n, 4, 4) of an axis of ``n`` coefficients at offset ``o`` of a
+    buffer, and the offset after them."""
+    return buf[o:o + n * 16].reshape((n, 4, 4)), o + n * 16
+
+
+@njit(cache=True, inline="always")
 def _buffer_views(buf):
     """Views into a contact buffer: (t2, t3, t4, p2, p3, p4, slab, res, work)."""
     n2 = int(buf[0])
     n3 = int(buf[1])
     n4 = int(buf[2])
-    o = HEAD
-    t2 = buf[o:o + n2 + 4]
-    o += n2 + 4
-    t3 = buf[o:o + n3 + 4]
-    o += n3 + 4
-    t4 = buf[o:o + n4 + 4]
-    o += n4 + 4
-    p2 = buf[o:o + n2 * 16].reshape((n2, 4, 4))
-    o += n2 * 16
-    p3 = buf[o:o + n3 * 16].reshape((n3, 4, 4))
-    o += n3 * 16
-    p4 = buf[o:o + n4 * 16].reshape((n4, 4, 4))
-    o += n4 * 16
+    t2, o = _knots_at(buf, HEAD, n2)
+    t3, o = _knots_at(buf, o, n3)
+    t4, o = _knots_at(buf, o, n4)
+    p2, o = _polys_at(buf, o, n2)
+    p3, o = _polys_at(buf, o, n3)
+    p4, o = _polys_at(buf, o, n4)
     slab = buf[o:o + n2 * n3 * n4 * 4].reshape((n2, n3, n4, 4))
     o += n2 * n3 * n4 * 4
     return t2, t3, t4, p2, p3, p4, slab, buf[o:o + 14], buf[o + 14:o + 14 + 336]
@@ -456,27 +463,16 @@ def _table_views(tbuf):
     n3 = int(tbuf[3])
     n4 = int(tbuf[4])
     m = int(tbuf[8])
-    o = TABLE_HEAD
-    t0 = tbuf[o:o + n0 + 4]
-    o += n0 + 4
-    t1 = tbuf[o:o + n1 + 4]
-    o += n1 + 4
-    t2 = tbuf[o:o + n2 + 4]
-    o += n2 + 4
-    t3 = tbuf[o:o + n3 + 4]
-    o += n3 + 4
-    t4 = tbuf[o:o + n4 + 4]
-    o += n4 + 4
-    p0 = tbuf[o:o + n0 * 16].reshape((n0, 4, 4))
-    o += n0 * 16
-    p1 = tbuf[o:o + n1 * 16].reshape((n1, 4, 4))
-    o += n1 * 16
-    p2 = tbuf[o:o + n2 * 16].reshape((n2, 4, 4))
-    o += n2 * 16
-    p3 = tbuf[o:o + n3 * 16].reshape((n3, 4, 4))
-    o += n3 * 16
-    p4 = tbuf[o:o + n4 * 16].reshape((n4, 4, 4))
-    o += n4 * 16
+    t0, o = _knots_at(tbuf, TABLE_HEAD, n0)
+    t1, o = _knots_at(tbuf, o, n1)
+    t2, o = _knots_at(tbuf, o, n2)
+    t3, o = _knots_at(tbuf, o, n3)
+    t4, o = _knots_at(tbuf, o, n4)
+    p0, o = _polys_at(tbuf, o, n0)
+    p1, o = _polys_at(tbuf, o, n1)
+    p2, o = _polys_at(tbuf, o, n2)
+    p3, o = _polys_at(tbuf, o, n3)
+    p4, o = _polys_at(tbuf, o, n4)
     kx = tbuf[o:o + m]
     o += m
     kc = tbuf[o:o + 36 * (m - 1)].reshape((4, m - 1, 3, 3))
@@ -499,14 +495,14 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, res, work = _table_views(tbuf)
     inf = math.inf
     nu = poisson_ratio
-    if not (0.0 <= nu <= 0.5 and 0.0 < a0 < inf and 0.0 < b0 < inf):
-        return False
-    log_g = math.log(a0 / b0)
-    if not (tbuf[6] <= log_g <= tbuf[7]):
+    if not 0.0 <= nu <= 0.5:
         return False
     w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                                  friction_coefficient, nu)
-    if w_sat == 0.0:
+    if w_sat == 0.0:        # (also a0, b0 not positive finite numbers)
+        return False
+    log_g = math.log(a0 / b0)
+    if not (tbuf[6] <= log_g <= tbuf[7]):
         return False
     c = work[:3]
     _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, c)

@@ -248,6 +248,17 @@ def basis_polynomials(t):
     return poly
 
 
+def _packed(head, knots, polys, data):
+    """A kernel buffer (:mod:`railcontact._exact_kernels`: ``HEAD`` / ``TABLE_HEAD``): the
+    header, the axes' knots and basis polynomials, ``data``, then res (14) and scratch (336).
+    Returns ``(buffer, res, res as a memoryview)`` (indexing the memoryview gives Python
+    floats, cheaper than numpy's scalars in the scalar path)."""
+    buf = np.concatenate([np.asarray(head, dtype=float)] + list(knots)
+                         + [p.ravel() for p in polys] + list(data) + [np.zeros(14 + 336)])
+    o = buf.size - 350
+    return buf, buf[o:o + 14], memoryview(buf)[o:o + 14]
+
+
 @lru_cache(maxsize=256)
 def _kalker_pair(a0_over_b0, poisson_ratio):
     """Kalker's (C11, C22, C23) for one contact (cached: a vehicle's contact keeps its a0/b0)."""
@@ -444,12 +455,8 @@ class ExactCreepTable:
         kx, kc, nu_nodes = kalker_interpolant()
         head = [len(t) - 4 for t in self._knot_list] + [
             self.tau_max, self._log_g[0], self._log_g[1], kx.size] + list(nu_nodes)
-        tbuf = np.concatenate([np.asarray(head, dtype=float)] + self._knot_list
-                              + [p.ravel() for p in self._poly_list]
-                              + [kx, kc.ravel(), np.zeros(14 + 336)])
-        o = tbuf.size - 350
-        self._tres = tbuf[o:o + 14]
-        self._tmv = memoryview(tbuf)[o:o + 14]
+        tbuf, self._tres, self._tmv = _packed(head, self._knot_list, self._poly_list,
+                                              [kx, kc.ravel()])
         if self._point is None:
             self._point = _compiled.creep_table_point(tbuf, self._coef)
         self._tbuf = tbuf
@@ -467,14 +474,9 @@ class ExactCreepTable:
         slab = self._slab_of(log_g, nu)
         t2, t3, t4 = self._knot_list[2:]
         head = [slab.shape[0], slab.shape[1], slab.shape[2], self.tau_max, c11, c22, c23, nu]
-        buf = np.concatenate([np.asarray(head, dtype=float), t2, t3, t4]
-                             + [p.ravel() for p in self._poly_list[2:]]
-                             + [slab.ravel(), np.zeros(14 + 336)])
+        buf, res, res_floats = _packed(head, [t2, t3, t4], self._poly_list[2:], [slab.ravel()])
         o = buf.size - 350
-        # (the results as a memoryview too: indexing it gives Python floats, cheaper than
-        # numpy's scalars in the scalar path)
-        entry = (buf, buf[o:o + 14], memoryview(buf)[o:o + 14],
-                 buf[o - slab.size:o].reshape(slab.shape))
+        entry = (buf, res, res_floats, buf[o - slab.size:o].reshape(slab.shape))
         if self._kernel is None:
             self._kernel = _compiled.creep_contact(buf)
         if len(self._buffers) >= 16:
