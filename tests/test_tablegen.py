@@ -414,7 +414,7 @@ def _cheap_exact_values(points):
 
 def test_absolute_precision_rounds_the_coefficients_outside_the_relative_region(
         tmp_path, monkeypatch):
-    """A variable's ``absolute_precision`` q (the exact table's forces and moment: 2^-13)
+    """A variable's ``absolute_precision`` q (the exact table's forces and moment: 2^-12)
     rounds its coefficients to multiples of q, except in the spec's relative-precision region
     (next to zero creepage), where they equal the unrounded fit's; the spline moves by at most
     q / 2 (the B-splines sum to one), checked at random points against the unrounded build;
