@@ -185,11 +185,12 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (13, 5, 28, 23, 27),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (13, 5, 29, 23, 28),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5, +-86.25 since 2026-11-27 (below); rho and tau with 5 and 7
     # more nodes and a0/b0 with 3 since 2026-11-27 (below); rho with 0.25 and 0.32 and tau
-    # with 1.7 since 2026-11-27 (seventh session, below)
+    # with 1.7 since 2026-11-27 (seventh session, below); rho with 0.30 and tau with 1.375
+    # since 2026-11-27 (eighth session, below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -219,11 +220,13 @@ _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (i
     # 0.25 and 0.32 added (seventh session of 2026-11-27), the midpoints in s of 0.22-0.28 and
     # 0.28-0.36, where that collapse still erred most: a build check point at a0/b0 4.3, tau
     # 1.31 (0.86 % of mu N; one axis at a time, along s 1.1 %) and the known kink line a0/b0
-    # 10, tau 1.3, theta 135 deg (0.93 %, at rho / w 0.29, all other coordinates on nodes)
+    # 10, tau 1.3, theta 135 deg (0.93 %, at rho / w 0.29, all other coordinates on nodes);
+    # 0.30 added (eighth session of 2026-11-27), the midpoint in s of 0.28-0.32, where that
+    # kink line still erred 0.52 % of mu N (at rho / w 0.29)
     "coarse": [0.0, 0.5, 0.9, 1.1, 1.6, 3.0, np.inf],
     "default": [0.0, 0.0007, 0.002, 0.006, 0.02, 0.045, 0.09, 0.13, 0.17, 0.22, 0.25, 0.28,
-                0.32, 0.36, 0.45, 0.62, 0.77, 0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85, 2.5,
-                3.6, 6.0, np.inf],
+                0.30, 0.32, 0.36, 0.45, 0.62, 0.77, 0.88, 0.96, 1.03, 1.1, 1.22, 1.45, 1.85,
+                2.5, 3.6, 6.0, np.inf],
     "fine": [0.0, 0.004, 0.012, 0.03, 0.06, 0.1, 0.15, 0.3, 0.45, 0.58, 0.7, 0.8, 0.88, 0.94,
              0.99, 1.03, 1.07, 1.12, 1.2, 1.32, 1.5, 1.8, 2.5, 4.0, np.inf],
 }
@@ -239,10 +242,13 @@ _EXACT_TAU = {  # spin coordinates of the computed quarter: graded towards 0 (th
     # interval 1.6-2; 0.20 and 0.09 % with the intervals halved); 1.7 added (seventh session
     # of 2026-11-27), the midpoint of 1.6-1.8: the build's worst check point left (a0/b0 1.63,
     # tau 1.71, rho / w 0.10, 0.66 % of mu N; one axis at a time, along tau 0.87 %), where
-    # the adhesion area vanishes with growing spin
+    # the adhesion area vanishes with growing spin; 1.375 added (eighth session of
+    # 2026-11-27), the midpoint of 1.3-1.45: the build's worst check point left (a0/b0 4.33,
+    # tau 1.37, rho / w 0.24, 0.57 % of mu N in f_par; one axis at a time, along tau 0.65 %,
+    # along ln(a0/b0) 0.16 %, along s 0.13 %)
     "coarse": [0.0, 1.0, 2.5, 6.0, 20.0],
-    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.45, 1.6, 1.7,
-                1.8, 2.0, 2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
+    "default": [0.0, 0.003, 0.01, 0.03, 0.1, 0.25, 0.5, 0.75, 0.875, 1.0, 1.3, 1.375, 1.45,
+                1.6, 1.7, 1.8, 2.0, 2.25, 2.5, 3.0, 3.6, 4.4, 5.5, 7.0, 9.5, 13.5, 16.5, 20.0],
     "fine": [0.0, 0.03, 0.1, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.25, 2.5, 2.8,
              3.2, 3.6, 4.1, 4.7, 5.5, 7.0, 10.0, 14.0, 20.0],
 }
