@@ -424,7 +424,7 @@ def test_absolute_precision_rounds_the_coefficients_outside_the_relative_region(
     from tablegen.spec import Variable  # noqa: PLC0415
 
     spec = REGISTRY["creep_exact"]
-    q = 2.0**-13
+    q = 2.0**-12
     assert [v.absolute_precision for v in spec.variables] == [q, q, q, 2.0**-6]
     monkeypatch.setattr(spec.variables[3], "absolute_precision", None)   # (one variable kept)
     monkeypatch.setattr(spec, "function", _cheap_exact_values)
