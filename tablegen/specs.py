@@ -328,14 +328,15 @@ def _exact_axes(resolution):
 
 
 #: The exact table's forces and moment are stored to multiples of this (over mu N, resp. mu N
-#: sqrt(a0 b0)): the spline within 1.2e-4 of them, 40 times below the 0.5 % target. 2^-15
+#: sqrt(a0 b0)): the spline within 2.4e-4 of them, 20 times below the 0.5 % target. 2^-15
 #: until the sixth session of 2026-11-27; 2^-13 broke T(-v, -phi) = -T(v, phi) (1.7e-5 of
 #: mu N) until the coefficients were made exactly symmetric (_exact_coefficient_symmetry):
-#: 15.8 MB against 18.5 at 2^-15 with the angle nodes +-86.25; 2^-12 since the eighth
+#: 15.8 MB against 18.5 at 2^-15 with the angle nodes +-86.25; 2^-12 in the eighth
 #: session of 2026-11-27, to make room for two node planes under 20 MB (the quarter
 #: 13 x 5 x 28 x 23 x 27 took 19.7 MB at 2^-13; re-rounded to 2^-12 its coefficients
-#: compressed 1.7 MB smaller)
-EXACT_ABSOLUTE_PRECISION = 2.0**-12
+#: compressed 1.7 MB smaller), 2^-11 later in that session for the a0/b0 node 0.133 (the
+#: quarter 13 x 5 x 29 x 23 x 28 took 19.9 MB at 2^-12; re-rounded to 2^-11, 2.2 MB less)
+EXACT_ABSOLUTE_PRECISION = 2.0**-11
 #: ... and its stick area fraction to multiples of this (within 0.008, against its target
 #: 0.05; its many small coefficients had taken 3.1 of 17.3 MB at 2 significant digits, 1.9
 #: of 18.4 at 2^-7, 1.5 at 2^-6)

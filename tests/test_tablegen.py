@@ -414,7 +414,7 @@ def _cheap_exact_values(points):
 
 def test_absolute_precision_rounds_the_coefficients_outside_the_relative_region(
         tmp_path, monkeypatch):
-    """A variable's ``absolute_precision`` q (the exact table's forces and moment: 2^-12)
+    """A variable's ``absolute_precision`` q (the exact table's forces and moment: 2^-11)
     rounds its coefficients to multiples of q, except in the spec's relative-precision region
     (next to zero creepage), where they equal the unrounded fit's; the spline moves by at most
     q / 2 (the B-splines sum to one), checked at random points against the unrounded build;
@@ -424,7 +424,7 @@ def test_absolute_precision_rounds_the_coefficients_outside_the_relative_region(
     from tablegen.spec import Variable  # noqa: PLC0415
 
     spec = REGISTRY["creep_exact"]
-    q = 2.0**-12
+    q = 2.0**-11
     assert [v.absolute_precision for v in spec.variables] == [q, q, q, 2.0**-6]
     monkeypatch.setattr(spec.variables[3], "absolute_precision", None)   # (one variable kept)
     monkeypatch.setattr(spec, "function", _cheap_exact_values)
