@@ -185,12 +185,12 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
-    "default": (13, 5, 29, 23, 28),  # theta every 15 degrees (30 until 2026-11-26: with
+    "default": (14, 5, 29, 23, 28),  # theta every 15 degrees (30 until 2026-11-26: with
     # large spin up to 7.4 % of mu N midway between its nodes, exact_table_accuracy --axes),
     # and +-3.75, +-7.5, +-67.5, +-82.5, +-86.25 since 2026-11-27 (below); rho and tau with 5 and 7
     # more nodes and a0/b0 with 3 since 2026-11-27 (below); rho with 0.25 and 0.32 and tau
     # with 1.7 since 2026-11-27 (seventh session, below); rho with 0.30 and tau with 1.375
-    # since 2026-11-27 (eighth session, below)
+    # since 2026-11-27 (eighth session, below), and a0/b0 with 0.133 (eighth session, below)
     "fine": (13, 6, 25, 13, 25),
 }
 EXACT_TAU_MAX = 20.0
@@ -204,8 +204,13 @@ EXACT_ASPECT_RANGE = (0.1, 10.0)
 #: nodes, 0.23 % and 0.10 % with the intervals halved; and (fifth session of 2026-11-27)
 #: 7.5, the midpoint of 5.6-10, where the worst random cases against the converged theory lay;
 #: and (sixth session) 2.37, the midpoint of 1.8-3.2: one-axis errors along ln(a0/b0) of 0.50
-#: and 0.51 % of mu N at a0/b0 2.49 (tau 19.9) and 2.16 (tau 7.1), the worst random cases left
-_EXACT_ASPECT_EXTRA = {"default": (2.5, 3.5, 5.5, 7.5)}   # in steps of the uniform grid from 0.1
+#: and 0.51 % of mu N at a0/b0 2.49 (tau 19.9) and 2.16 (tau 7.1), the worst random cases left;
+#: and (eighth session) 0.133, the midpoint of the end interval 0.1-0.18: the worst random
+#: cases left lay there with large spin (a0/b0 0.133, tau 10.3: 0.51 % of mu N against the
+#: solver, 0.52 % against the converged theory; one axis at a time, along ln(a0/b0) 0.53 %,
+#: every other axis 0.04 % or less)
+_EXACT_ASPECT_EXTRA = {"default": (0.5, 2.5, 3.5, 5.5, 7.5)}   # in steps of the uniform grid
+# from 0.1
 # (the uniform grid has the count of _EXACT_COUNTS less these)
 _EXACT_RHO = {  # the creepage magnitudes r = |v| / w of the computed quarter (inf: full
     # sliding), w = sqrt(1 + tau^2). Graded towards 0: without spin the force's curvature jumps
