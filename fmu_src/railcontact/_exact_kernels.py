@@ -382,12 +382,18 @@ def _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
 
 
 @njit(cache=True, inline="always")
+def _finite_forces(res):
+    """Whether tx, ty and mz in ``res`` are finite (else the caller takes the array path)."""
+    inf = math.inf
+    return -inf < res[0] < inf and -inf < res[1] < inf and -inf < res[2] < inf
+
+
+@njit(cache=True, inline="always")
 def _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_load, a0, b0,
                    youngs_modulus, friction_coefficient, want_jacobian, res, work):
     """Checks, the saturation creepage and :func:`_creep_point` at one point of the contact
     in ``buf``; False where the caller takes the array path (inputs not finite or out of
     range, overflow, |tau| beyond the table)."""
-    inf = math.inf
     nu = buf[7]
     w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                                  friction_coefficient, nu)
@@ -397,7 +403,7 @@ def _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_lo
                         _NO_POLY, p2, p3, p4, buf[3], xi_x, xi_y, phi,
                         friction_coefficient * normal_load, a0, b0, w_sat, buf[4], buf[5],
                         buf[6], 0.0, nu, want_jacobian, res, work)
-    return done and -inf < res[0] < inf and -inf < res[1] < inf and -inf < res[2] < inf
+    return done and _finite_forces(res)
 
 
 @njit(cache=True)
@@ -493,7 +499,6 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     (as :func:`creep_contact`); False where the caller takes the array path (also a0/b0
     beyond the table's axis, nu outside [0, 0.5])."""
     t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, res, work = _table_views(tbuf)
-    inf = math.inf
     nu = poisson_ratio
     if not 0.0 <= nu <= 0.5:
         return False
@@ -512,7 +517,7 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     done = _creep_point(coef, _NO_SLAB, False, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
                         tbuf[5], xi_x, xi_y, phi, friction_coefficient * normal_load, a0, b0,
                         w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work)
-    return done and -inf < res[0] < inf and -inf < res[1] < inf and -inf < res[2] < inf
+    return done and _finite_forces(res)
 
 
 @njit(cache=True, inline="always")

@@ -251,12 +251,12 @@ def basis_polynomials(t):
 def _packed(head, knots, polys, data):
     """A kernel buffer (:mod:`railcontact._exact_kernels`: ``HEAD`` / ``TABLE_HEAD``): the
     header, the axes' knots and basis polynomials, ``data``, then res (14) and scratch (336).
-    Returns ``(buffer, res, res as a memoryview)`` (indexing the memoryview gives Python
-    floats, cheaper than numpy's scalars in the scalar path)."""
+    Returns ``(buffer, res, res as a memoryview, the view of the last data block)`` (indexing
+    the memoryview gives Python floats, cheaper than numpy's scalars in the scalar path)."""
     buf = np.concatenate([np.asarray(head, dtype=float)] + list(knots)
                          + [p.ravel() for p in polys] + list(data) + [np.zeros(14 + 336)])
     o = buf.size - 350
-    return buf, buf[o:o + 14], memoryview(buf)[o:o + 14]
+    return buf, buf[o:o + 14], memoryview(buf)[o:o + 14], buf[o - data[-1].size:o]
 
 
 @lru_cache(maxsize=256)
@@ -455,8 +455,8 @@ class ExactCreepTable:
         kx, kc, nu_nodes = kalker_interpolant()
         head = [len(t) - 4 for t in self._knot_list] + [
             self.tau_max, self._log_g[0], self._log_g[1], kx.size] + list(nu_nodes)
-        tbuf, self._tres, self._tmv = _packed(head, self._knot_list, self._poly_list,
-                                              [kx, kc.ravel()])
+        tbuf, self._tres, self._tmv, _ = _packed(head, self._knot_list, self._poly_list,
+                                                 [kx, kc.ravel()])
         if self._point is None:
             self._point = _compiled.creep_table_point(tbuf, self._coef)
         self._tbuf = tbuf
@@ -474,9 +474,9 @@ class ExactCreepTable:
         slab = self._slab_of(log_g, nu)
         t2, t3, t4 = self._knot_list[2:]
         head = [slab.shape[0], slab.shape[1], slab.shape[2], self.tau_max, c11, c22, c23, nu]
-        buf, res, res_floats = _packed(head, [t2, t3, t4], self._poly_list[2:], [slab.ravel()])
-        o = buf.size - 350
-        entry = (buf, res, res_floats, buf[o - slab.size:o].reshape(slab.shape))
+        buf, res, res_floats, data = _packed(head, [t2, t3, t4], self._poly_list[2:],
+                                             [slab.ravel()])
+        entry = (buf, res, res_floats, data.reshape(slab.shape))
         if self._kernel is None:
             self._kernel = _compiled.creep_contact(buf)
         if len(self._buffers) >= 16:
