@@ -544,6 +544,44 @@ def test_a_new_contact_gets_the_tables_values_without_its_buffer(monkeypatch):
 
 
 @needs_table
+def test_the_forces_kernel_gives_the_full_kernels_forces_bit_for_bit(monkeypatch):
+    """The public scalar call on a contact's buffer (the forces-only kernel
+    ``creep_contact_force``: two variables summed, the forces returned) gives the forces of
+    the full kernel that the batch and the FMU use, bit for bit, on 40 random contacts x 8
+    creepages over the domain, at zero creepage exactly 0; beyond the spin axis the solver
+    answers, and non-finite input is a ValueError, as on every other path."""
+    import railcontact.exact_table as et
+    from railcontact.creep3d import load_exact_table
+
+    monkeypatch.setattr(et, "SLAB_AFTER_POINTS", 1)
+    fresh = load_exact_table(TABLE)                      # with the solver
+    rng = np.random.default_rng(41)
+    compared = 0
+    for c in _random_contacts(rng, 40):
+        pts = [(float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)),
+                float(rng.normal(0, 0.5))) for _ in range(7)] + [(0.0, 0.0, 0.0)]
+        for p in pts:
+            f = fresh.creep_force_3d(*p, *c[3:])
+            assert (c[4] / c[5], c[7]) in fresh._buffers          # the buffer's kernel
+            want = fresh.step_values(*p, *c[3:], False)
+            if want is None:                                     # |tau| > 20: the solver
+                continue
+            assert (f.tx, f.ty) == (want[0], want[1])
+            compared += 1
+        assert fresh.creep_force_3d(0.0, 0.0, 0.0, *c[3:]) == (0.0, 0.0)
+    assert compared > 250                 # (the rest beyond |tau| = 20)
+    args = _args(1e-4, 0.0, 40.0)
+    fresh.creep_force_3d(*_args(1e-4, 0.0, 0.0))                # its buffer exists
+    got = fresh.creep_force_3d(*args)
+    want = fresh.creep_solution_3d(*args, sensitivities=False)   # the solver
+    assert (got.tx, got.ty) == (want.tx, want.ty) and abs(got.tx) > 0
+    with pytest.raises(ValueError, match="creepage_lateral"):
+        fresh.creep_force_3d(*_args(1e-4, float("nan"), 0.0))
+    with pytest.raises(ValueError, match="normal_load must be in"):
+        fresh.creep_force_3d(*_args(1e-4, 0.0, 0.0, normal_load=float("inf")))
+
+
+@needs_table
 def test_a_contact_gets_its_buffer_once_it_has_been_asked_enough_points(monkeypatch):
     """Ski rental: a contact's buffer is made once the contact has been asked for
     SLAB_AFTER_POINTS points (scalar calls and batch points together), not before; a contact

@@ -1089,9 +1089,14 @@ exact_table = importlib.import_module(f"{package}.exact_table")
 
 
 def values_of(table, rng):
-    return [table.step_values(float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)),
-                              float(rng.normal(0, 1.0)), 1e5, float(rng.uniform(3e-3, 8e-3)),
-                              5e-3, 2.1e11, 0.28, 0.3) for _ in range(200)]
+    out = []
+    for _ in range(200):
+        args = (float(rng.normal(0, 2e-3)), float(rng.normal(0, 2e-3)), float(rng.normal(0, 1.0)),
+                1e5, float(rng.uniform(3e-3, 8e-3)), 5e-3, 2.1e11, 0.28, 0.3)
+        values = table.step_values(*args)
+        if values is not None:      # and the public call's forces-only kernel
+            out.append(values + list(table.creep_force_3d(*args)))
+    return out
 
 
 for name, after in (("exact", 10**9), ("exact_buffer", 1)):
@@ -1105,6 +1110,17 @@ for name, after in (("exact", 10**9), ("exact_buffer", 1)):
         scale = max(abs(v) for v in jit)
         diff = max(diff, max(abs(a - b) for a, b in zip(values, jit)) / scale)
     out[name + "_max_relative_difference"] = diff
+# beyond the spin axis the ahead-of-time forces kernel raises, and the table's array path
+# names the input (no solver attached here)
+compiled._AOT[:] = []
+exact_table.SLAB_AFTER_POINTS = 1
+beyond = exact_table.ExactCreepTable.from_file()
+beyond.creep_force_3d(1e-4, 0.0, 0.0, 1e5, 5e-3, 5e-3, 2.1e11, 0.28, 0.3)   # its buffer
+out["force_kernel_aot"] = beyond._force_kernel is compiled.aot_module().creep_contact_force
+try:
+    beyond.creep_force_3d(1e-4, 0.0, 40.0, 1e5, 5e-3, 5e-3, 2.1e11, 0.28, 0.3)
+except ValueError as exc:
+    out["beyond_message"] = str(exc)
 # the corrugation response table's step kernel, both copies on the same random surfaces
 response = importlib.import_module(f"{package}.effects.response_table")
 compiled._AOT[:] = []                           # the ahead-of-time copy again
@@ -1132,7 +1148,8 @@ def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, t
     # The build compiles the table kernels ahead of time from their numba source
     # (railcontact._compiled): a table scene then imports no numba, and the compiled copy
     # gives the numba kernel's values (the exact table's two scalar kernels with the
-    # Jacobian, 200 random contacts each, relative to the largest entry; the corrugation response table's step,
+    # Jacobian, 200 random contacts each, relative to the largest entry, and the public call's
+    # forces-only kernel on a contact's buffer; the corrugation response table's step,
     # 200 random three-harmonic surfaces, relative to each sum).
     proc = subprocess.run([sys.executable, "-c", _AOT_CHECK, str(fmu_path),
                            str(tmp_path / "x")], capture_output=True, text=True, timeout=600)
@@ -1146,5 +1163,7 @@ def test_table_scenes_run_without_numba_on_the_ahead_of_time_kernels(fmu_path, t
     # (the ahead-of-time copy targets a generic CPU, numba's this one: the last bits may differ)
     assert out["exact_max_relative_difference"] < 1e-12
     assert out["exact_buffer_max_relative_difference"] < 1e-12
+    assert out["force_kernel_aot"]
+    assert "spin must give a spin coordinate |tau| <= 20" in out["beyond_message"]
     assert out["response_aot_used"]
     assert out["response_max_relative_difference"] < 1e-12

@@ -23,7 +23,7 @@ from types import SimpleNamespace
 import numpy as np
 
 __all__ = ["EXPORTS", "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
-           "creep_contact", "creep_table_point", "superposed_response", "exact_kernels",
+           "creep_contact", "creep_contact_force", "creep_table_point", "superposed_response", "exact_kernels",
            "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
@@ -38,6 +38,8 @@ EXPORTS = (
     ("find_span", "_spline_kernels", "i8(f8[::1], i8, f8)"),
     ("cubic_basis", "_exact_kernels", "void(f8[::1], i8, f8, f8[::1], f8[::1], f8[::1])"),
     ("creep_contact", "_exact_kernels", "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
+    ("creep_contact_force", "_exact_kernels",
+     "UniTuple(f8, 2)(f8[::1], f8, f8, f8, f8, f8, f8, f8, f8)"),
     ("creep_table_point", "_exact_kernels",
      "b1(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
     ("superposed_response", "_response_kernels",
@@ -53,12 +55,13 @@ def aot_module():
     if not _AOT:
         try:   # made by the FMU build only
             from ._aot_kernels import (  # noqa: PLC0415
-                creep_contact, creep_table_point, cubic_basis, find_span, superposed_response,
-                tensor_eval)
+                creep_contact, creep_contact_force, creep_table_point, cubic_basis, find_span,
+                superposed_response, tensor_eval)
         except ImportError:
             _AOT.append(None)
         else:
             _AOT.append(SimpleNamespace(creep_contact=creep_contact,
+                                        creep_contact_force=creep_contact_force,
                                         creep_table_point=creep_table_point,
                                         cubic_basis=cubic_basis,
                                         find_span=find_span, tensor_eval=tensor_eval,
@@ -117,6 +120,17 @@ def creep_contact(buf):
         return aot.creep_contact
     return _entry_point(exact_kernels().creep_contact, buf, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0,
                         1.0, False)
+
+
+def creep_contact_force(buf):
+    """The exact table's forces-only scalar kernel (``_exact_kernels.creep_contact_force``:
+    returns ``(tx, ty)``, raises ArithmeticError for the array path) as a plain callable, as
+    :func:`creep_contact`."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.creep_contact_force
+    return _entry_point(exact_kernels().creep_contact_force, buf, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0,
+                        1.0, 1.0)
 
 
 def creep_table_point(tbuf, coef):

@@ -20,7 +20,8 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
 _TWO_OVER_PI = 2.0 / math.pi
 
-__all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_table_point",
+__all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_force",
+           "creep_table_point",
            "creep_contact_batch",
            "creep_contact_batch_parallel", "creep_batch", "creep_batch_parallel",
            "PARALLEL_CHUNK", "HEAD", "TABLE_HEAD"]
@@ -76,10 +77,10 @@ def _poly_basis(t, poly, i, x, b, db):
 
 
 @njit(cache=True, inline="always")
-def _accumulate(src, b2, d2, b3, d3, b4, d4, derivs, out):
-    """``out`` (4, 4) <- value and d/ds, d/dtheta, d/dtau (rows) of the four variables from
-    the 4 x 4 x 4 coefficient block ``src`` (s, theta, tau, variable) and the bases; only the
-    value row when not ``derivs``."""
+def _accumulate(src, b2, d2, b3, d3, b4, d4, derivs, n_var, out):
+    """``out`` (4, 4) <- value and d/ds, d/dtheta, d/dtau (rows) of the first ``n_var``
+    variables (columns) from the 4 x 4 x 4 coefficient block ``src`` (s, theta, tau,
+    variable) and the bases; only the value row when not ``derivs``."""
     for k in range(4):
         for v in range(4):
             out[k, v] = 0.0
@@ -89,7 +90,7 @@ def _accumulate(src, b2, d2, b3, d3, b4, d4, derivs, out):
             if derivs:
                 w2d = d2[a] * b3[c]
                 w3d = b2[a] * d3[c]
-                for v in range(4):
+                for v in range(n_var):
                     s_e = 0.0
                     ds_e = 0.0
                     for e in range(4):
@@ -101,11 +102,30 @@ def _accumulate(src, b2, d2, b3, d3, b4, d4, derivs, out):
                     out[2, v] += w3d * s_e
                     out[3, v] += w23 * ds_e
             else:
-                for v in range(4):
+                for v in range(n_var):
                     s_e = 0.0
                     for e in range(4):
                         s_e += b4[e] * src[a, c, e, v]
                     out[0, v] += w23 * s_e
+
+
+@njit(cache=True, inline="always")
+def _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4, work):
+    """The spans ``i2, i3, i4`` of (s, theta, tau) and their bases and derivatives ``b2, d2,
+    b3, d3, b4, d4`` (views of ``work[12:36]``)."""
+    b2 = work[12:16]
+    d2 = work[16:20]
+    b3 = work[20:24]
+    d3 = work[24:28]
+    b4 = work[28:32]
+    d4 = work[32:36]
+    i2 = find_span(t2, t2.shape[0] - 4, x2)
+    i3 = find_span(t3, t3.shape[0] - 4, x3)
+    i4 = find_span(t4, t4.shape[0] - 4, x4)
+    _poly_basis(t2, p2, i2, x2, b2, d2)
+    _poly_basis(t3, p3, i3, x3, b3, d3)
+    _poly_basis(t4, p4, i4, x4, b4, d4)
+    return i2, i3, i4, b2, d2, b3, d3, b4, d4
 
 
 @njit(cache=True, inline="always")
@@ -120,21 +140,11 @@ def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x
     ``t4`` the knot vectors, ``p0`` .. ``p4`` their :func:`railcontact.exact_table.basis_polynomials`. ``out`` (4, 4):
     rows value, d/ds, d/dtheta, d/dtau. ``work``: scratch of at least 320 floats.
     """
-    b2 = work[12:16]
-    d2 = work[16:20]
-    b3 = work[20:24]
-    d3 = work[24:28]
-    b4 = work[28:32]
-    d4 = work[32:36]
-    i2 = find_span(t2, t2.shape[0] - 4, x2)
-    i3 = find_span(t3, t3.shape[0] - 4, x3)
-    i4 = find_span(t4, t4.shape[0] - 4, x4)
-    _poly_basis(t2, p2, i2, x2, b2, d2)
-    _poly_basis(t3, p3, i3, x3, b3, d3)
-    _poly_basis(t4, p4, i4, x4, b4, d4)
+    i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4,
+                                                        work)
     if use_slab:
         _accumulate(slab[i2 - 3:i2 + 1, i3 - 3:i3 + 1, i4 - 3:i4 + 1], b2, d2, b3, d3, b4, d4,
-                    derivs, out)
+                    derivs, 4, out)
         return
     b0 = work[36:40]
     b1 = work[44:48]
@@ -158,7 +168,54 @@ def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x
                         for v in range(4):
                             block[a, c, e, v] += w * coef[i0 - 3 + p, i1 - 3 + q, i2 - 3 + a,
                                                           i3 - 3 + c, i4 - 3 + e, v]
-    _accumulate(block, b2, d2, b3, d3, b4, d4, derivs, out)
+    _accumulate(block, b2, d2, b3, d3, b4, d4, derivs, 4, out)
+
+
+@njit(cache=True, inline="always")
+def _table_coordinates(xi_x, xi_y, phi, a0, b0, w_sat, c11, c22, c23):
+    """The table's coordinates of one contact (:mod:`railcontact.exact_table`, as
+    :func:`railcontact.exact_table.exact_table_coordinates`): ``(sqrt(a0 b0), h, v_x, v_y,
+    tau, rho, w2, w, s, theta)`` with ``h = hypot(b0 C11, a0 C22)`` [m], the normalised
+    creepage ``v`` and its modulus ``rho`` [-], the spin coordinate ``tau`` [-], ``w2 = 1 +
+    (SPIN_WEIGHT tau)^2``, ``w = sqrt(w2)``, ``s = (2 / pi) atan(rho / w)`` and ``theta``, the
+    direction of ``v`` [rad]."""
+    root_ab = math.sqrt(a0 * b0)
+    h = math.hypot(b0 * c11, a0 * c22)
+    v_x = c11 * xi_x / w_sat
+    v_y = (c22 * xi_y + root_ab * c23 * phi) / w_sat
+    tau = phi * h / w_sat
+    rho = math.hypot(v_x, v_y)
+    w2 = 1.0 + (SPIN_WEIGHT * tau) ** 2
+    w = math.sqrt(w2)
+    s = 1.0 if rho > 1e150 else _TWO_OVER_PI * math.atan(rho / w)
+    theta = math.atan2(v_y, v_x)
+    return root_ab, h, v_x, v_y, tau, rho, w2, w, s, theta
+
+
+@njit(cache=True, inline="always")
+def _wheel_forces(f_par, f_perp, rho, tau, s, v_x, v_y, theta, mu_n):
+    """The creep force on the wheel ``(tx, ty)`` [N] from the table's force over mu N along
+    and across the creepage direction (``f_par``, ``f_perp``), and what the Jacobian reuses:
+    ``(tx, ty, f_par, f_perp, |f|, at_limit, k, cos theta, sin theta)``, ``k`` the scale that
+    keeps |T| <= mu N."""
+    if rho == 0.0 and tau == 0.0:
+        # no creepage, no spin: no force (nor moment, and full adhesion: the caller); the
+        # table's float32 coefficients hold these only to their rounding
+        f_par = 0.0
+        f_perp = 0.0
+    mag = math.hypot(f_par, f_perp)
+    # |T| <= mu N; at s = 1 (full sliding) |T| = mu N exactly, which the float32 coefficients
+    # hold only to their rounding
+    at_limit = s >= 1.0 and mag > 0.0
+    k = (1.0 - 2.0**-51) / mag if (mag > 1.0 or at_limit) else 1.0
+    if 0.0 < rho < math.inf:   # cos, sin of theta = atan2(v_y, v_x) without the calls
+        c = v_x / rho
+        sn = v_y / rho
+    else:   # (at rho = 0 the signed zeros decide theta = 0 or pi)
+        c = math.cos(theta)
+        sn = math.sin(theta)
+    return (-mu_n * k * (f_par * c - f_perp * sn), -mu_n * k * (f_par * sn + f_perp * c),
+            f_par, f_perp, mag, at_limit, k, c, sn)
 
 
 @njit(cache=True, inline="always")
@@ -172,46 +229,21 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
     ``work``: scratch of at least 336 floats. Returns False when |tau| > tau_max (the caller
     falls back to the solver).
     """
-    root_ab = math.sqrt(a0 * b0)
-    h = math.hypot(b0 * c11, a0 * c22)
-    v_x = c11 * xi_x / w_sat
-    v_y = (c22 * xi_y + root_ab * c23 * phi) / w_sat
-    tau = phi * h / w_sat
+    root_ab, h, v_x, v_y, tau, rho, w2, w, s, theta = _table_coordinates(
+        xi_x, xi_y, phi, a0, b0, w_sat, c11, c22, c23)
     if not abs(tau) <= tau_max:
         return False
-    rho = math.hypot(v_x, v_y)
-    w2 = 1.0 + (SPIN_WEIGHT * tau) ** 2
-    w = math.sqrt(w2)
-    s = 1.0 if rho > 1e150 else _TWO_OVER_PI * math.atan(rho / w)
-    theta = math.atan2(v_y, v_x)
     out = work[320:336].reshape((4, 4))
     small = want_jacobian and rho < JACOBIAN_RHO_MIN
     spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
                   theta, tau, want_jacobian and not small, out, work)
-    f_par = out[0, 0]
-    f_perp = out[0, 1]
     moment = out[0, 2]
     st = out[0, 3]
-    if rho == 0.0 and tau == 0.0:
-        # no creepage, no spin: no force, no moment, full adhesion (the table's float32
-        # coefficients hold these only to their rounding)
-        f_par = 0.0
-        f_perp = 0.0
+    if rho == 0.0 and tau == 0.0:   # (see _wheel_forces)
         moment = 0.0
         st = 1.0
-    mag = math.hypot(f_par, f_perp)
-    # |T| <= mu N; at s = 1 (full sliding) |T| = mu N exactly, which the float32 coefficients
-    # hold only to their rounding
-    at_limit = s >= 1.0 and mag > 0.0
-    k = (1.0 - 2.0**-51) / mag if (mag > 1.0 or at_limit) else 1.0
-    if 0.0 < rho < math.inf:   # cos, sin of theta = atan2(v_y, v_x) without the calls
-        c = v_x / rho
-        sn = v_y / rho
-    else:   # (at rho = 0 the signed zeros decide theta = 0 or pi)
-        c = math.cos(theta)
-        sn = math.sin(theta)
-    res[0] = -mu_n * k * (f_par * c - f_perp * sn)
-    res[1] = -mu_n * k * (f_par * sn + f_perp * c)
+    res[0], res[1], f_par, f_perp, mag, at_limit, k, c, sn = _wheel_forces(
+        out[0, 0], out[0, 1], rho, tau, s, v_x, v_y, theta, mu_n)
     res[2] = mu_n * root_ab * moment
     res[3] = 0.0 if st < 0.0 else (1.0 if st > 1.0 else st)
     res[4] = rho
@@ -415,6 +447,36 @@ def creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
     t2, t3, t4, p2, p3, p4, slab, res, work = _buffer_views(buf)
     return _contact_point(buf, t2, t3, t4, p2, p3, p4, slab, xi_x, xi_y, phi, normal_load, a0,
                           b0, youngs_modulus, friction_coefficient, want_jacobian, res, work)
+
+
+@njit(cache=True)
+def creep_contact_force(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                        friction_coefficient):
+    """The creep force ``(tx, ty)`` [N] of :func:`creep_contact` alone, returned (the public
+    scalar call's path: only the two forces are summed, no Jacobian, and the tuple saves
+    reading ``res``). Raises ArithmeticError where :func:`creep_contact` returns False (the
+    caller takes the array path)."""
+    t2, t3, t4, p2, p3, p4, slab, _, work = _buffer_views(buf)
+    nu = buf[7]
+    w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                 friction_coefficient, nu)
+    if w_sat == 0.0:
+        raise ArithmeticError("creep_contact_force: the array path")
+    root_ab, h, v_x, v_y, tau, rho, w2, w, s, theta = _table_coordinates(
+        xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
+    if not abs(tau) <= buf[3]:
+        raise ArithmeticError("creep_contact_force: the array path")
+    i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, s, theta, tau,
+                                                        work)
+    out = work[320:336].reshape((4, 4))
+    _accumulate(slab[i2 - 3:i2 + 1, i3 - 3:i3 + 1, i4 - 3:i4 + 1], b2, d2, b3, d3, b4, d4,
+                False, 2, out)
+    tx, ty = _wheel_forces(out[0, 0], out[0, 1], rho, tau, s, v_x, v_y, theta,
+                           friction_coefficient * normal_load)[:2]
+    inf = math.inf
+    if not (-inf < tx < inf and -inf < ty < inf):
+        raise ArithmeticError("creep_contact_force: the array path")
+    return tx, ty
 
 
 #: Header of a table buffer (see :func:`creep_table_point`): the coefficient counts n0 .. n4

@@ -345,6 +345,7 @@ class ExactCreepTable:
         self._buffers = {}
         self._uses = {}       # points asked of each contact without a buffer yet
         self._kernel = None   # the compiled scalar kernels, resolved with the first contact
+        self._force_kernel = None
         self._point = None
         self._tbuf = None     # the table buffer of creep_table_point, made with the first call
 
@@ -462,8 +463,9 @@ class ExactCreepTable:
         self._tbuf = tbuf
 
     def _buffer(self, g, nu):
-        """``(buffer, res view)`` of one contact for the kernel ``creep_contact``, memoised, or None
-        (a0/b0 beyond the table, nu outside [0, 0.5], not plain numbers)."""
+        """``(buffer, res view, slab view)`` of one contact for the kernels ``creep_contact``
+        and ``creep_contact_force``, memoised, or None (a0/b0 beyond the table, nu outside
+        [0, 0.5], not plain numbers)."""
         g, nu = float(g), float(nu)
         if not (0.0 <= nu <= 0.5 and 0.0 < g < math.inf):
             return None
@@ -474,11 +476,12 @@ class ExactCreepTable:
         slab = self._slab_of(log_g, nu)
         t2, t3, t4 = self._knot_list[2:]
         head = [slab.shape[0], slab.shape[1], slab.shape[2], self.tau_max, c11, c22, c23, nu]
-        buf, res, res_floats, data = _packed(head, [t2, t3, t4], self._poly_list[2:],
+        buf, res, _, data = _packed(head, [t2, t3, t4], self._poly_list[2:],
                                              [slab.ravel()])
-        entry = (buf, res, res_floats, data.reshape(slab.shape))
+        entry = (buf, res, data.reshape(slab.shape))
         if self._kernel is None:
             self._kernel = _compiled.creep_contact(buf)
+            self._force_kernel = _compiled.creep_contact_force(buf)
         if len(self._buffers) >= 16:
             self._buffers.clear()
         self._buffers[(g, nu)] = entry
@@ -548,7 +551,7 @@ class ExactCreepTable:
             if one:     # (without its buffer yet: the five-dimensional spline)
                 key = (float(g[idx[0]]), float(nu[idx[0]]))
                 entry = self._buffers.get(key)
-                slab = self._empty_slab if entry is None else entry[3]
+                slab = self._empty_slab if entry is None else entry[2]
                 c = [np.full(idx.size, v) for v in _kalker_pair(*key)]
             else:
                 from .kalker import kalker_coefficients  # noqa: PLC0415
@@ -599,21 +602,19 @@ class ExactCreepTable:
                        youngs_modulus, poisson_ratio, friction_coefficient):
         """Creep force on the wheel, ``CreepForce3D(tx, ty)`` [N]; inputs as
         :func:`railcontact.creep_force_3d`."""
-        try:    # the scalar path of step_values, reading only the two forces
+        try:    # the scalar path of step_values, summing only the two forces
             key = (a0 / b0, poisson_ratio)
-            entry = self._buffers.get(key)
-            if entry is None:
-                entry = self._entry(key, 1)
-            if entry is None:
-                if self._table_point(creepage_longitudinal, creepage_lateral, spin,
-                                     normal_load, a0, b0, youngs_modulus, poisson_ratio,
-                                     friction_coefficient, False):
-                    res = self._tmv
-                    return _new_tuple(CreepForce3D, (res[0], res[1]))
-            elif self._kernel(entry[0], creepage_longitudinal, creepage_lateral, spin,
-                              normal_load, a0, b0, youngs_modulus, friction_coefficient, False):
-                res = entry[2]
-                # (CreepForce3D(tx, ty) without namedtuple's Python-level __new__: 0.2 us)
+            entry = self._buffers.get(key) or self._entry(key, 1)
+            if entry is not None:
+                # the kernel returns (tx, ty) or raises ArithmeticError (the array path);
+                # CreepForce3D(tx, ty) without namedtuple's Python-level __new__: 0.2 us
+                return _new_tuple(CreepForce3D, self._force_kernel(
+                    entry[0], creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                    b0, youngs_modulus, friction_coefficient))
+            if self._table_point(creepage_longitudinal, creepage_lateral, spin, normal_load,
+                                 a0, b0, youngs_modulus, poisson_ratio, friction_coefficient,
+                                 False):
+                res = self._tmv
                 return _new_tuple(CreepForce3D, (res[0], res[1]))
         except (TypeError, ValueError, ArithmeticError):
             pass
