@@ -27,6 +27,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 
+import gc  # noqa: E402
 import hashlib  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
@@ -101,8 +102,14 @@ def pytest_collection_modifyitems(config, items):
     ``finalizePythonInterpreter``, "free(): corrupted unsorted chunks"). Here that showed as
     segmentation faults later in the test run or at interpreter exit, never inside the FMU
     tests themselves. A forked child confines it: the child exits with ``os._exit`` and the
-    pytest process never loads the library. Users' own co-simulations load the FMU once and
-    exit; the 1e6-step run (benchmarks/bench_long_run.py) checks that case.
+    pytest process never loads the library. Inside the child the cyclic garbage collector is
+    off: a test that makes and frees many instances (the whole-float-range property, 40) left
+    cycles of a freed instance's Python objects behind, and a collection that walked them
+    during the next instantiation crashed the child (signal 11 in ``fmi2Instantiate``,
+    "Garbage-collecting", once in the CI rehearsals of 2026-11-27; not keeping the library
+    unloaded had already made it rarer, ``tests/test_properties._free_instance``). Users' own
+    co-simulations load the FMU once and exit; the 1e6-step run
+    (benchmarks/bench_long_run.py) checks that case.
     """
     for item in items:
         if FMU_FIXTURES & set(getattr(item, "fixturenames", ())):
@@ -142,6 +149,7 @@ def pytest_runtest_protocol(item, nextitem):
     pid = os.fork()
     if pid == 0:  # the child: run setup, call and teardown, send the reports, exit at once
         os.close(read_end)
+        gc.disable()    # (see pytest_collection_modifyitems; the child's memory goes at exit)
         code = 0
         try:
             reports = runtestprotocol(item, log=False, nextitem=None)
