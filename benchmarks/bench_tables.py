@@ -66,6 +66,32 @@ def interleaved(calls, seconds, number=2000):
     return best, median, float(np.mean(probe > 1.3 * probe.min()))
 
 
+_LOAD_MEMORY = """
+import resource, time
+from railcontact.exact_table import ExactCreepTable
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t = time.perf_counter()
+table = ExactCreepTable.from_file()
+t = time.perf_counter() - t
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print(before / 1024, peak / 1024, table._coef.nbytes / 2**20, t)
+"""
+
+
+def load_memory():
+    """Peak memory of loading the exact table in a fresh process (the file already in the
+    user cache), against its coefficients' size."""
+    import subprocess  # noqa: PLC0415
+    import sys  # noqa: PLC0415
+
+    out = subprocess.run([sys.executable, "-c", _LOAD_MEMORY], capture_output=True, text=True,
+                         check=True).stdout.split()
+    before, peak, coef, t = (float(v) for v in out)
+    return (f"loading it (fresh process)                 : {t:7.2f} s, peak memory "
+            f"{peak:.0f} MiB ({before:.0f} before; coefficients {coef:.0f} MiB float64: "
+            f"{(peak - before) / coef:.2f}x)")
+
+
 def lookups():
     print(f"load average: {os.getloadavg()}")
     ms = CreepTable.from_file()
@@ -119,6 +145,7 @@ def exact_lookups(args):
     ex = ExactCreepTable.from_file()
     print(f"\n== exact table {ex.path.name}: grid "
           + "x".join(str(len(a["nodes"])) for a in ex.table.axes) + " ==")
+    print(load_memory())
     xi, eta, phi, n_load, a0, b0, e_mod, nu, mu = args
     c = kalker_coefficients(a0 / b0, nu)
     w_sat = np.pi * (1 + nu) * mu * 1.5 * n_load / (a0 * b0 * e_mod)

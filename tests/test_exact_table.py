@@ -56,9 +56,12 @@ def _args(xi, eta, phi, **over):
 def test_the_coefficients_are_held_once(table):
     """The reader's own coefficient layout (variables last, for its compiled kernel) and the
     table's (variables first, for ``table.table.spline``) are one array: the exact table's
-    coefficients are 174 MB in float64. The spline made from the shared view gives what the
-    reader gives; a view of another shape is refused."""
+    coefficients are 330 MB in float64. The file is read straight into the reader's layout
+    (no second copy at load: the peak fell from 807 to 560 MB). The spline made from the
+    shared view gives what the reader gives; a view of another shape is refused."""
     assert np.shares_memory(table.table.coefficients, table._coef)
+    assert not table._coef.flags.owndata       # the loader's own array, not a copy of it
+    assert table._coef.flags.c_contiguous
     assert table.table.coefficients.shape == (4,) + table._coef.shape[:-1]
     np.testing.assert_array_equal(table.table.coefficients[:, 1, 1, 2, 3, 4],
                                   table._coef[1, 1, 2, 3, 4])

@@ -643,7 +643,7 @@ class Table:
         self._spline = None
 
     @classmethod
-    def from_file(cls, path, expected_name=None):
+    def from_file(cls, path, expected_name=None, variables_last=False):
         """Load and validate a table file.
 
         Parameters
@@ -651,6 +651,11 @@ class Table:
         path : str or path-like
         expected_name : str, optional
             If given, the file's ``table_name`` attribute must equal it.
+        variables_last : bool, optional
+            Hold the coefficients with the variable axis last in memory; :attr:`coefficients`
+            (variable first) is then a view of that array. A reader whose kernel takes them
+            so (:class:`railcontact.exact_table.ExactCreepTable`) then needs no second copy
+            (the exact table's are 330 MB in float64).
 
         Raises
         ------
@@ -709,10 +714,11 @@ class Table:
                              double_knots=double_knots, out_of_range=out_of_range))
         values, vattrs, tolerance = {}, {}, []
         # one float64 array, filled variable by variable (a float32 file's coefficients are
-        # widened in that one pass: creep_exact's are 137 MB in float64, and a list of
+        # widened in that one pass: creep_exact's are 330 MB in float64, and a list of
         # converted arrays stacked afterwards cost two more passes at every load)
         shape = tuple(len(a["nodes"]) for a in axes)
-        coefs = np.empty((len(var_names),) + shape)
+        coefs = (np.moveaxis(np.empty(shape + (len(var_names),)), -1, 0) if variables_last
+                 else np.empty((len(var_names),) + shape))
         block = None
         spline_only = _as_int(version) == TABLE_FORMAT_SPLINE_ONLY
         for k_var, name in enumerate(var_names):
