@@ -156,7 +156,6 @@ def exact_lookups(args):
     knots, poly = ex._knot_list, ex._poly_list
     _spline_point(ex._coef, slab, True, *knots, *poly, *coords, True, out, work)
     bare = _spline_point.overloads[_spline_point.signatures[0]].entry_point
-    creep_force_3d(*args, method="exact_table")
     calls = {"bare": lambda: bare(ex._coef, slab, True, *knots, *poly, *coords, True, out,
                                   work),
              "step": lambda: ex.step(*args),

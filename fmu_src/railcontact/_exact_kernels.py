@@ -129,6 +129,16 @@ def _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4, work):
 
 
 @njit(cache=True, inline="always")
+def _slab_point(slab, t2, t3, t4, p2, p3, p4, x2, x3, x4, derivs, n_var, out, work):
+    """:func:`spline_point` on one contact's ``slab`` (n2, n3, n4, 4), for the first
+    ``n_var`` variables: ``out`` as there."""
+    i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4,
+                                                        work)
+    _accumulate(slab[i2 - 3:i2 + 1, i3 - 3:i3 + 1, i4 - 3:i4 + 1], b2, d2, b3, d3, b4, d4,
+                derivs, n_var, out)
+
+
+@njit(cache=True, inline="always")
 def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x0, x1, x2,
                   x3, x4, derivs, out, work):
     """Values and (``derivs``) first partials in (s, theta, tau) of the four variables at one
@@ -140,12 +150,11 @@ def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x
     ``t4`` the knot vectors, ``p0`` .. ``p4`` their :func:`railcontact.exact_table.basis_polynomials`. ``out`` (4, 4):
     rows value, d/ds, d/dtheta, d/dtau. ``work``: scratch of at least 320 floats.
     """
+    if use_slab:
+        _slab_point(slab, t2, t3, t4, p2, p3, p4, x2, x3, x4, derivs, 4, out, work)
+        return
     i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4,
                                                         work)
-    if use_slab:
-        _accumulate(slab[i2 - 3:i2 + 1, i3 - 3:i3 + 1, i4 - 3:i4 + 1], b2, d2, b3, d3, b4, d4,
-                    derivs, 4, out)
-        return
     b0 = work[36:40]
     b1 = work[44:48]
     db = work[52:56]
@@ -466,11 +475,8 @@ def creep_contact_force(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulu
         xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
     if not abs(tau) <= buf[3]:
         raise ArithmeticError("creep_contact_force: the array path")
-    i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, s, theta, tau,
-                                                        work)
     out = work[320:336].reshape((4, 4))
-    _accumulate(slab[i2 - 3:i2 + 1, i3 - 3:i3 + 1, i4 - 3:i4 + 1], b2, d2, b3, d3, b4, d4,
-                False, 2, out)
+    _slab_point(slab, t2, t3, t4, p2, p3, p4, s, theta, tau, False, 2, out, work)
     tx, ty = _wheel_forces(out[0, 0], out[0, 1], rho, tau, s, v_x, v_y, theta,
                            friction_coefficient * normal_load)[:2]
     inf = math.inf

@@ -251,12 +251,11 @@ def basis_polynomials(t):
 def _packed(head, knots, polys, data):
     """A kernel buffer (:mod:`railcontact._exact_kernels`: ``HEAD`` / ``TABLE_HEAD``): the
     header, the axes' knots and basis polynomials, ``data``, then res (14) and scratch (336).
-    Returns ``(buffer, res, res as a memoryview, the view of the last data block)`` (indexing
-    the memoryview gives Python floats, cheaper than numpy's scalars in the scalar path)."""
+    Returns ``(buffer, res, the view of the last data block)``."""
     buf = np.concatenate([np.asarray(head, dtype=float)] + list(knots)
                          + [p.ravel() for p in polys] + list(data) + [np.zeros(14 + 336)])
     o = buf.size - 350
-    return buf, buf[o:o + 14], memoryview(buf)[o:o + 14], buf[o - data[-1].size:o]
+    return buf, buf[o:o + 14], buf[o - data[-1].size:o]
 
 
 @lru_cache(maxsize=256)
@@ -457,8 +456,10 @@ class ExactCreepTable:
         kx, kc, nu_nodes = kalker_interpolant()
         head = [len(t) - 4 for t in self._knot_list] + [
             self.tau_max, self._log_g[0], self._log_g[1], kx.size] + list(nu_nodes)
-        tbuf, self._tres, self._tmv, _ = _packed(head, self._knot_list, self._poly_list,
-                                                 [kx, kc.ravel()])
+        tbuf, self._tres, _ = _packed(head, self._knot_list, self._poly_list,
+                                      [kx, kc.ravel()])
+        # (indexing the memoryview gives Python floats, cheaper than numpy's scalars)
+        self._tmv = memoryview(self._tres)
         if self._point is None:
             self._point = _compiled.creep_table_point(tbuf, self._coef)
         self._tbuf = tbuf
@@ -477,8 +478,7 @@ class ExactCreepTable:
         slab = self._slab_of(log_g, nu)
         t2, t3, t4 = self._knot_list[2:]
         head = [slab.shape[0], slab.shape[1], slab.shape[2], self.tau_max, c11, c22, c23, nu]
-        buf, res, _, data = _packed(head, [t2, t3, t4], self._poly_list[2:],
-                                             [slab.ravel()])
+        buf, res, data = _packed(head, [t2, t3, t4], self._poly_list[2:], [slab.ravel()])
         entry = (buf, res, data.reshape(slab.shape))
         if self._kernel is None:
             self._kernel = _compiled.creep_contact(buf)
