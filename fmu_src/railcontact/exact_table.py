@@ -333,11 +333,10 @@ class ExactCreepTable:
         self._kstart = np.cumsum([0] + [len(t) for t in self._knot_list[:-1]]).astype(np.int64)
         self._poly_list = [basis_polynomials(t) for t in self._knot_list]
         self._poly = np.ascontiguousarray(np.concatenate(self._poly_list))
+        # the file's float32 coefficients, variable last, as the process holds them once
+        # (memory-mapped from the user cache: :mod:`railcontact._table_store`); the kernels
+        # evaluate them as they are, accumulating in float64
         self._coef = np.ascontiguousarray(np.moveaxis(table.coefficients, 0, -1))
-        # one copy (330 MB in float64 on the grid of 2026-11-27; from_file reads them in this
-        # layout, so then no copy is made here): the table's (variable first, for
-        # table.spline, made again on first use) becomes a view of this one
-        table.share_coefficients(np.moveaxis(self._coef, -1, 0))
         self._empty_slab = np.zeros((1, 1, 1, 4))
         self._g_range = tuple(float(np.exp(table.axes[0]["nodes"][k])) for k in (0, -1))
         self._log_g = (float(table.axes[0]["nodes"][0]), float(table.axes[0]["nodes"][-1]))
@@ -360,7 +359,7 @@ class ExactCreepTable:
         from .tables import Table, default_table_path  # noqa: PLC0415
 
         path = default_table_path(TABLE_NAME, directory) if path is None else path
-        return cls(Table.from_file(path, expected_name=TABLE_NAME, variables_last=True), solver)
+        return cls(Table.from_file(path, expected_name=TABLE_NAME), solver)
 
     # -- one contact's (ln g, nu) summed out once -------------------------------------------
     def _slab_of(self, log_g, nu):

@@ -47,7 +47,6 @@ References
 from __future__ import annotations
 
 import os
-import pickle
 import sys
 from pathlib import Path
 
@@ -423,60 +422,6 @@ def default_table_path(name, directory=None):
         f"`python -m tablegen build --only {stem}` or set {TABLES_DIR_ENV}")
 
 
-#: Table files of at least this size [bytes] are kept decompressed in the user cache
-#: (:func:`_read_netcdf`): ``creep_exact.nc`` (17 MB, zlib) takes 0.27 s to decompress, netCDF4
-#: 0.1 s to import and the integrity check of :meth:`Table.from_file` 0.13 s; its cached copy
-#: about 0.04 s to hash and load.
-DECOMPRESSED_CACHE_MIN_BYTES = 1_000_000
-
-
-def _read_netcdf(path):
-    """Read the whole file into plain numpy arrays/dicts (netCDF4 at load time only):
-    ``(attrs, variables, store)``.
-
-    A file of at least :data:`DECOMPRESSED_CACHE_MIN_BYTES` is also kept, decompressed, in the
-    user cache (``<user cache>/tables/<BLAKE2b of the file's bytes>.pickle``, see
-    :func:`railcontact._files.user_cache_dir`; a pickle, trusted like numba's cache beside
-    it), keyed by its content: a copy at another place (a new FMU extraction) finds it, a
-    changed file does not. ``store`` is None when the arrays came from the cache (their file
-    passed :meth:`Table.from_file`'s integrity check when the entry was written), else a
-    function that writes the entry, for the caller to call once the content is checked. A
-    cache that cannot be read or written is skipped (the file is then read as usual).
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise TableFileError(f"table file {str(path)!r} does not exist")
-    cached = None
-    if path.stat().st_size >= DECOMPRESSED_CACHE_MIN_BYTES:
-        import hashlib  # noqa: PLC0415
-
-        from ._files import user_cache_dir  # noqa: PLC0415
-
-        cached = user_cache_dir() / "tables" / (
-            hashlib.blake2b(path.read_bytes(), digest_size=16).hexdigest() + ".pickle")
-        try:
-            with open(cached, "rb") as fh:
-                attrs, variables = pickle.load(fh)
-            return attrs, variables, None
-        except Exception:  # noqa: BLE001  (missing, truncated, another format: read the file)
-            pass
-    attrs, variables = _read_netcdf_file(path)
-
-    def store():
-        if cached is None:
-            return
-        try:
-            cached.parent.mkdir(parents=True, exist_ok=True)
-            part = cached.with_suffix(f".{os.getpid()}.part")
-            with open(part, "wb") as fh:
-                pickle.dump((attrs, variables), fh, protocol=pickle.HIGHEST_PROTOCOL)
-            os.replace(part, cached)
-        except OSError:
-            pass
-
-    return attrs, variables, store
-
-
 def _read_netcdf_file(path):
     import netCDF4  # noqa: PLC0415  (load-time dependency only)
 
@@ -578,6 +523,141 @@ def _attr_list(value):
     return [float(v) for v in arr]
 
 
+def _read_table_content(path):
+    """Read and check a table file (:meth:`Table.from_file` through
+    :func:`railcontact._table_store.load`): a dict of plain objects and arrays, the
+    coefficients in the file's precision with the variable axis last."""
+    path = Path(path)
+    where = f"table file {str(path)!r}"
+    attrs, ncvars = _read_netcdf_file(path)
+    version = attrs.get("railcontact_table_format")
+    if version is None:
+        raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
+                             "not written by tablegen")
+    if _as_int(version) not in TABLE_FORMAT_VERSIONS_READ:
+        raise TableFileError(
+            f"{where} has table format version {_fmt_attr(version)}, this reader understands "
+            f"versions {list(TABLE_FORMAT_VERSIONS_READ)}; rebuild it with `python -m "
+            "tablegen build`")
+    for key in ("table_axes", "table_variables", "spline_degree"):
+        if key not in attrs:
+            raise TableFileError(f"{where} lacks the global attribute {key!r}")
+    if _as_int(attrs["spline_degree"]) != SPLINE_DEGREE:
+        raise TableFileError(f"{where}: attribute spline_degree must be {SPLINE_DEGREE}; got "
+                             f"{attrs['spline_degree']!r}")
+    axis_names = str(attrs["table_axes"]).split()
+    var_names = str(attrs["table_variables"]).split()
+    axes = []
+    for name in axis_names:
+        for needed in (name, f"{name}_knots"):
+            if needed not in ncvars:
+                raise TableFileError(f"{where} lacks the variable {needed!r}")
+        _, nodes, a = ncvars[name]
+        _, knots, _ = ncvars[f"{name}_knots"]
+        for vname, arr in ((name, nodes), (f"{name}_knots", knots)):
+            _check_float64(where, vname, arr)
+        if len(knots) != len(nodes) + 4 or not np.all(np.diff(nodes) > 0):
+            raise TableFileError(f"{where}: axis {name!r} has inconsistent nodes/knots")
+        try:
+            double_knots = _attr_list(a.get("double_knots", []))
+        except ValueError:
+            raise TableFileError(
+                f"{where}: attribute {name}:double_knots must be a list of numbers; got "
+                f"{a.get('double_knots')!r}") from None
+        out_of_range = str(a.get("out_of_range", "error"))
+        if out_of_range not in OUT_OF_RANGE_CHOICES:
+            raise TableFileError(
+                f"{where}: attribute {name}:out_of_range must be one of "
+                f"{list(OUT_OF_RANGE_CHOICES)}; got {out_of_range!r}")
+        axes.append(dict(name=name, nodes=np.asarray(nodes, float),
+                         knots=np.asarray(knots, float), units=str(a.get("units", "1")),
+                         long_name=str(a.get("long_name", name)),
+                         double_knots=double_knots, out_of_range=out_of_range))
+    values, vattrs, tolerance = {}, {}, []
+    # one array, variable axis last (the layout of the exact table's kernels), in the file's
+    # precision: float32 coefficients (creep_exact's, 165 MB) are evaluated as they are,
+    # accumulating in float64; widening them would add memory and no information
+    shape = tuple(len(a["nodes"]) for a in axes)
+    single_coefficients = all(f"{v}_bspline_coefficients" in ncvars and np.asarray(
+        ncvars[f"{v}_bspline_coefficients"][1]).dtype == np.float32 for v in var_names)
+    coefs = np.empty(shape + (len(var_names),),
+                     dtype=np.float32 if single_coefficients else np.float64)
+    block = None
+    spline_only = _as_int(version) == TABLE_FORMAT_SPLINE_ONLY
+    for k_var, name in enumerate(var_names):
+        cname = f"{name}_bspline_coefficients"
+        for needed in (name, cname):
+            if needed not in ncvars:
+                raise TableFileError(f"{where} lacks the variable {needed!r}")
+        vdims, val, a = ncvars[name]
+        _, coef, ca = ncvars[cname]
+        if spline_only:   # format 3: the coefficients alone (checksummed by HDF5)
+            if vdims != () or coef.shape != shape:
+                raise TableFileError(
+                    f"{where}: variable {name!r} must be a scalar (format 3) and its "
+                    f"coefficients of shape {shape}; got dimensions {list(vdims)} and "
+                    f"{coef.shape} (truncated?)")
+            if not np.all(np.isfinite(coef)):
+                raise TableFileError(f"{where}: variable {cname!r} holds values that are "
+                                     "not finite; the file is corrupt")
+            single = True        # (no node values: float32 coefficients may stand alone)
+        else:
+            var_block = _node_block(where, name, vdims, axes, ncvars)
+            block = var_block if block is None else block
+            want = tuple(len(range(*sl.indices(n))) for sl, n in zip(var_block, shape))
+            if var_block != block or val.shape != want or coef.shape != shape:
+                raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
+                                     f"expected {want} (truncated?)")
+            single = str(a.get("node_value_precision", "")) == "float32"
+            digits = _declared_digits(where, name, a, ca) if single else None
+            if single and val.dtype == np.float32:
+                # declared float32 node values (viewers only); declared quantised to
+                # ``digits`` significant digits (node values and coefficients):
+                # 10^(1 - digits)
+                tolerance.append(1e-6 if digits is None else 10.0 ** (1 - digits))
+            else:
+                _check_float64(where, name, val)
+                tolerance.append(1e-9)
+            values[name] = np.asarray(val, float)
+        if not (str(ca.get("coefficient_precision", "")) == "float32"
+                and coef.dtype == np.float32 and single):
+            _check_float64(where, cname, coef)     # (declared float32 coefficients: a
+            # large table halved again; evaluated in float64, checked to 1e-6 below)
+        coefs[..., k_var] = coef
+        vattrs[name] = a
+    content = dict(attrs=attrs, axes=axes, variables=var_names, variable_attrs=vattrs,
+                   values=values, coefficients=coefs,
+                   node_block=tuple(block) if block is not None else None)
+    if spline_only:      # checked above (shapes, finite) and by HDF5 (checksums)
+        return content
+    # integrity: the stored spline reproduces the stored node values (every node, or for
+    # large tables the corners and a fixed sample of 20,000: a load stays fast)
+    vshape = next(iter(values.values())).shape
+    n_nodes = int(np.prod(vshape))
+    flat = np.arange(n_nodes) if n_nodes <= _INTEGRITY_NODES else np.unique(np.r_[
+        np.ravel_multi_index(tuple(np.array(c) * (vshape[d] - 1) for d, c in enumerate(
+            zip(*np.ndindex(*(2,) * len(vshape))))), vshape),
+        np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
+    idx = np.unravel_index(flat, vshape)
+    pts = np.stack([a["nodes"][sl][i] for a, sl, i in zip(axes, block, idx)], axis=1)
+    if len(axes) == 1:
+        # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
+        # evaluated per step as a piecewise polynomial) is read without numba
+        got = NdBSpline(tuple(a["knots"] for a in axes), np.asarray(coefs, float),
+                        SPLINE_DEGREE)(pts)
+    else:   # the compiled evaluator the table is read with (faster here than NdBSpline)
+        got = TensorSpline(axes, np.moveaxis(coefs, -1, 0), var_names,
+                           source=str(path)).evaluate(pts, check=False)
+    want = np.stack([values[v][idx] for v in var_names], axis=1)
+    scale = np.maximum(1.0, np.abs(want).max(axis=0))
+    bad = np.abs(got - want).max(axis=0) / scale
+    if np.any(~np.isfinite(bad)) or np.any(bad > np.array(tolerance)):
+        raise TableFileError(f"{where}: the stored spline coefficients do not reproduce "
+                             f"the node values (max relative misfit {bad.max():.3g}); the "
+                             "file is corrupt")
+    return content
+
+
 class Table:
     """A loaded table: axes, variables at the nodes, accuracy attributes and the C2 spline.
 
@@ -618,8 +698,10 @@ class Table:
         self.values = values
         self.node_block = (tuple(node_block) if node_block is not None
                            else (slice(None),) * len(axes))
-        #: B-spline coefficients, shape (n_var, n_1, ..., n_D) (float64). [variable units]
-        self.coefficients = np.asarray(coefficients, dtype=float)
+        #: B-spline coefficients, shape (n_var, n_1, ..., n_D), in the file's precision
+        #: (float32 or float64; loaded from a file: a read-only view of the process's one
+        #: copy, see :meth:`from_file`). [variable units]
+        self.coefficients = np.asarray(coefficients)
         self._spline = None
 
     @property
@@ -646,16 +728,20 @@ class Table:
     def from_file(cls, path, expected_name=None, variables_last=False):
         """Load and validate a table file.
 
+        The file's content is loaded once per process (every copy of this package, e.g. each
+        FMU extraction, shares it) and a large file is decompressed once per machine and
+        memory-mapped read-only (:mod:`railcontact._table_store`): the coefficients keep the
+        file's precision (float32 for ``creep_exact``) and are held variable axis last;
+        :attr:`coefficients` is a read-only view of them, variable first.
+
         Parameters
         ----------
         path : str or path-like
         expected_name : str, optional
             If given, the file's ``table_name`` attribute must equal it.
         variables_last : bool, optional
-            Hold the coefficients with the variable axis last in memory; :attr:`coefficients`
-            (variable first) is then a view of that array. A reader whose kernel takes them
-            so (:class:`railcontact.exact_table.ExactCreepTable`) then needs no second copy
-            (the exact table's are 330 MB in float64).
+            Kept for compatibility: the coefficients are always held variable axis last (the
+            layout of :class:`railcontact.exact_table.ExactCreepTable`'s kernels), once.
 
         Raises
         ------
@@ -663,138 +749,20 @@ class Table:
             File missing, unreadable/truncated, wrong format version, wrong table, missing
             attributes or variables, or node values not reproduced by the stored spline.
         """
+        from . import _table_store  # noqa: PLC0415
+
         path = Path(path)
-        where = f"table file {str(path)!r}"
-        attrs, ncvars, store = _read_netcdf(path)
-        version = attrs.get("railcontact_table_format")
-        if version is None:
-            raise TableFileError(f"{where} has no 'railcontact_table_format' attribute; it was "
-                                 "not written by tablegen")
-        if _as_int(version) not in TABLE_FORMAT_VERSIONS_READ:
-            raise TableFileError(
-                f"{where} has table format version {_fmt_attr(version)}, this reader understands "
-                f"versions {list(TABLE_FORMAT_VERSIONS_READ)}; rebuild it with `python -m "
-                "tablegen build`")
+        if not path.is_file():
+            raise TableFileError(f"table file {str(path)!r} does not exist")
+        content = _table_store.load(path, _read_table_content)
+        attrs = content["attrs"]
         if expected_name is not None and attrs.get("table_name") != expected_name:
-            raise TableFileError(f"{where} holds table {attrs.get('table_name')!r}, expected "
-                                 f"{expected_name!r}")
-        for key in ("table_axes", "table_variables", "spline_degree"):
-            if key not in attrs:
-                raise TableFileError(f"{where} lacks the global attribute {key!r}")
-        if _as_int(attrs["spline_degree"]) != SPLINE_DEGREE:
-            raise TableFileError(f"{where}: attribute spline_degree must be {SPLINE_DEGREE}; got "
-                                 f"{attrs['spline_degree']!r}")
-        axis_names = str(attrs["table_axes"]).split()
-        var_names = str(attrs["table_variables"]).split()
-        axes = []
-        for name in axis_names:
-            for needed in (name, f"{name}_knots"):
-                if needed not in ncvars:
-                    raise TableFileError(f"{where} lacks the variable {needed!r}")
-            _, nodes, a = ncvars[name]
-            _, knots, _ = ncvars[f"{name}_knots"]
-            for vname, arr in ((name, nodes), (f"{name}_knots", knots)):
-                _check_float64(where, vname, arr)
-            if len(knots) != len(nodes) + 4 or not np.all(np.diff(nodes) > 0):
-                raise TableFileError(f"{where}: axis {name!r} has inconsistent nodes/knots")
-            try:
-                double_knots = _attr_list(a.get("double_knots", []))
-            except ValueError:
-                raise TableFileError(
-                    f"{where}: attribute {name}:double_knots must be a list of numbers; got "
-                    f"{a.get('double_knots')!r}") from None
-            out_of_range = str(a.get("out_of_range", "error"))
-            if out_of_range not in OUT_OF_RANGE_CHOICES:
-                raise TableFileError(
-                    f"{where}: attribute {name}:out_of_range must be one of "
-                    f"{list(OUT_OF_RANGE_CHOICES)}; got {out_of_range!r}")
-            axes.append(dict(name=name, nodes=np.asarray(nodes, float),
-                             knots=np.asarray(knots, float), units=str(a.get("units", "1")),
-                             long_name=str(a.get("long_name", name)),
-                             double_knots=double_knots, out_of_range=out_of_range))
-        values, vattrs, tolerance = {}, {}, []
-        # one float64 array, filled variable by variable (a float32 file's coefficients are
-        # widened in that one pass: creep_exact's are 330 MB in float64, and a list of
-        # converted arrays stacked afterwards cost two more passes at every load)
-        shape = tuple(len(a["nodes"]) for a in axes)
-        coefs = (np.moveaxis(np.empty(shape + (len(var_names),)), -1, 0) if variables_last
-                 else np.empty((len(var_names),) + shape))
-        block = None
-        spline_only = _as_int(version) == TABLE_FORMAT_SPLINE_ONLY
-        for k_var, name in enumerate(var_names):
-            cname = f"{name}_bspline_coefficients"
-            for needed in (name, cname):
-                if needed not in ncvars:
-                    raise TableFileError(f"{where} lacks the variable {needed!r}")
-            vdims, val, a = ncvars[name]
-            _, coef, ca = ncvars[cname]
-            if spline_only:   # format 3: the coefficients alone (checksummed by HDF5)
-                if vdims != () or coef.shape != shape:
-                    raise TableFileError(
-                        f"{where}: variable {name!r} must be a scalar (format 3) and its "
-                        f"coefficients of shape {shape}; got dimensions {list(vdims)} and "
-                        f"{coef.shape} (truncated?)")
-                if not np.all(np.isfinite(coef)):
-                    raise TableFileError(f"{where}: variable {cname!r} holds values that are "
-                                         "not finite; the file is corrupt")
-                single = True        # (no node values: float32 coefficients may stand alone)
-            else:
-                var_block = _node_block(where, name, vdims, axes, ncvars)
-                block = var_block if block is None else block
-                want = tuple(len(range(*sl.indices(n))) for sl, n in zip(var_block, shape))
-                if var_block != block or val.shape != want or coef.shape != shape:
-                    raise TableFileError(f"{where}: variable {name!r} has shape {val.shape}, "
-                                         f"expected {want} (truncated?)")
-                single = str(a.get("node_value_precision", "")) == "float32"
-                digits = _declared_digits(where, name, a, ca) if single else None
-                if single and val.dtype == np.float32:
-                    # declared float32 node values (viewers only); declared quantised to
-                    # ``digits`` significant digits (node values and coefficients):
-                    # 10^(1 - digits)
-                    tolerance.append(1e-6 if digits is None else 10.0 ** (1 - digits))
-                else:
-                    _check_float64(where, name, val)
-                    tolerance.append(1e-9)
-                values[name] = np.asarray(val, float)
-            if not (str(ca.get("coefficient_precision", "")) == "float32"
-                    and coef.dtype == np.float32 and single):
-                _check_float64(where, cname, coef)     # (declared float32 coefficients: a
-                # large table halved again; evaluated in float64, checked to 1e-6 below)
-            coefs[k_var] = coef
-            vattrs[name] = a
-        table = cls(path, attrs, axes, var_names, vattrs, values, coefs,
-                    node_block=block)
-        if store is None:    # from the user cache: this content passed the check below
-            return table
-        if spline_only:      # checked above (shapes, finite) and by HDF5 (checksums)
-            store()
-            return table
-        # integrity: the stored spline reproduces the stored node values (every node, or for
-        # large tables the corners and a fixed sample of 20,000: a load stays fast)
-        vshape = next(iter(values.values())).shape
-        n_nodes = int(np.prod(vshape))
-        flat = np.arange(n_nodes) if n_nodes <= _INTEGRITY_NODES else np.unique(np.r_[
-            np.ravel_multi_index(tuple(np.array(c) * (vshape[d] - 1) for d, c in enumerate(
-                zip(*np.ndindex(*(2,) * len(vshape))))), vshape),
-            np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
-        idx = np.unravel_index(flat, vshape)
-        pts = np.stack([a["nodes"][sl][i] for a, sl, i in zip(axes, block, idx)], axis=1)
-        if len(axes) == 1:
-            # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
-            # evaluated per step as a piecewise polynomial) is read without numba
-            got = NdBSpline(tuple(a["knots"] for a in axes),
-                            np.moveaxis(table.coefficients, 0, -1), SPLINE_DEGREE)(pts)
-        else:   # the compiled evaluator the table is read with (faster here than NdBSpline)
-            got = table.spline.evaluate(pts, check=False)
-        want = np.stack([values[v][idx] for v in var_names], axis=1)
-        scale = np.maximum(1.0, np.abs(want).max(axis=0))
-        bad = np.abs(got - want).max(axis=0) / scale
-        if np.any(~np.isfinite(bad)) or np.any(bad > np.array(tolerance)):
-            raise TableFileError(f"{where}: the stored spline coefficients do not reproduce "
-                                 f"the node values (max relative misfit {bad.max():.3g}); the "
-                                 "file is corrupt")
-        store()
-        return table
+            raise TableFileError(f"table file {str(path)!r} holds table "
+                                 f"{attrs.get('table_name')!r}, expected {expected_name!r}")
+        return cls(path, attrs, content["axes"], content["variables"],
+                   content["variable_attrs"], content["values"],
+                   np.moveaxis(content["coefficients"], -1, 0),
+                   node_block=content["node_block"])
 
     def __call__(self, variable, points, derivative=None):
         """Evaluate one variable (see :meth:`TensorSpline.evaluate`)."""
