@@ -218,33 +218,48 @@ VARIABLES = ("force_ratio_parallel", "force_ratio_perpendicular", "spin_moment_r
              "stick_area_fraction")
 
 
+def _cubic_basis_values(t, i, x):
+    """The four cubic B-splines that do not vanish on span ``i`` of the knot vector ``t``,
+    at ``x`` (arrays of the same shape): shape ``x.shape + (4,)``, ``N_{i-3+r}(x)`` in column
+    ``r``. Cox-de Boor's triangular recurrence (Piegl and Tiller, *The NURBS Book*,
+    Algorithm A2.2), in numpy: the exact table loads without a compiled kernel."""
+    n = np.zeros(np.shape(x) + (4,))
+    n[..., 0] = 1.0
+    left = np.zeros_like(n)
+    right = np.zeros_like(n)
+    for j in range(1, 4):
+        left[..., j] = x - t[i + 1 - j]
+        right[..., j] = t[i + j] - x
+        saved = np.zeros(np.shape(x))
+        for r in range(j):
+            temp = n[..., r] / (right[..., r + 1] + left[..., j - r])
+            n[..., r] = saved + right[..., r + 1] * temp
+            saved = left[..., j - r] * temp
+        n[..., j] = saved
+    return n
+
+
 def basis_polynomials(t):
     """Power-form coefficients of the cubic B-splines on every span of the knot vector ``t``.
 
     Returns ``(n_coef, 4, 4)``: for span ``i`` (``t[i] <= x < t[i+1]``, 3 <= i < n_coef) and
     ``r`` = 0..3, ``N_{i-3+r}(x) = sum_k P[i, r, k] (x - t[i])^k`` (rows 0-2 and empty spans
-    are zero). Computed from Cox-de Boor (the compiled ``cubic_basis``) at four Chebyshev points of the
-    span in the scaled variable ``(x - t[i]) / h`` (well conditioned), then rescaled; the
-    evaluator then needs no division (C. de Boor, *A Practical Guide to Splines*, Ch. X:
-    the pp-form of a B-spline).
+    are zero). Computed from Cox-de Boor (:func:`_cubic_basis_values`) at four Chebyshev
+    points of the span in the scaled variable ``(x - t[i]) / h`` (well conditioned), then
+    rescaled; the evaluator then needs no division (C. de Boor, *A Practical Guide to
+    Splines*, Ch. X: the pp-form of a B-spline).
     """
     t = np.ascontiguousarray(t, dtype=float)
     n = t.size - 4
     poly = np.zeros((n, 4, 4))
-    cubic_basis = _compiled.cubic_basis()
-    b, db, w = np.empty(4), np.empty(4), np.empty(12)
+    spans = np.arange(3, n)
+    h = t[spans + 1] - t[spans]
+    spans, h = spans[h > 0.0], h[h > 0.0]
     w_nodes = 0.5 - 0.5 * np.cos(np.pi * (np.arange(4) + 0.5) / 4.0)
-    vander = np.vander(w_nodes, 4, increasing=True)
-    for i in range(3, n):
-        h = t[i + 1] - t[i]
-        if not h > 0.0:
-            continue
-        vals = np.empty((4, 4))
-        for k, wk in enumerate(w_nodes):
-            cubic_basis(t, i, t[i] + h * wk, b, db, w)
-            vals[k] = b
-        q = np.linalg.solve(vander, vals)          # (power k, r) in the scaled variable
-        poly[i] = (q / h ** np.arange(4)[:, None]).T
+    x = t[spans, None] + h[:, None] * w_nodes                     # (span, point)
+    vals = _cubic_basis_values(t, spans[:, None], x)              # (span, point, r)
+    q = np.linalg.solve(np.vander(w_nodes, 4, increasing=True), vals)   # (span, k, r)
+    poly[spans] = np.swapaxes(q / (h[:, None] ** np.arange(4))[:, :, None], 1, 2)
     return poly
 
 
