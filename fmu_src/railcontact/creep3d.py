@@ -75,6 +75,7 @@ References
 
 from __future__ import annotations
 
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -895,8 +896,9 @@ def load_exact_table(path=None, directory=None):
     """The exact-theory table with the solver attached beyond its axes.
 
     :class:`railcontact.exact_table.ExactCreepTable` of ``creep_exact.nc`` (default: the
-    shipped file, :func:`railcontact.tables.default_table_path`), loaded once per path and
-    process. Beyond its a0/b0 range or spin axis it answers with
+    shipped file, :func:`railcontact.tables.default_table_path`), loaded once per content
+    and process (each FMU extraction's copy of the file gets the same table), its
+    coefficients mapped from the user cache (:mod:`railcontact._table_store`). Beyond its a0/b0 range or spin axis it answers with
     ``creep_solution_3d(..., method="exact", tolerance=1e-4)`` (30x20 -> 60x20 on two shifted
     grids; 30x36 -> 60x36 where a0/b0 < 0.87), the setting the table was built with, so
     every finite input gets the exact theory.
@@ -912,14 +914,25 @@ def load_exact_table(path=None, directory=None):
     -------
     railcontact.exact_table.ExactCreepTable
     """
-    from .exact_table import ExactCreepTable  # noqa: PLC0415  (numba: only when used)
+    from ._table_store import content_key  # noqa: PLC0415
+    from .exact_table import TABLE_NAME, ExactCreepTable  # noqa: PLC0415
+    from .tables import default_table_path  # noqa: PLC0415
 
-    key = (None if path is None else str(path), None if directory is None else str(directory))
-    # _DEFAULT_KEY: the shipped table, looked up directly by creep_force_3d's fast path
+    if path is None and directory is None:
+        # the shipped table, looked up directly by creep_force_3d's fast path
+        table = _EXACT_TABLES.get(_DEFAULT_KEY)
+        if table is not None:
+            return table
+    file = default_table_path(TABLE_NAME, directory) if path is None else Path(path)
+    # keyed by content: every FMU extraction (another path, the same file) shares one table
+    key = content_key(file) if file.is_file() else None
     table = _EXACT_TABLES.get(key)
     if table is None:
-        table = _EXACT_TABLES[key] = ExactCreepTable.from_file(path, directory,
-                                                               solver=_exact_table_solver)
+        table = ExactCreepTable.from_file(file, solver=_exact_table_solver)
+        if key is not None:
+            _EXACT_TABLES[key] = table
+    if path is None and directory is None:
+        _EXACT_TABLES[_DEFAULT_KEY] = table
     return table
 
 
