@@ -891,3 +891,66 @@ def test_jacobian_at_the_origin_is_cartesian():
     for outside in [(1e-7, 0.0, 0.0), (0.0, 1e-7, 0.0), (0.0, 0.0, 1e-7),
                     (-7e-8, -7e-8, 0.0)]:          # |v| ~ 1e-5, the polar formula
         np.testing.assert_allclose(jac(*outside) / scale, origin / scale, rtol=0, atol=2e-3)
+
+
+@needs_table
+def test_a_material_summed_over_nu_gives_the_files_values(monkeypatch):
+    """Contacts whose ellipse and load change at every call, one material: once the table is
+    summed over Poisson's ratio at its nu (ExactCreepTable.prepare, 4 x 64 products per
+    variable instead of 16 x 64), the scalar calls, the forces-only call and the batch of
+    varying contacts give the file's values to round-off (forces relative to mu N, the
+    Jacobian to its largest entry), on 120 random contacts at nu = 0.28 over a0/b0 0.1-10;
+    the forces-only kernel gives the full kernel's forces bit for bit."""
+    import railcontact.exact_table as et
+
+    monkeypatch.setattr(et, "NU_SLAB_AFTER_POINTS", 10**9)
+    contacts = [c[:7] + (0.28, c[8]) for c in _random_contacts(np.random.default_rng(31), 140)]
+    table = ExactCreepTable.from_file(TABLE)
+    contacts = [c for c in contacts if table.step_values(*c) is not None]  # (|tau| <= 20)
+    file_values = [table.step_values(*c) for c in contacts]
+    file_forces = [tuple(table.creep_force_3d(*c)) for c in contacts]
+    assert not table._nu_slabs
+    table.prepare(0.28)
+    assert table._nu_slabs[0.28][0].shape[1] == 1
+    answered = 0
+    for c, a, fa in zip(contacts, file_values, file_forces):
+        b = table.step_values(*c)
+        assert (a is None) == (b is None)
+        if a is None:
+            continue
+        answered += 1
+        mu_n = c[3] * c[8]
+        scale = max(abs(v) for v in b[5:])
+        assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-13 * mu_n
+        assert abs(a[2] - b[2]) < 1e-13 * mu_n * math.sqrt(c[4] * c[5])
+        assert abs(a[3] - b[3]) < 1e-13
+        assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-11 * scale
+        fb = tuple(table.creep_force_3d(*c))
+        assert max(abs(x - y) for x, y in zip(fa, fb)) < 1e-13 * mu_n
+        assert fb == tuple(b[:2])          # forces-only kernel = full kernel, bit for bit
+    assert answered > 100
+    # the batch of varying contacts (one kernel call, every point its own contact)
+    arrays = [np.array(v) for v in zip(*contacts)]
+    vec = table.creep_solution_3d(*arrays)
+    for k, (c, b) in enumerate(zip(contacts, file_values)):
+        if b is not None:
+            assert (vec.tx[k], vec.ty[k]) == pytest.approx(b[:2], rel=1e-12,
+                                                           abs=1e-13 * c[3] * c[8])
+            assert vec.spin_moment[k] == pytest.approx(b[2], rel=1e-12, abs=1e-9)
+
+
+@needs_table
+def test_the_sum_over_nu_is_made_after_enough_points_and_checks_its_input(monkeypatch):
+    import railcontact.exact_table as et
+
+    monkeypatch.setattr(et, "NU_SLAB_AFTER_POINTS", 5)
+    table = ExactCreepTable.from_file(TABLE)
+    args = list(_args(1e-3, 0.0, 0.2))
+    for k in range(4):
+        args[4] = 6e-3 * (1.0 + 0.1 * k)           # a new ellipse every call
+        table.creep_force_3d(*args)
+    assert not table._nu_slabs
+    table.creep_force_3d(*args)
+    assert list(table._nu_slabs) == [CONTACT["poisson_ratio"]]
+    with pytest.raises(ValueError, match=r"poisson_ratio must be in \[0, 0\.5\].*got 0\.7"):
+        table.prepare(0.7)

@@ -21,7 +21,8 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 _TWO_OVER_PI = 2.0 / math.pi
 
 __all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_force",
-           "creep_table_point",
+           "creep_table_point", "creep_table_force", "creep_table_batch",
+           "creep_table_batch_parallel",
            "creep_contact_batch",
            "creep_contact_batch_parallel", "creep_batch", "creep_batch_parallel",
            "PARALLEL_CHUNK", "HEAD", "TABLE_HEAD"]
@@ -140,18 +141,21 @@ def _slab_point(slab, t2, t3, t4, p2, p3, p4, x2, x3, x4, derivs, n_var, out, wo
 
 @njit(cache=True, inline="always")
 def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x0, x1, x2,
-                  x3, x4, derivs, out, work):
+                  x3, x4, derivs, out, work, n_var=4):
     """Values and (``derivs``) first partials in (s, theta, tau) of the four variables at one
     point.
 
-    ``coef`` (n0, n1, n2, n3, n4, 4): the file's coefficients, variable last; ``slab``
+    ``coef`` (n0, n1, n2, n3, n4, 4): the file's coefficients, variable last (or, with
+    n1 = 1, already summed over the nu axis at the contact's nu: 4 x 64 instead of 16 x 64
+    products per variable; ``t1``, ``x1`` are then not read); ``slab``
     (n2, n3, n4, 4): the coefficients already summed over (ln g, nu) for one contact (used
     when ``use_slab``; then ``coef``, ``t0``, ``t1``, ``x0``, ``x1`` are not read); ``t0`` ..
     ``t4`` the knot vectors, ``p0`` .. ``p4`` their :func:`railcontact.exact_table.basis_polynomials`. ``out`` (4, 4):
-    rows value, d/ds, d/dtheta, d/dtau. ``work``: scratch of at least 320 floats.
+    rows value, d/ds, d/dtheta, d/dtau. ``work``: scratch of at least 320 floats. Only the
+    first ``n_var`` variables (columns) are summed.
     """
     if use_slab:
-        _slab_point(slab, t2, t3, t4, p2, p3, p4, x2, x3, x4, derivs, 4, out, work)
+        _slab_point(slab, t2, t3, t4, p2, p3, p4, x2, x3, x4, derivs, n_var, out, work)
         return
     i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4,
                                                         work)
@@ -159,9 +163,15 @@ def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x
     b1 = work[44:48]
     db = work[52:56]
     i0 = find_span(t0, t0.shape[0] - 4, x0)
-    i1 = find_span(t1, t1.shape[0] - 4, x1)
     _poly_basis(t0, p0, i0, x0, b0, db)
-    _poly_basis(t1, p1, i1, x1, b1, db)
+    n_q = 4
+    if coef.shape[1] == 1:  # the coefficients already summed over nu at the contact's nu
+        n_q = 1             # (ExactCreepTable._nu_slab): the one "span" weighs 1
+        i1 = 3
+        b1[0] = 1.0
+    else:
+        i1 = find_span(t1, t1.shape[0] - 4, x1)
+        _poly_basis(t1, p1, i1, x1, b1, db)
     block = work[64:320].reshape((4, 4, 4, 4))
     for a in range(4):
         for c in range(4):
@@ -169,15 +179,15 @@ def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x
                 for v in range(4):
                     block[a, c, e, v] = 0.0
     for p in range(4):
-        for q in range(4):
+        for q in range(n_q):
             w = b0[p] * b1[q]
             for a in range(4):
                 for c in range(4):
                     for e in range(4):
-                        for v in range(4):
+                        for v in range(n_var):
                             block[a, c, e, v] += w * coef[i0 - 3 + p, i1 - 3 + q, i2 - 3 + a,
                                                           i3 - 3 + c, i4 - 3 + e, v]
-    _accumulate(block, b2, d2, b3, d3, b4, d4, derivs, 4, out)
+    _accumulate(block, b2, d2, b3, d3, b4, d4, derivs, n_var, out)
 
 
 @njit(cache=True, inline="always")
@@ -561,12 +571,23 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     """The scalar path of any contact, without a contact buffer: the five-dimensional spline
     ``coef`` (n0, .., n4, 4) at one point, with Kalker's coefficients of a0/b0 and nu from
     their interpolant (:func:`_kalker_table_coefficients`); everything else the table needs
-    is in ``tbuf`` (:data:`TABLE_HEAD`). About as fast as :func:`creep_contact` on a contact's
-    buffer, whose slab costs milliseconds to make: the reader takes this path for a contact
-    until it has asked for enough points to repay its buffer. Writes ``res`` inside ``tbuf``
-    (as :func:`creep_contact`); False where the caller takes the array path (also a0/b0
-    beyond the table's axis, nu outside [0, 0.5])."""
+    is in ``tbuf`` (:data:`TABLE_HEAD`). ``coef`` may also be the coefficients summed over nu
+    at ``poisson_ratio`` (n1 = 1: :meth:`railcontact.exact_table.ExactCreepTable.prepare`),
+    a quarter of the products. Writes ``res`` inside ``tbuf`` (as :func:`creep_contact`);
+    False where the caller takes the array path (also a0/b0 beyond the table's axis, nu
+    outside [0, 0.5])."""
     t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, res, work = _table_views(tbuf)
+    return _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, tbuf[5],
+                        tbuf[6], tbuf[7], coef, xi_x, xi_y, phi, normal_load, a0, b0,
+                        youngs_modulus, poisson_ratio, friction_coefficient, want_jacobian,
+                        res, work)
+
+
+@njit(cache=True, inline="always")
+def _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, tau_max, log_g_min,
+                 log_g_max, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                 poisson_ratio, friction_coefficient, want_jacobian, res, work):
+    """:func:`creep_table_point` on unpacked views, results in ``res`` (14,)."""
     nu = poisson_ratio
     if not 0.0 <= nu <= 0.5:
         return False
@@ -575,7 +596,7 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     if w_sat == 0.0:        # (also a0, b0 not positive finite numbers)
         return False
     log_g = math.log(a0 / b0)
-    if not (tbuf[6] <= log_g <= tbuf[7]):
+    if not (log_g_min <= log_g <= log_g_max):
         return False
     c = work[:3]
     _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, c)
@@ -583,9 +604,79 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     c22 = c[1]
     c23 = c[2]
     done = _creep_point(coef, _NO_SLAB, False, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
-                        tbuf[5], xi_x, xi_y, phi, friction_coefficient * normal_load, a0, b0,
+                        tau_max, xi_x, xi_y, phi, friction_coefficient * normal_load, a0, b0,
                         w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work)
     return done and _finite_forces(res)
+
+
+@njit(cache=True)
+def creep_table_force(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                      poisson_ratio, friction_coefficient):
+    """The creep force ``(tx, ty)`` [N] of :func:`creep_table_point` alone, returned (the
+    public scalar call's path for any contact, as :func:`creep_contact_force` is on a
+    contact's buffer: only the two forces are summed). Raises ArithmeticError where
+    :func:`creep_table_point` returns False (the caller takes the array path)."""
+    t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, _, work = _table_views(tbuf)
+    nu = poisson_ratio
+    if not 0.0 <= nu <= 0.5:
+        raise ArithmeticError("creep_table_force: the array path")
+    w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                 friction_coefficient, nu)
+    log_g = math.log(a0 / b0) if w_sat != 0.0 else 0.0
+    if w_sat == 0.0 or not (tbuf[6] <= log_g <= tbuf[7]):
+        raise ArithmeticError("creep_table_force: the array path")
+    c = work[:3]
+    _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, c)
+    root_ab, h, v_x, v_y, tau, rho, w2, w, s, theta = _table_coordinates(
+        xi_x, xi_y, phi, a0, b0, w_sat, c[0], c[1], c[2])
+    if not abs(tau) <= tbuf[5]:
+        raise ArithmeticError("creep_table_force: the array path")
+    out = work[320:336].reshape((4, 4))
+    spline_point(coef, _NO_SLAB, False, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
+                 theta, tau, False, out, work, 2)
+    tx, ty = _wheel_forces(out[0, 0], out[0, 1], rho, tau, s, v_x, v_y, theta,
+                           friction_coefficient * normal_load)[:2]
+    inf = math.inf
+    if not (-inf < tx < inf and -inf < ty < inf):
+        raise ArithmeticError("creep_table_force: the array path")
+    return tx, ty
+
+
+@njit(cache=True, inline="always")
+def _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                  poisson_ratio, friction_coefficient, want_jacobian, res, ok, lo, hi, work):
+    """:func:`creep_table_point` at the points ``lo`` .. ``hi - 1`` (every input an array)."""
+    t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, _, _ = _table_views(tbuf)
+    for i in range(lo, hi):
+        ok[i] = _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes,
+                             tbuf[5], tbuf[6], tbuf[7], coef, xi_x[i], xi_y[i], phi[i],
+                             normal_load[i], a0[i], b0[i], youngs_modulus[i],
+                             poisson_ratio[i], friction_coefficient[i], want_jacobian, res[i],
+                             work)
+
+
+@njit(cache=True)
+def creep_table_batch(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                      poisson_ratio, friction_coefficient, want_jacobian, res, ok):
+    """:func:`creep_table_point` over flat arrays, every point its own contact (a vehicle's
+    contacts, a sweep over ellipses): ``res`` (n, 14), ``ok`` (n,) False where the caller
+    takes its fallback. No contact buffer, no Kalker coefficients from Python: the same
+    kernel as the scalar path."""
+    _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                  poisson_ratio, friction_coefficient, want_jacobian, res, ok, 0,
+                  xi_x.shape[0], np.empty(336))
+
+
+@njit(cache=True, parallel=True)
+def creep_table_batch_parallel(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0,
+                               youngs_modulus, poisson_ratio, friction_coefficient,
+                               want_jacobian, res, ok):
+    """:func:`creep_table_batch` on numba's threads (see :func:`creep_contact_batch_parallel`)."""
+    n = xi_x.shape[0]
+    for c in prange((n + PARALLEL_CHUNK - 1) // PARALLEL_CHUNK):
+        _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                      poisson_ratio, friction_coefficient, want_jacobian, res, ok,
+                      c * PARALLEL_CHUNK, min(n, (c + 1) * PARALLEL_CHUNK), np.empty(336))
 
 
 @njit(cache=True, inline="always")

@@ -34,6 +34,7 @@ precision), with one warning per process.
 from __future__ import annotations
 
 import hashlib
+import mmap
 import os
 import pickle
 import sys
@@ -46,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["REGISTRY_MODULE", "MAPPED_MIN_BYTES", "process_registry", "content_key", "load",
-           "TableCacheWarning"]
+           "release_pages", "TableCacheWarning"]
 
 #: Name, in :data:`sys.modules`, of the process-wide registry (shared by every copy of the
 #: package that a process imports).
@@ -127,6 +128,29 @@ def load(path, read):
                     content = _write_entry(key, content, path) or content
             registry.tables[key] = _read_only(content)
     return content
+
+
+def release_pages(array):
+    """Give the pages of ``array``, a view of a mapped cache entry, back to the operating
+    system (``madvise(MADV_DONTNEED)``: they stay in the page cache, shared, and are mapped
+    again when touched); nothing for an array in memory or where the platform has no
+    ``madvise``. For a reader that streams through the file once."""
+    root = array
+    while isinstance(getattr(root, "base", None), np.ndarray):
+        root = root.base               # the array made on the mapping (its base: the mmap)
+    handle = getattr(root, "base", None)
+    if not isinstance(root, np.memmap) or not isinstance(handle, mmap.mmap) \
+            or not hasattr(handle, "madvise") or not hasattr(mmap, "MADV_DONTNEED"):
+        return
+    page = mmap.PAGESIZE
+    start = array.__array_interface__["data"][0] - root.__array_interface__["data"][0] \
+        + int(root.offset) % mmap.ALLOCATIONGRANULARITY
+    first = (start // page) * page
+    last = start + array.nbytes
+    try:
+        handle.madvise(mmap.MADV_DONTNEED, first, last - first)
+    except (OSError, ValueError):
+        pass
 
 
 def _read_only(content):

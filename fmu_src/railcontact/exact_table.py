@@ -90,6 +90,11 @@ _new_tuple = tuple.__new__
 #: contact) pays no slab: until then every call made one, 14-17 ms a call.
 SLAB_AFTER_POINTS = 4096
 
+#: Points asked at one Poisson's ratio (any contacts) before the reader sums the table over
+#: nu there (:meth:`ExactCreepTable.prepare`: 0.1 s, after which a point of a changing
+#: contact costs about a third).
+NU_SLAB_AFTER_POINTS = 20000
+
 
 def _batch(name, n, *args):
     """Run the batch kernel ``name`` of :mod:`railcontact._exact_kernels` on ``n`` points:
@@ -361,7 +366,11 @@ class ExactCreepTable:
         self._kernel = None   # the compiled scalar kernels, resolved with the first contact
         self._force_kernel = None
         self._point = None
+        self._table_force = None
         self._tbuf = None     # the table buffer of creep_table_point, made with the first call
+        self._nu_slabs = {}   # nu -> (coefficients summed over nu (n0, 1, n2, n3, n4, 4),
+        #                               their kernels creep_table_point, creep_table_force)
+        self._nu_uses = {}    # points asked at each nu without its sum yet
 
     @classmethod
     def from_file(cls, path=None, directory=None, solver=None):
@@ -456,10 +465,81 @@ class ExactCreepTable:
 
     def _table_point(self, *args):
         """:func:`railcontact._exact_kernels.creep_table_point` at one point (results in
-        ``self._tres``, ``self._tmv``)."""
+        ``self._tres``, ``self._tmv``): on the coefficients summed over nu at the point's nu
+        where that sum is made (:meth:`prepare`), else on the file's."""
         if self._tbuf is None:
             self._make_table_buffer()
+        nu_slab = self._nu_coefficients(args[7], 1)
+        if nu_slab is not None:
+            return nu_slab[1](self._tbuf, nu_slab[0], *args)
         return self._point(self._tbuf, self._coef, *args)
+
+    def _nu_coefficients(self, nu, n):
+        """``(coefficients summed over nu at nu, their kernel)`` once Poisson's ratio ``nu``
+        has been asked for :data:`NU_SLAB_AFTER_POINTS` points (any contacts), else None.
+        (Ski rental again: the sum costs about what that many points cost more without it.
+        A material keeps its nu while its ellipses change; the FMU prepares its nu at
+        initialisation.)"""
+        entry = self._nu_slabs.get(nu)
+        if entry is not None:
+            return entry
+        try:
+            uses = self._nu_uses.get(nu, 0) + n
+        except TypeError:
+            return None
+        if uses < NU_SLAB_AFTER_POINTS:
+            if len(self._nu_uses) >= 1024:
+                self._nu_uses.clear()
+            self._nu_uses[nu] = uses
+            return None
+        self.prepare(nu)
+        return self._nu_slabs.get(nu)
+
+    def prepare(self, poisson_ratio):
+        """Sum the table over Poisson's ratio at ``poisson_ratio`` now, so that every contact
+        of that material, however its ellipse and load change, is evaluated on 4 x 64
+        instead of 16 x 64 coefficients per variable (:meth:`step_values` and the arrays of
+        varying contacts: about 3x faster; the values the same to round-off).
+
+        Costs about 0.1 s and holds 66 MB (float64; the two most recent Poisson's ratios
+        are kept). The pages of the mapped file it reads are given back to the operating
+        system as it goes, so the process's resident memory grows by the sum only. Called
+        by the FMU at initialisation (its Poisson's ratio is a fixed parameter); the API
+        calls it itself once a Poisson's ratio has been asked for
+        :data:`NU_SLAB_AFTER_POINTS` points.
+
+        Parameters
+        ----------
+        poisson_ratio : float
+            Poisson's ratio, in [0, 0.5]. [-]
+        """
+        from ._table_store import release_pages  # noqa: PLC0415
+        from ._validation import check_range  # noqa: PLC0415
+
+        nu = float(poisson_ratio)
+        check_range("poisson_ratio", nu, "-", 0.0, 0.5)
+        if nu in self._nu_slabs:
+            return
+        t = self._knot_list[1]
+        i = _compiled.find_span()(t, self._coef.shape[1], nu)
+        w, dw = np.empty(4), np.empty(4)
+        _compiled.cubic_basis()(t, i, nu, w, dw, np.empty(12))
+        coef = self._coef
+        out = np.empty((coef.shape[0], 1) + coef.shape[2:])
+        for p in range(coef.shape[0]):     # one a0/b0 plane at a time (9 MB of the file)
+            block = coef[p, i - 3:i + 1]
+            plane = out[p, 0]
+            np.multiply(block[0], w[0], out=plane)
+            for q in range(1, 4):
+                plane += w[q] * block[q]
+            release_pages(block)
+        if self._tbuf is None:
+            self._make_table_buffer()
+        if len(self._nu_slabs) >= 2:
+            self._nu_slabs.pop(next(iter(self._nu_slabs)))
+        self._nu_slabs[nu] = (out, _compiled.creep_table_point(self._tbuf, out),
+                              _compiled.creep_table_force(self._tbuf, out))
+        self._nu_uses.pop(nu, None)
 
     def _make_table_buffer(self):
         """The buffer of :func:`railcontact._exact_kernels.creep_table_point`: the five axes'
@@ -476,6 +556,7 @@ class ExactCreepTable:
         self._tmv = memoryview(self._tres)
         if self._point is None:
             self._point = _compiled.creep_table_point(tbuf, self._coef)
+            self._table_force = _compiled.creep_table_force(tbuf, self._coef)
         self._tbuf = tbuf
 
     def _buffer(self, g, nu):
@@ -562,27 +643,29 @@ class ExactCreepTable:
         ok = np.zeros(n, dtype=bool)
         if idx.size:
             one = bool(np.all(log_g[idx] == log_g[idx[0]]) and np.all(nu[idx] == nu[idx[0]]))
-            entry = None
-            if one:     # (without its buffer yet: the five-dimensional spline)
+            r = np.zeros((idx.size, 14))
+            o = np.zeros(idx.size, dtype=bool)
+            if one:     # one contact (without its buffer yet: the five-dimensional spline)
                 key = (float(g[idx[0]]), float(nu[idx[0]]))
                 entry = self._buffers.get(key)
                 slab = self._empty_slab if entry is None else entry[2]
                 c = [np.full(idx.size, v) for v in _kalker_pair(*key)]
-            else:
-                from .kalker import kalker_coefficients  # noqa: PLC0415
-
-                kc = kalker_coefficients(g[idx], nu[idx])
-                c = [np.array(np.broadcast_to(v, idx.shape), dtype=float)
-                     for v in (kc.c11, kc.c22, kc.c23)]
-                slab = self._empty_slab
-            r = np.zeros((idx.size, 14))
-            o = np.zeros(idx.size, dtype=bool)
-            with np.errstate(all="ignore"):
-                _batch("creep_batch", idx.size, self._coef, slab, entry is not None,
-                       self._knots,
-                       self._kstart, self._poly, self.tau_max, xi_x[idx], xi_y[idx], phi[idx],
-                       mu[idx] * n_load[idx], a0[idx], b0[idx], w_sat[idx], c[0], c[1], c[2],
-                       log_g[idx], nu[idx], jacobian, r, o)
+                with np.errstate(all="ignore"):
+                    _batch("creep_batch", idx.size, self._coef, slab, entry is not None,
+                           self._knots, self._kstart, self._poly, self.tau_max, xi_x[idx],
+                           xi_y[idx], phi[idx], mu[idx] * n_load[idx], a0[idx], b0[idx],
+                           w_sat[idx], c[0], c[1], c[2], log_g[idx], nu[idx], jacobian, r, o)
+            else:       # every point its own contact: the scalar path's kernel, in a loop
+                if self._tbuf is None:
+                    self._make_table_buffer()
+                coef = self._coef
+                if np.all(nu[idx] == nu[idx[0]]):   # one material, many contacts
+                    nu_slab = self._nu_coefficients(float(nu[idx[0]]), idx.size)
+                    coef = coef if nu_slab is None else nu_slab[0]
+                with np.errstate(all="ignore"):
+                    _batch("creep_table_batch", idx.size, self._tbuf, coef, xi_x[idx],
+                           xi_y[idx], phi[idx], n_load[idx], a0[idx], b0[idx], e_mod[idx],
+                           nu[idx], mu[idx], jacobian, r, o)
             o &= np.isfinite(r[:, :3]).all(axis=1)
             res[idx[o]] = r[o, :5]
             jac[idx[o]] = r[o, 5:].reshape(-1, 3, 3)
@@ -626,11 +709,16 @@ class ExactCreepTable:
                 return _new_tuple(CreepForce3D, self._force_kernel(
                     entry[0], creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                     b0, youngs_modulus, friction_coefficient))
-            if self._table_point(creepage_longitudinal, creepage_lateral, spin, normal_load,
-                                 a0, b0, youngs_modulus, poisson_ratio, friction_coefficient,
-                                 False):
-                res = self._tmv
-                return _new_tuple(CreepForce3D, (res[0], res[1]))
+            # any contact: the forces-only kernel on the coefficients summed over nu (once
+            # the reader has made that sum) or on the file's
+            if self._tbuf is None:
+                self._make_table_buffer()
+            nu_slab = self._nu_coefficients(poisson_ratio, 1)
+            coef, kernel = (self._coef, self._table_force) if nu_slab is None \
+                else (nu_slab[0], nu_slab[2])
+            return _new_tuple(CreepForce3D, kernel(
+                self._tbuf, coef, creepage_longitudinal, creepage_lateral, spin, normal_load,
+                a0, b0, youngs_modulus, poisson_ratio, friction_coefficient))
         except (TypeError, ValueError, ArithmeticError):
             pass
         res = self._evaluate((creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
