@@ -92,6 +92,8 @@ def content_key(path):
         with open(path, "rb") as fh:
             while chunk := fh.read(_CHUNK):
                 digest.update(chunk)
+        if len(registry.keys) >= 4096:     # (one per FMU extraction of a long sweep)
+            registry.keys.clear()
         key = registry.keys[stamp] = digest.hexdigest()
     return key
 
