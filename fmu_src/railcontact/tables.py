@@ -57,7 +57,8 @@ from scipy.interpolate import NdBSpline, make_interp_spline
 from ._validation import check_range
 
 __all__ = [
-    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError", "bspline_knots",
+    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError",
+    "TableAccuracyWarning", "bspline_knots",
     "fit_tensor_bspline", "TensorSpline", "Table", "default_table_path",
     "tables_directory", "periodic_bspline_knots", "periodic_stored_nodes",
 ]
@@ -85,6 +86,27 @@ _INTEGRITY_NODES = 20000
 
 class TableFileError(ValueError):
     """A table file is missing, unreadable, truncated or of an incompatible version."""
+
+
+class TableAccuracyWarning(UserWarning):
+    """A table file's recorded accuracy is worse than that of the table the project ships
+    (a coarse or trial build): issued when it is built and whenever it is loaded."""
+
+
+#: Global attribute in which ``tablegen`` records how a build's accuracy compares with the
+#: shipped table's; a value starting with "worse" makes every load warn.
+ACCURACY_VERSUS_SHIPPED_ATTR = "accuracy_versus_shipped"
+
+
+def _warn_if_less_accurate(table):
+    """Warn (:class:`TableAccuracyWarning`) when the file records that its accuracy is worse
+    than the shipped table's (written by ``tablegen`` at build time)."""
+    note = str(table.attrs.get(ACCURACY_VERSUS_SHIPPED_ATTR, ""))
+    if note.startswith("worse"):
+        import warnings  # noqa: PLC0415
+
+        warnings.warn(f"table file {str(table.path)!r}: {note}", TableAccuracyWarning,
+                      stacklevel=3)
 
 
 # --------------------------------------------------------------------------------------------
@@ -764,6 +786,7 @@ class Table:
             vattrs[name] = a
         table = cls(path, attrs, axes, var_names, vattrs, values, coefs,
                     node_block=block)
+        _warn_if_less_accurate(table)
         if store is None:    # from the user cache: this content passed the check below
             return table
         if spline_only:      # checked above (shapes, finite) and by HDF5 (checksums)
