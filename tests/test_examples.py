@@ -254,3 +254,25 @@ def test_api_guide_tour_runs(tmp_path):
                           text=True, timeout=300, env=env)
     assert proc.returncode == 0, proc.stderr
     assert "tour ok True" in proc.stdout
+
+
+def test_the_speed_figures_page_is_generated_from_the_recorded_run():
+    """docs/figures.md, the one page of speed figures, is what benchmarks/figures.py renders
+    from its record (benchmarks/data/figures.json); README and performance.md link to it and
+    restate no time per call."""
+    import importlib.util  # noqa: PLC0415
+    import json  # noqa: PLC0415
+    import re  # noqa: PLC0415
+
+    spec = importlib.util.spec_from_file_location("figures", ROOT / "benchmarks" / "figures.py")
+    figures = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(figures)
+    record = json.loads(figures.RECORD.read_text(encoding="utf-8"))
+    page = (ROOT / "docs" / "figures.md").read_text(encoding="utf-8")
+    assert page == figures.render(record)
+    best = record["per_call_us"]["exact_table"]["best"]
+    assert f"| {figures._fmt_us(best)} |" in page
+    for doc in (README, ROOT / "docs" / "performance.md"):
+        text = doc.read_text(encoding="utf-8")
+        assert "figures.md" in text, doc.name
+        assert not re.findall(r"\d (?:us|ms) per (?:call|case)|\d us\b", text), doc.name
