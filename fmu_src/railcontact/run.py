@@ -14,8 +14,13 @@ The command
    with the scene passed as the FMU parameter ``scene_file``;
 4. writes ``<out>/<scene name>.csv`` (time, inputs, outputs) and ``<out>/<scene name>.png``.
 
-Errors and warnings the FMU logs are printed; an invalid scene stops with a message naming
-the key (exit status 2), a failed simulation with exit status 1.
+The FMU's warnings are printed as notes (the run went on: a model or table used at its
+limits), wrapped; its errors go to stderr. The summary lists the last row's outputs that the
+scene computes and names those it does not. The plot (:func:`figure_results`) draws the
+driven inputs and the computed outputs against time, and for a creep scene the force over mu N
+against the creepage; it lists the constants and the outputs not computed instead of drawing
+them, and names the cause where ``creep_within_validity`` drops. An invalid scene stops with a
+message naming the key (exit status 2), a failed simulation with exit status 1.
 """
 
 from __future__ import annotations
