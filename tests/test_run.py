@@ -190,3 +190,14 @@ def _close_figures():
     import matplotlib.pyplot as plt
 
     plt.close("all")
+
+
+def test_the_summary_keeps_each_name_with_its_value():
+    scene, result, inputs = _synthetic(valid=1.0, scene_path=SCENES / "creep_exact_table.toml")
+    result["Fx"][-1] = -23456.6
+    lines = summary_lines(scene, result, width=60)
+    assert all(len(line) <= 60 for line in lines)
+    items = " ".join(line.strip() for line in lines[1:]).split(", ")
+    assert "Fx = -23456.6" in items and "dFx_dxi_x = 0" in items     # the exact theory's
+    assert not any(line.rstrip().endswith("=") or line.lstrip().startswith("=")
+                   for line in lines)

@@ -425,11 +425,12 @@ def figure_results(scene, result, inputs, units=None):
                  y=1.0 - 0.1 / height)
     fig.legend(handles=handles, loc="upper right", bbox_to_anchor=(0.98, 1.0 - 0.3 / height),
                fontsize=8, ncol=len(handles), frameon=False)
-    if footer:
-        fig.text(0.02, 0.01, "\n".join(footer), fontsize=7, va="bottom", ha="left")
-    # leave room for the title and legend on top and the lists below
+    if footer:      # 0.1 in above the bottom edge, whatever the figure's height
+        fig.text(0.02, 0.1 / height, "\n".join(footer), fontsize=7, va="bottom", ha="left")
+    # leave room for the title and legend on top and the lists below (a line of 7 pt text
+    # takes about 0.12 in)
     top = 1.0 - 0.6 / height
-    bottom = (0.12 + 0.13 * len(footer)) / height
+    bottom = (0.25 + 0.125 * len(footer)) / height
     fig.tight_layout(rect=(0.0, bottom, 1.0, top))
     return fig
 
@@ -451,13 +452,14 @@ def summary_lines(scene, result, width=100):
 
     last = result[-1]
     missing = not_computed(scene)
-    shown = [f"{n} = {last[n]:.6g}" for n in result.dtype.names
+    # (no-break spaces keep each "name = value" on one line; put back after wrapping)
+    shown = [f"{n}\u00a0=\u00a0{last[n]:.6g}" for n in result.dtype.names
              if n != "time" and n not in missing
              and not (n in NOT_ESTIMATED_OUTPUTS and last[n] == _NOT_ESTIMATED)]
     lines = [f"scene {scene.name}: {len(result)} rows, t = {result['time'][0]:g} to "
              f"{last['time']:g} s. Last row:"]
-    lines += textwrap.wrap(", ".join(shown), width, initial_indent="  ",
-                           subsequent_indent="  ")
+    lines += [line.replace("\u00a0", " ") for line in textwrap.wrap(
+        ", ".join(shown), width, initial_indent="  ", subsequent_indent="  ")]
     skipped = [n for n in result.dtype.names if n in missing or (
         n in NOT_ESTIMATED_OUTPUTS and last[n] == _NOT_ESTIMATED)]
     if skipped:
