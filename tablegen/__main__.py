@@ -75,7 +75,9 @@ def main(argv=None):
                     "with RAILCONTACT_TABLES_DIR=<its directory>.",
         epilog=_WORKERS_RULE)
     b.add_argument("--only", action="append", metavar="NAME",
-                   help="table to build (repeatable); default: all non-hidden tables")
+                   help="table to build (repeatable); default: all non-hidden tables (on 2 "
+                        "cores creep_exact takes 6-21 h from scratch, the others together "
+                        "2-3 min: docs/tables.md)")
     b.add_argument("--resolution", default="default", choices=RESOLUTIONS)
     b.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="dask.distributed scheduler address (tcp://host:8786; its workers "

@@ -477,8 +477,8 @@ def message_lines(messages, width=100):
     pairs, stream "out" or "err"."""
     import textwrap
 
-    notes = [m for status, _c, m in messages if status in (1, 2)]
-    errors = [(status, m) for status, _c, m in messages if status >= 3]
+    notes = [m for status, _c, m in messages if status == 1]
+    errors = [(status, m) for status, _c, m in messages if status >= 2]
     out = []
     if notes:
         out.append(("out", "Notes from the FMU (the run went on; these say where a model or a "
