@@ -61,7 +61,7 @@ def locate_fmu(path=None, rebuild=False, verbose=True):
             or fmu_build.fmu_digest(target) != fmu_build.source_hash()):
         if verbose:
             print(f"building {target.name} from the sources (first run, or the sources changed "
-                  "since the last build; about half a minute) ...", flush=True)
+                  "since the last build; 30-60 s) ...", flush=True)
         fmu_build.build(fmu_build.ROOT)
     return target
 
