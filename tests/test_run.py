@@ -201,3 +201,30 @@ def test_the_summary_keeps_each_name_with_its_value():
     assert "Fx = -23456.6" in items and "dFx_dxi_x = 0" in items     # the exact theory's
     assert not any(line.rstrip().endswith("=") or line.lstrip().startswith("=")
                    for line in lines)
+
+
+def test_the_default_scene_reads_as_information(built_fmu, tmp_path):
+    """README's command 1 (the default scene) through the FMU: every line it prints is at most
+    100 characters; the FMU's expected warning (creepage beyond the table's last node, held
+    exactly) is a note, not a warning; the outputs the scene does not compute are named as
+    such, not printed as values."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "fmu_src"), str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.run([sys.executable, "-m", "railcontact.run", str(SCENE), "--out",
+                           str(tmp_path), "--fmu", str(built_fmu)], capture_output=True,
+                          text=True, cwd=ROOT, env=env, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    lines = proc.stdout.splitlines()
+    assert lines[-2:] == [f"wrote {tmp_path / 'creep_only_table.csv'}",
+                          f"  and {tmp_path / 'creep_only_table.png'}"]
+    assert max(len(line) for line in lines[:-2]) <= 100     # (the paths are the user's)
+    text = " ".join(line.strip() for line in lines)
+    assert "Notes from the FMU (the run went on" in text and "warning" not in text.lower()
+    assert "normalised creepage z = " in text and "which is exact (full sliding)" in text
+    assert "not computed in this scene" in text and "Mz = " not in text
+    assert "Fx = " in text and (tmp_path / "creep_only_table.png").stat().st_size > 1000

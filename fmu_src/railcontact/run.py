@@ -524,7 +524,7 @@ def main(argv=None):
     png = plot_results(out / f"{scene.name}.png", scene, result, inputs,
                        units=output_units(args.fmu))
     print("\n".join(summary_lines(scene, result)))
-    print(f"wrote {csv} and {png}")
+    print(f"wrote {csv}\n  and {png}")
     return 0
 
 
