@@ -442,7 +442,8 @@ def default_table_path(name, directory=None):
     stem = fname[:-3]
     raise FileNotFoundError(
         f"table file {fname!r} not found in {[str(p) for p in places]}; build it with "
-        f"`python -m tablegen build --only {stem}` or set {TABLES_DIR_ENV}")
+        f"`python -m tablegen build --only {stem}` (it writes ./tables-build) and set "
+        f"{TABLES_DIR_ENV} to that directory")
 
 
 #: Table files of at least this size [bytes] are kept decompressed in the user cache
