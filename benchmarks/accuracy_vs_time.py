@@ -1213,7 +1213,9 @@ def write_markdown(fams, series, amp, contact_errors, path, meta, regions=None):
              "load from other processes: absolute times are noisy (easily 2-5x); the *ratios* "
              "between rows, measured in the same run, are what counts. `single` = one scalar "
              "call (as an FMU step makes it), `batch` = per point of a vectorised call "
-             "(or a loop over the cases for the iterative solvers).", "",
+             "(or a loop over the cases for the iterative solvers). The speed figures the "
+             "documentation quotes are in [figures.md](figures.md) "
+             "(`benchmarks/figures.py`); the times here are this run's.", "",
              "![error vs time](figures/accuracy_vs_time.png)", ""]
     lines += answers(fams, series, amp, contact_errors)
     if regions is not None:

@@ -5,7 +5,8 @@ import railcontact as rc
 from railcontact.strip_table import CreepTable
 from railcontact.tables import default_table_path
 
-# Hertz contact of a wheel on a rail: 100 kN, curvatures A', B' [1/m] -> semi-axes [m], p0 [Pa]
+# Hertz contact of a wheel on a rail, 100 kN: gap coefficients A' = 1/(2 R'_x) (wheel radius
+# 0.46 m), B' = 1/(2 R'_y) (rail head 0.3 m) [1/m], half of 1/R' (not 1/R') -> a0, b0, p0
 a0, b0, p0 = rc.hertz_3d(normal_load=100e3, curvature_longitudinal=1.087, curvature_lateral=1.667,
                          youngs_modulus=210e9, poisson_ratio=0.28)
 
@@ -20,7 +21,7 @@ tx, ty = rc.creep_force_3d(creepage_longitudinal=xi, creepage_lateral=0.0, spin=
 sol = rc.creep_solution_3d(creepage_longitudinal=1e-3, creepage_lateral=0.0, spin=[0.1, 5.0],
                            **contact)
 
-# The same forces from the shipped C2 table (about 40x faster per call)
+# The same forces from the shipped C2 table (faster per call: docs/figures.md)
 table = CreepTable.from_file(default_table_path("creep_modified_strip"))
 tx_table, _ = table.creep_force_3d(xi, 0.0, 0.0, **contact)
 

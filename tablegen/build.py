@@ -11,6 +11,12 @@ Schedulers: ``None`` starts a local ``dask.distributed`` cluster (``workers`` pr
 thread each); an address (``tcp://host:8786``) connects to an existing cluster (its workers
 must be able to ``import tablegen`` and ``railcontact``, e.g. from the same editable
 checkout); ``"synchronous"`` computes in this process (tests, debugging).
+
+Where the file goes: ``output_dir``, by default :func:`default_output_dir` (``./tables-build``),
+never the checkout's shipped ``tables/`` unless that directory is given explicitly (the
+command line's ``--replace-shipped``). A build whose accuracy is worse than the shipped
+table's warns (:class:`railcontact.tables.TableAccuracyWarning`) and records it in the file's
+``accuracy_versus_shipped`` attribute, so that every load of the file warns too.
 """
 
 from __future__ import annotations
@@ -20,19 +26,115 @@ import hashlib
 import os
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-from railcontact.tables import (TensorSpline, bspline_knots, fit_tensor_bspline,
+from railcontact.tables import (ACCURACY_VERSUS_SHIPPED_ATTR, TableAccuracyWarning,
+                                TensorSpline, bspline_knots, fit_tensor_bspline,
                                 periodic_bspline_knots, periodic_stored_nodes)
 
 from .netcdf import write_table
 from .registry import get_spec
 
-__all__ = ["build_table", "check_table", "evaluate_chunk", "default_workdir"]
+__all__ = ["build_table", "check_table", "evaluate_chunk", "default_workdir",
+           "default_output_dir", "SHIPPED_TABLES_DIR", "SchedulerUnreachable"]
 
 _REPO = Path(__file__).resolve().parent.parent
+
+#: The checkout's shipped tables (bundled into the FMU by ``build_fmu.py``): written only when
+#: asked explicitly (``output_dir=SHIPPED_TABLES_DIR``, the command line's
+#: ``--replace-shipped``); a build's accuracy is compared with the file here.
+SHIPPED_TABLES_DIR = _REPO / "tables"
+
+#: A build whose max error exceeds the shipped table's by more than this factor is "worse"
+#: (a rebuild at the shipped resolution reproduces the shipped errors: same check points).
+WORSE_FACTOR = 1.1
+
+#: Seconds to wait for a ``--scheduler`` address before giving up.
+SCHEDULER_TIMEOUT = 10.0
+
+
+class SchedulerUnreachable(RuntimeError):
+    """The dask scheduler address given cannot be reached."""
+
+
+def default_output_dir():
+    """``$TABLEGEN_OUTPUT_DIR``, else ``./tables-build`` (in the current directory): where a
+    build writes its file unless told otherwise. Never the shipped ``tables/``: to use a
+    table built here, point ``RAILCONTACT_TABLES_DIR`` at this directory (searched first by
+    :func:`railcontact.tables.default_table_path`)."""
+    if os.environ.get("TABLEGEN_OUTPUT_DIR"):
+        return Path(os.environ["TABLEGEN_OUTPUT_DIR"])
+    return Path.cwd() / "tables-build"
+
+
+def _shipped_accuracy(name, shipped_dir):
+    """Per variable, the max error the shipped table ``<shipped_dir>/<name>.nc`` records, or
+    None if there is no such file (or it cannot be read)."""
+    path = Path(shipped_dir) / f"{name}.nc"
+    if not path.is_file():
+        return None
+    import netCDF4  # noqa: PLC0415
+
+    try:
+        with netCDF4.Dataset(str(path)) as ds:
+            return {v: float(ds[v].getncattr("max_abs_error"))
+                    for v in str(ds.getncattr("table_variables")).split()}
+    except (OSError, RuntimeError, KeyError, AttributeError, IndexError, ValueError):
+        return None
+
+
+def accuracy_versus_shipped(accuracy, shipped, targets=None):
+    """The text of the ``accuracy_versus_shipped`` attribute: "worse than the shipped table
+    ..." naming each variable whose max error exceeds the shipped one's by more than
+    :data:`WORSE_FACTOR` (and, given ``targets`` per variable, whether it still meets its
+    error target), else "as accurate as the shipped table ..."; None without a shipped table
+    to compare with."""
+    if shipped is None:
+        return None
+    targets = targets or {}
+
+    def target(v, err):
+        if v not in targets:
+            return ""
+        return (f", within its target {targets[v]:.3g}" if err <= targets[v]
+                else f", TARGET {targets[v]:.3g} NOT MET")
+
+    worse = [f"{v} max {a['max_abs_error']:.3g} (shipped {shipped[v]:.3g}"
+             f"{target(v, a['max_abs_error'])})"
+             for v, a in accuracy.items()
+             if v in shipped and a["max_abs_error"] > WORSE_FACTOR * shipped[v]]
+    if worse:
+        return ("worse than the shipped table (max |error| / error_scale on the check points): "
+                + ", ".join(worse) + "; fine for a trial, not to replace the shipped table")
+    return "as accurate as the shipped table or better (max |error| / error_scale per variable)"
+
+
+def _check_scheduler(address):
+    """Raise :class:`SchedulerUnreachable` (one line) unless ``address`` (``tcp://host:port``
+    or ``host:port``) accepts a connection within :data:`SCHEDULER_TIMEOUT` seconds."""
+    import socket  # noqa: PLC0415
+    from urllib.parse import urlsplit  # noqa: PLC0415
+
+    text = address if "://" in address else f"tcp://{address}"
+    try:
+        parts = urlsplit(text)
+        host, port = parts.hostname, parts.port or 8786
+    except ValueError as exc:
+        raise SchedulerUnreachable(f"--scheduler {address!r} is not an address "
+                                   f"(tcp://host:port): {exc}") from None
+    if parts.scheme not in ("tcp", "tls") or not host:
+        return    # another transport (inproc://, ucx://): let dask connect
+    try:
+        with socket.create_connection((host, port), timeout=SCHEDULER_TIMEOUT):
+            pass
+    except OSError as exc:
+        raise SchedulerUnreachable(
+            f"dask scheduler {address!r} is not reachable ({exc.strerror or exc}); start one "
+            "(`dask scheduler`, with workers that can import tablegen and railcontact), or "
+            "omit --scheduler for a local cluster") from None
 
 
 def default_workdir():
@@ -93,7 +195,14 @@ def _run(spec, tasks, workdir, scheduler, workers, progress):
             client = Client(cluster)
         else:
             cluster = None
-            client = Client(scheduler)
+            _check_scheduler(scheduler)
+            try:
+                client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
+            except Exception as exc:  # noqa: BLE001  (a timeout, or not a dask scheduler)
+                raise SchedulerUnreachable(
+                    f"dask scheduler {scheduler!r} did not answer as a dask scheduler within "
+                    f"{SCHEDULER_TIMEOUT:g} s ({type(exc).__name__}: "
+                    f"{str(exc).splitlines()[0][:120] if str(exc) else ''})") from None
         try:
             futures = {}
             for fname, pts in todo:
@@ -181,7 +290,7 @@ def _reused_node_values(spec, path, points):
 
 def build_table(name, resolution="default", output_dir=None, scheduler=None, workers=None,
                 workdir=None, progress=None, command=None, keep_chunks=False,
-                reuse_nodes=None):
+                reuse_nodes=None, shipped_dir=None):
     """Build table ``name`` and write ``<output_dir>/<name>.nc``.
 
     Parameters
@@ -190,7 +299,8 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
         Registered table name (``python -m tablegen list``).
     resolution : {"coarse", "default", "fine"}
     output_dir : path-like, optional
-        Default: the checkout's ``tables/``.
+        Default :func:`default_output_dir` (``./tables-build``), never the shipped
+        ``tables/``; pass :data:`SHIPPED_TABLES_DIR` to replace a shipped table.
     scheduler : None, "synchronous" or str
         See the module docstring.
     workers : int, optional
@@ -213,12 +323,20 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
         are computed, in chunks of their own (resumable as any build). For a fix in an
         analytic limit, or a finer axis, without rerunning hours of solves; recorded in the
         file's ``build_reused_nodes``.
+    shipped_dir : path-like, optional
+        Where the shipped table to compare the accuracy with is (default
+        :data:`SHIPPED_TABLES_DIR`). A build worse than it warns
+        (:class:`railcontact.tables.TableAccuracyWarning`).
 
     Returns
     -------
     dict
-        ``path``, ``seconds`` (wall time of the point evaluations), ``n_points``,
-        ``n_check``, ``accuracy`` (per variable), ``size_bytes``.
+        ``path``, ``seconds`` (wall time of the point evaluations in this run),
+        ``n_points``, ``n_check``, ``n_computed`` (cases, grid and check, computed in this
+        run), ``n_resumed`` (cases found computed by an earlier, interrupted run),
+        ``n_reused_nodes`` (node values taken from ``reuse_nodes``), ``accuracy`` (per
+        variable), ``accuracy_versus_shipped`` (text, or None without a shipped table),
+        ``size_bytes``.
     """
     spec = get_spec(name)
     why = spec.available()
@@ -251,6 +369,8 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
     tasks += [(work / f"check_{i:06d}.npy", check[a:b])
               for i, (a, b) in enumerate(_chunks(len(check), spec.chunk_size))]
     reused = sum(f.exists() for f, _ in tasks)
+    n_resumed = sum(len(p) for f, p in tasks if f.exists())
+    n_cases = sum(len(p) for _, p in tasks)
     t0 = time.perf_counter()
     _run(spec, tasks, work, scheduler, workers, progress)
     seconds = time.perf_counter() - t0
@@ -271,14 +391,18 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
         accuracy[v.name] = dict(max_abs_error=float(err.max()),
                                 rms_error=float(np.sqrt(np.mean(err**2))),
                                 n_check_points=len(check), worst_point=check[worst].tolist())
-    out_dir = Path(output_dir) if output_dir is not None else _REPO / "tables"
+    out_dir = Path(output_dir) if output_dir is not None else default_output_dir()
     path = out_dir / f"{name}.nc"
+    versus = accuracy_versus_shipped(accuracy, _shipped_accuracy(
+        name, SHIPPED_TABLES_DIR if shipped_dir is None else shipped_dir),
+        {v.name: v.error_target for v in spec.variables})
     info = {"resolution": resolution, "grid_points": np.int32(len(points)),
             "build_seconds": float(round(seconds, 3)),
             "build_chunks_reused": (f"{reused} of {len(tasks)} chunks were computed by an "
                                     "earlier run (resumed build; build_seconds is this run's "
                                     "time only)") if reused else "none (one run)",
             "build_scheduler": "local cluster" if scheduler is None else str(scheduler),
+            **({ACCURACY_VERSUS_SHIPPED_ATTR: versus} if versus else {}),
             **reuse_info}
     write_table(path, spec, axes, knots, values, coefs, accuracy,
                 command or f"python -m tablegen build --only {name} --resolution {resolution}",
@@ -290,8 +414,13 @@ def build_table(name, resolution="default", output_dir=None, scheduler=None, wor
             work.rmdir()
         except OSError:
             pass
+    if versus and versus.startswith("worse"):
+        warnings.warn(f"table {name!r} ({resolution}) written to {str(path)!r} is {versus}",
+                      TableAccuracyWarning, stacklevel=2)
     return dict(path=path, seconds=seconds, n_points=len(points), n_check=len(check),
-                accuracy=accuracy, size_bytes=path.stat().st_size)
+                n_computed=n_cases - n_resumed, n_resumed=n_resumed,
+                n_reused_nodes=len(points) - len(compute), accuracy=accuracy,
+                accuracy_versus_shipped=versus, size_bytes=path.stat().st_size)
 
 
 def computed_node_block(axes, points):
@@ -382,7 +511,8 @@ def check_table(name, path=None, n_points=None, seed=1, scheduler=None, workers=
     name : str
         Registered table name.
     path : path-like, optional
-        Default: the checkout's ``tables/<name>.nc``.
+        Default: ``<default_output_dir()>/<name>.nc`` (a shipped table is rewritten only
+        when its path, ``SHIPPED_TABLES_DIR / "<name>.nc"``, is given).
     n_points : int, optional
         Number of check points (default: the spec's count for the file's resolution).
     seed : int
@@ -402,7 +532,7 @@ def check_table(name, path=None, n_points=None, seed=1, scheduler=None, workers=
     from railcontact.tables import Table  # noqa: PLC0415
 
     spec = get_spec(name)
-    path = Path(path) if path is not None else _REPO / "tables" / f"{name}.nc"
+    path = Path(path) if path is not None else default_output_dir() / f"{name}.nc"
     table = Table.from_file(path, expected_name=name)
     resolution = str(table.attrs.get("resolution", "default"))
     axes, _ = spec.grid(resolution)

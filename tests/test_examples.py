@@ -35,7 +35,7 @@ def _run_example(script, *args, cwd, timeout=600):
 # Tables from C
 # --------------------------------------------------------------------------------------------
 
-def _compile(tmp_path_factory, compiler, config, source, flags_option, package):
+def _compile(tmp_path_factory, compiler, config, source, flags_option, package, libs=()):
     if shutil.which(compiler) is None:
         pytest.skip(f"{compiler} not found (Debian: apt-get install {package}); "
                     f"{source} is not compiled")
@@ -46,7 +46,8 @@ def _compile(tmp_path_factory, compiler, config, source, flags_option, package):
                            text=True).stdout.split()
     exe = tmp_path_factory.mktemp("table_reader") / Path(source).stem
     proc = subprocess.run([compiler, "-O2", "-Wall", "-Werror", "-o", str(exe),
-                           str(EXAMPLES / source), *flags], capture_output=True, text=True,
+                           str(EXAMPLES / source), *flags, *libs], capture_output=True,
+                          text=True,
                           cwd=exe.parent)
     assert proc.returncode == 0, proc.stderr
     return exe
@@ -58,7 +59,7 @@ def table_reader(request, tmp_path_factory):
     netCDF-Fortran), compiled against the system libraries."""
     if request.param == "c":
         return _compile(tmp_path_factory, "gcc", "nc-config", "table_reader.c",
-                        ["--cflags", "--libs"], "gcc libnetcdf-dev")
+                        ["--cflags", "--libs"], "gcc libnetcdf-dev", libs=["-lm"])
     return _compile(tmp_path_factory, "gfortran", "nf-config", "table_reader.f90",
                     ["--fflags", "--flibs"], "gfortran libnetcdff-dev")
 
@@ -113,6 +114,58 @@ def test_table_reader_refuses_a_file_without_the_format_attribute(table_reader, 
                           text=True, timeout=60)
     assert proc.returncode != 0
     assert "Attribute not found" in proc.stderr, proc.stderr
+
+
+@pytest.fixture(scope="module")
+def c_table_reader(tmp_path_factory):
+    """examples/table_reader.c alone (its --exact-coordinates mode)."""
+    return _compile(tmp_path_factory, "gcc", "nc-config", "table_reader.c",
+                    ["--cflags", "--libs"], "gcc libnetcdf-dev", libs=["-lm"])
+
+
+def test_c_exact_table_coordinates_agree_with_python(c_table_reader):
+    """exact_table_coordinates in examples/table_reader.c (Kalker's coefficients interpolated
+    in C) against railcontact: kalker_coefficients, the saturation creepage and
+    exact_table.exact_table_coordinates, on 400 seeded random contacts over the table's
+    a0/b0 and nu (the ends included) and every sign of the creepages and the spin."""
+    from railcontact import kalker_coefficients
+    from railcontact.exact_table import exact_table_coordinates
+
+    rng = np.random.default_rng(39)
+    n = 400
+    ratio = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
+    ratio[:4] = [0.1, 10.0, 1.0, 1.0 / 0.7]             # the ends and two of Kalker's nodes
+    nu = rng.uniform(0.0, 0.5, n)
+    nu[:3] = [0.0, 0.5, 0.25]
+    b0 = rng.uniform(2e-3, 8e-3, n)
+    a0 = ratio * b0
+    xi_x, xi_y = rng.uniform(-5e-3, 5e-3, (2, n))
+    phi = rng.uniform(-2.0, 2.0, n)
+    xi_x[5], xi_y[5], phi[5] = 0.0, 0.0, 0.0           # no creepage at all
+    n_load = rng.uniform(1e3, 2e5, n)
+    e_mod = rng.uniform(70e9, 230e9, n)
+    mu = rng.uniform(0.05, 0.6, n)
+    rows = np.column_stack([xi_x, xi_y, phi, a0, b0, nu, n_load, e_mod, mu])
+    proc = subprocess.run([str(c_table_reader), "--exact-coordinates"], capture_output=True,
+                          text=True, timeout=60,
+                          input="\n".join(" ".join(f"{v:.17g}" for v in r) for r in rows))
+    assert proc.returncode == 0, proc.stderr
+    got = np.loadtxt(proc.stdout.splitlines(), ndmin=2)
+    c = kalker_coefficients(ratio, nu)
+    p0 = 3.0 * n_load / (2.0 * np.pi * a0 * b0)
+    w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+    want = np.column_stack(exact_table_coordinates(xi_x, xi_y, phi, a0, b0, nu, w_sat,
+                                                   (c.c11, c.c22, c.c23)))
+    assert got.shape == want.shape == (n, 5)
+    np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-13)
+    assert got[:, 4].min() < -10 < 10 < got[:, 4].max() and np.ptp(got[:, 2]) > 0.5   # spans
+    # outside the table's axes: refused, naming the range
+    for bad, message in (([1e-3, 0, 0, 5e-4, 6e-3, 0.3, 1e5, 210e9, 0.3], "a0/b0 must be in"),
+                         ([1e-3, 0, 0, 5e-3, 6e-3, 0.6, 1e5, 210e9, 0.3], "nu in [0, 0.5]"),
+                         ([1e-3, 0, 0, 5e-3, 6e-3, 0.3, 0.0, 210e9, 0.3], "must be > 0")):
+        proc = subprocess.run([str(c_table_reader), "--exact-coordinates"], text=True,
+                              input=" ".join(map(str, bad)), capture_output=True, timeout=60)
+        assert proc.returncode == 1 and message in proc.stderr, proc.stderr
 
 
 # --------------------------------------------------------------------------------------------
@@ -201,3 +254,25 @@ def test_api_guide_tour_runs(tmp_path):
                           text=True, timeout=300, env=env)
     assert proc.returncode == 0, proc.stderr
     assert "tour ok True" in proc.stdout
+
+
+def test_the_speed_figures_page_is_generated_from_the_recorded_run():
+    """docs/figures.md, the one page of speed figures, is what benchmarks/figures.py renders
+    from its record (benchmarks/data/figures.json); README and performance.md link to it and
+    restate no time per call."""
+    import importlib.util  # noqa: PLC0415
+    import json  # noqa: PLC0415
+    import re  # noqa: PLC0415
+
+    spec = importlib.util.spec_from_file_location("figures", ROOT / "benchmarks" / "figures.py")
+    figures = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(figures)
+    record = json.loads(figures.RECORD.read_text(encoding="utf-8"))
+    page = (ROOT / "docs" / "figures.md").read_text(encoding="utf-8")
+    assert page == figures.render(record)
+    best = record["per_call_us"]["exact_table"]["best"]
+    assert f"| {figures._fmt_us(best)} |" in page
+    for doc in (README, ROOT / "docs" / "performance.md"):
+        text = doc.read_text(encoding="utf-8")
+        assert "figures.md" in text, doc.name
+        assert not re.findall(r"\d (?:us|ms) per (?:call|case)|\d us\b", text), doc.name

@@ -11,6 +11,10 @@ from tablegen.spec import Axis
 from tablegen.specs import selftest_function
 from railcontact.tables import Table, TableFileError
 
+# builds of shipped tables at other resolutions in this file warn that they are less accurate
+# than the shipped ones (as they should; asserted where it is the point)
+pytestmark = pytest.mark.filterwarnings("ignore::railcontact.tables.TableAccuracyWarning")
+
 
 def test_registry_lists_builtin_specs():
     assert "creep_modified_strip" in REGISTRY and "selftest" in REGISTRY
@@ -619,3 +623,135 @@ def test_table_without_node_values_stores_the_spline_only(tmp_path, monkeypatch)
                 np.testing.assert_array_equal(a["knots"], b["knots"])
                 np.testing.assert_array_equal(a["nodes"], b["nodes"])
     assert any("truncated or corrupt" in m for m in refused), refused
+
+
+def _tree_state(directory):
+    """Every file under ``directory`` with its size, mtime and content hash."""
+    import hashlib
+
+    return {str(p.relative_to(directory)): (p.stat().st_size, p.stat().st_mtime_ns,
+                                            hashlib.sha1(p.read_bytes()).hexdigest())
+            for p in sorted(directory.rglob("*")) if p.is_file()}
+
+
+def test_a_default_build_leaves_the_shipped_tables_untouched(tmp_path, monkeypatch, capsys):
+    from railcontact.tables import TableAccuracyWarning
+    from tablegen.build import SHIPPED_TABLES_DIR
+
+    assert (SHIPPED_TABLES_DIR / "creep_modified_strip.nc").is_file()
+    before = _tree_state(SHIPPED_TABLES_DIR)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("TABLEGEN_OUTPUT_DIR", raising=False)
+    # a shipped table, coarse (21 nodes, a fraction of a second): the shipped file's name
+    assert main(["build", "--only", "creep_modified_strip", "--resolution", "coarse",
+                 "--scheduler", "synchronous", "--workdir", str(tmp_path / "w"),
+                 "--no-progress"]) == 0
+    assert _tree_state(SHIPPED_TABLES_DIR) == before
+    built = tmp_path / "tables-build" / "creep_modified_strip.nc"
+    out, err = capsys.readouterr()
+    assert str(built) in out and "shipped tables/ are unchanged" in out
+    assert f"RAILCONTACT_TABLES_DIR={tmp_path / 'tables-build'}" in out
+    # coarser than the shipped default build: said when built (once) and at every load
+    assert err.count("WARNING: worse than the shipped table") == 1
+    assert "force_ratio max" in err and "within its target" in err
+    with pytest.warns(TableAccuracyWarning, match="worse than the shipped table"):
+        table = Table.from_file(built)
+    assert table.attrs["accuracy_versus_shipped"].startswith("worse")
+    # replacing a shipped table is asked for explicitly (here the shipped directory is a copy)
+    fake = tmp_path / "shipped"
+    monkeypatch.setattr("tablegen.build.SHIPPED_TABLES_DIR", fake)
+    assert main(["build", "--only", "selftest", "--resolution", "coarse", "--scheduler",
+                 "synchronous", "--workdir", str(tmp_path / "w"), "--no-progress",
+                 "--replace-shipped"]) == 0
+    assert (fake / "selftest.nc").is_file()
+    with pytest.raises(SystemExit):    # one or the other
+        main(["build", "--only", "selftest", "--replace-shipped", "--output-dir", "x"])
+
+
+def test_accuracy_is_compared_with_the_shipped_table(tmp_path):
+    import warnings
+
+    import netCDF4
+
+    from railcontact.tables import TableAccuracyWarning
+
+    # the "shipped" table: a build of the same table whose record of g says 1e-5
+    shipped = build_table("selftest", "coarse", output_dir=tmp_path / "shipped",
+                          scheduler="synchronous", workdir=tmp_path / "w", progress=False)
+    with netCDF4.Dataset(shipped["path"], "a") as ds:
+        ds["g"].setncattr("max_abs_error", 1e-5)
+    with pytest.warns(TableAccuracyWarning, match="worse than the shipped table") as got:
+        trial = build_table("selftest", "coarse", output_dir=tmp_path / "trial",
+                            scheduler="synchronous", workdir=tmp_path / "w", progress=False,
+                            shipped_dir=tmp_path / "shipped")
+    # the message names the worse variable (g, 2.1e-3 against 1e-5, within its target 1e-2)
+    # with both errors; f, as accurate as shipped, is not named
+    g = trial["accuracy"]["g"]["max_abs_error"]
+    assert g == pytest.approx(shipped["accuracy"]["g"]["max_abs_error"], rel=1e-12)
+    assert g > 1e-3
+    text = str(got[0].message)
+    assert f"g max {g:.3g} (shipped 1e-05, within its target 0.01)" in text
+    assert "f max" not in text
+    with pytest.warns(TableAccuracyWarning, match=f"g max {g:.3g} "):
+        Table.from_file(trial["path"])
+    # as accurate as the shipped one: no warning at build or load
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", TableAccuracyWarning)
+        same = build_table("selftest", "coarse", output_dir=tmp_path / "again",
+                           scheduler="synchronous", workdir=tmp_path / "w", progress=False,
+                           shipped_dir=trial["path"].parent)
+        assert same["accuracy_versus_shipped"].startswith("as accurate")
+        Table.from_file(same["path"])
+        # nothing to compare with: nothing recorded
+        alone = build_table("selftest", "coarse", output_dir=tmp_path / "alone",
+                            scheduler="synchronous", workdir=tmp_path / "w", progress=False,
+                            shipped_dir=tmp_path / "none")
+        assert alone["accuracy_versus_shipped"] is None
+        assert "accuracy_versus_shipped" not in Table.from_file(alone["path"]).attrs
+
+
+def test_a_resumed_build_says_what_it_did(tmp_path, capsys):
+    work = tmp_path / "w"
+    args = ["build", "--only", "selftest", "--resolution", "coarse", "--scheduler",
+            "synchronous", "--output-dir", str(tmp_path), "--workdir", str(work),
+            "--no-progress"]
+    res = build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                      workdir=work, progress=False, keep_chunks=True)
+    n_all = res["n_points"] + res["n_check"]
+    assert (res["n_computed"], res["n_resumed"]) == (n_all, 0)
+    assert main(args) == 0      # every chunk still there: nothing to compute
+    out = capsys.readouterr().out
+    assert f"{n_all} cases resumed from an interrupted run, nothing left to compute" in out
+    assert " in 0.0 s" not in out
+    build_table("selftest", "coarse", output_dir=tmp_path, scheduler="synchronous",
+                workdir=work, progress=False, keep_chunks=True)
+    first = sorted(work.rglob("grid_*.npy"))[0]
+    n_first = len(np.load(first))
+    first.unlink()
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert (f"{n_all - n_first} cases resumed from an interrupted run, {n_first} cases "
+            "computed in ") in out
+
+
+def test_an_unreachable_scheduler_is_one_line(tmp_path, capsys):
+    import socket
+
+    with socket.socket() as s:        # a free port, then closed: nothing listens there
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    assert main(["build", "--only", "selftest", "--resolution", "coarse", "--scheduler",
+                 f"tcp://127.0.0.1:{port}", "--output-dir", str(tmp_path), "--workdir",
+                 str(tmp_path / "w"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert f"dask scheduler 'tcp://127.0.0.1:{port}' is not reachable" in err
+    assert not (tmp_path / "selftest.nc").exists()
+
+
+def test_the_help_states_what_workers_need(capsys):
+    with pytest.raises(SystemExit):
+        main(["build", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "workers must be able to import tablegen and railcontact" in out
+    assert "./tables-build" in out and "--replace-shipped" in out

@@ -176,6 +176,10 @@ def test_missing_file_clear_error(tmp_path):
         Table.from_file(tmp_path / "nope.nc")
     with pytest.raises(FileNotFoundError, match="python -m tablegen build --only nope"):
         default_table_path("nope", directory=tmp_path)
+    # a build goes to ./tables-build, not where the reader looks: the message says how to use it
+    with pytest.raises(FileNotFoundError, match=r"writes \./tables-build\) and set "
+                                                "RAILCONTACT_TABLES_DIR to that directory"):
+        default_table_path("nope", directory=tmp_path)
 
 
 def test_truncated_file_clear_error(tmp_path):

@@ -371,90 +371,44 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     friction_coefficient : array_like
         Coulomb friction coefficient mu, >= 0. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
-        Creep-force model. "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016):
-        :mod:`railcontact.fastsim`; "polach" (Polach 1999/2005): :mod:`railcontact.polach`.
-        ``"exact_table"``: Kalker's exact theory from the shipped table ``creep_exact``
-        (:class:`railcontact.exact_table.ExactCreepTable`: a C2 spline over a0/b0, nu and every
-        creepage and spin, built from the extrapolated solver below; about a microsecond per
-        call, error in docs/tables.md; beyond its a0/b0 range 0.1-10 or spin coordinate 20 it
-        calls the solver). ``"exact"`` is Kalker's exact theory, discretised
-        (:func:`railcontact.reference.rolling3d.solve_rolling_3d`: the Hertzian normal problem
-        solved on the grid, then the frictional steady rolling problem), one solve per
-        broadcast element; it needs ``|creepage| <= 1`` and ``|spin| max(a0, b0) <= 1``.
+        Creep-force model (default "modified_strip", the thesis's method; the module docstring
+        gives the formulas):
+
+        * "modified_strip": modified strip theory with spin, Eqs. (2.90)-(2.96), (2.99)
+          (Nielsen).
+        * "strip": strip theory, Eqs. (2.83)-(2.87) (Haines and Ollerton).
+        * "she": Shen, Hedrick and Elkins, Eqs. (2.63)-(2.65).
+        * "linear": Kalker's linear theory, Eqs. (2.61)-(2.62) (not saturated).
+        * "exact": Kalker's exact theory, discretised
+          (:func:`railcontact.reference.rolling3d.solve_rolling_3d`), one solve per element;
+          needs ``|creepage| <= 1`` and ``|spin| max(a0, b0) <= 1``.
+        * "exact_table": the exact theory from the shipped table ``creep_exact``
+          (:class:`railcontact.exact_table.ExactCreepTable`); beyond a0/b0 0.1-10 or spin
+          coordinate 20 it calls "exact".
+        * "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016): :mod:`railcontact.fastsim`.
+        * "polach" (Polach 1999/2005): :mod:`railcontact.polach`.
+
+        Speed and error of each: docs/figures.md; the exact solver's settings, measured:
+        docs/reference_solvers.md.
     grid : (int, int), keyword-only
         ``method="exact"`` only: elements (mx, my) in the rolling and lateral direction over
-        ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]`` (CONTACT's potential area); with
-        ``extrapolate`` and ``grid_shifts`` the accuracy knob. The default is the setting on
-        the accuracy-per-cost frontier that meets 0.2 % of mu N: ``grid=(30, 20),
-        extrapolate=True, grid_shifts=2, tolerance=1e-3``. Measured on one core over CONTACT's
-        21 grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined
-        creepage, spin up to pure spin; ``benchmarks/bench_rolling3d.py``, least of 3 runs,
-        2026-11-26), ms per case with the set-up of a new shape a0/b0 (influence
-        coefficients, normal problem) / with it cached (further creepages, and a new load or
-        size on a known shape: the set-up is kept normalised per shape and scaled), and the
-        error max / RMS in % of mu N against two estimates of the converged exact theory
-        that agree to 0.13 %: C, the Richardson value of CONTACT's 120x60 and 240x60 rows,
-        and O, this solver on fine grids:
-
-        * default (30x20 -> 60x20, two grid shifts, tolerance 1e-3): 46 / 27 ms,
-          C 0.17 / 0.07 %, O 0.18 / 0.08 % (the largest at a0/b0 = 0.2, pure spin: the
-          lateral element size);
-        * ``grid=(24, 16)``, two shifts, tolerance 1e-3: 27 / 14 ms, C 0.26 / 0.12 %;
-        * ``grid=(30, 14), extrapolate=False, grid_shifts=1, transport_order=2,
-          tolerance=1e-3``: 9.4 / 3.8 ms, C 0.58 / 0.22 % (other grids of this kind vary:
-          (40, 16) 1.67 %);
-        * ``grid=(20, 10), extrapolate=False, grid_shifts=1, transport_order=2,
-          tolerance=1e-3``: 4.6 / 1.3 ms, C 1.99 / 0.75 % (the patch reaches the edge rows of
-          the potential area: the solver warns);
-        * ``grid=(40, 20), extrapolate=False, grid_shifts=1``: 19 / 9.0 ms, C 0.86 / 0.61 %,
-          O 0.93 / 0.64 %; ``(80, 40)`` likewise: 113 / 81 ms, C 0.57 / 0.37 %;
-        * ``grid=(30, 20), grid_shifts=1`` (one Richardson step on one grid): 35 / 19 ms,
-          C 0.45 / 0.19 %; ``grid=(40, 20), grid_shifts=1``: 51 / 27 ms, C 0.33 / 0.19 %
-          (the table ``creep_exact``'s setting before 2026-11-26; it is now built at the
-          default with tolerance 1e-4).
-
-        CONTACT's published points (per case of a table build): 11x11 1.6 ms 2.6 %, 25x25
-        9.7 ms 1.0 %, 35x35 38 ms 0.36 %, 48x44 111 ms 0.18 %.
-        Narrow contacts with large spin need more lateral elements than those 21 cases show:
-        along creepage scans with the spin coordinate tau (:mod:`railcontact.exact_table`)
-        4-20, 20 lateral elements err against 80 by up to 1.5 % of mu N at a0/b0 = 0.18,
-        0.7 % at 0.32, 0.4 % at 0.56 and 0.2 % at 1 (the discrete solution depends on where
-        the spin pole falls between element rows), 36 by up to 0.2 % (at about 1.8 times the
-        cost); the table ``creep_exact`` uses 36 at a0/b0 < 0.87 with |tau| > 2.75.
-        A plain solve on one grid: ``extrapolate=False, grid_shifts=1``. From 32 x 16 elements
-        a grid starts from a solve on half the elements (``coarse_start`` of the solver).
+        ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]`` (CONTACT's potential area). The default
+        (30, 20), with ``extrapolate=True, grid_shifts=2, tolerance=1e-3``, is within 0.2 % of
+        mu N of the converged theory on CONTACT's 21 cases; a plain solve on one grid:
+        ``extrapolate=False, grid_shifts=1``.
     extrapolate : bool, keyword-only
         ``method="exact"`` only: one Richardson step in the rolling direction,
-        ``2 F(2 mx, my) - F(mx, my)``, the fine grid started from the coarse solution (the
-        error is first order in the rolling-direction element size). Default True.
+        ``2 F(2 mx, my) - F(mx, my)``. Default True.
     grid_shifts : {1, 2, 3, 4}, keyword-only
-        ``method="exact"`` only: the forces (and moment, sensitivities) are averaged over this
-        many grids moved by ``(k + 1/2) / grid_shifts - 1/2`` of an element along x (2: -1/4
-        and +1/4), each with its own Richardson step. Why: part of the grid error depends on
-        where the contact edge of each row falls inside its element; it is not a smooth
-        function of the element size, so a Richardson step alone amplifies it (one grid:
-        0.45 % at 30x20, 0.70 % at 24x20, 0.69 % at 32x20, 0.33 % at 40x20); moving the grid
-        by half an element moves every edge by half an element, and the average of the two
-        removes most of it (two shifts: 0.17, 0.21, 0.26, 0.18 % against C, 0.18, 0.28, 0.18,
-        0.19 % against O; four shifts no better). The error left is mostly the lateral element
-        size (second order; a0/b0 = 0.2, pure spin). Default 2. Needs
-        ``mx >= 30`` with the 1.08 potential area (at 20 the shifted contact reaches its edge
-        and the solver warns).
+        ``method="exact"`` only: average over this many grids moved by
+        ``(k + 1/2) / grid_shifts - 1/2`` of an element along x, each with its own Richardson
+        step. Default 2; needs ``mx >= 30``.
     tolerance : float, keyword-only
         ``method="exact"`` only: relative change of the tractions per Gauss-Seidel sweep at
-        which the iteration stops, in (0, 0.1]. Default 1e-3: the forces within 0.006 % of
-        mu N of those at 1e-8 (measured on the 21 cases at 30x20, 40x20 and 60x20; 1e-4:
-        0.0004 %), about 30 % faster than 1e-4. [-]
+        which the iteration stops, in (0, 0.1]. Default 1e-3. [-]
     transport_order : {1, 2}, keyword-only
-        ``method="exact"`` only: difference of the rolling term, 1 (Kalker's and CONTACT's
-        first-order upwind difference, default) or 2 (three-point upwind difference, see
-        :func:`railcontact.reference.rolling3d.solve_rolling_3d`). Same continuum; on the same
-        grid a smaller RMS error but not a smaller maximum (the rest depends on where the
-        contact edge falls inside its element, and lateral creepage with spin has a large
-        second-order error): grid (40, 20) 20 / 7 ms, O 1.33 / 0.50 %; (60, 20) 31 / 13 ms,
-        O 0.58 / 0.19 %, C 0.71 / 0.23 %; (80, 20) 46 / 22 ms, O 0.50 / 0.17 %,
-        C 0.63 / 0.21 %; (80, 40) 111 / 73 ms, O 0.39 / 0.16 %, C 0.52 / 0.20 % (each with
-        ``extrapolate=False, grid_shifts=1``). [-]
+        ``method="exact"`` only: difference of the rolling term, 1 (first-order upwind, as
+        Kalker's and CONTACT's; default) or 2 (three-point upwind). [-]
     **method_options
         Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
         (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
@@ -481,6 +435,8 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     References
     ----------
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Secs. 2.5-2.6.
+    .. [2] J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.
+    .. [3] E.A.H. Vollebregt, CONTACT (the potential area and the reference cases).
     """
     if method == "exact_table" and not method_options:
         table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()

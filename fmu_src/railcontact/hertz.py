@@ -193,9 +193,14 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
         Normal load N, >= 0. [N]
     curvature_longitudinal : array_like
         A' > 0, the gap coefficient in the rolling direction: the undeformed gap is
-        ``h = A' x^2 + B' y^2``, so A' = 1/(2 R'_x) = (1/R_x1 + 1/R_x2)/2. [1/m]
+        ``h = A' x^2 + B' y^2``, so A' = 1/(2 R'_x) = (1/R_x1 + 1/R_x2)/2, **half** the
+        relative curvature 1/R'_x, not 1/R'_x itself (a wheel of radius 0.46 m on a straight
+        rail: A' = 1.087, not 2.17; passing 1/R'_x doubles the curvature and gives the
+        wrong ellipse). [1/m]
     curvature_lateral : array_like
-        B' > 0, the lateral gap coefficient, B' = 1/(2 R'_y). [1/m]
+        B' > 0, the lateral gap coefficient, B' = 1/(2 R'_y) = (1/R_y1 + 1/R_y2)/2, likewise
+        half the relative curvature (a rail head of radius 0.3 m against a flat wheel
+        profile: 1.667). [1/m]
     youngs_modulus : array_like
         Young's modulus E of both bodies, > 0. [Pa]
     poisson_ratio : array_like

@@ -56,7 +56,8 @@ from scipy.interpolate import NdBSpline, make_interp_spline
 from ._validation import check_range
 
 __all__ = [
-    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError", "bspline_knots",
+    "TABLE_FORMAT_VERSION", "TABLE_FORMAT_SPLINE_ONLY", "TableFileError",
+    "TableAccuracyWarning", "bspline_knots",
     "fit_tensor_bspline", "TensorSpline", "Table", "default_table_path",
     "tables_directory", "periodic_bspline_knots", "periodic_stored_nodes",
 ]
@@ -84,6 +85,27 @@ _INTEGRITY_NODES = 20000
 
 class TableFileError(ValueError):
     """A table file is missing, unreadable, truncated or of an incompatible version."""
+
+
+class TableAccuracyWarning(UserWarning):
+    """A table file's recorded accuracy is worse than that of the table the project ships
+    (a coarse or trial build): issued when it is built and whenever it is loaded."""
+
+
+#: Global attribute in which ``tablegen`` records how a build's accuracy compares with the
+#: shipped table's; a value starting with "worse" makes every load warn.
+ACCURACY_VERSUS_SHIPPED_ATTR = "accuracy_versus_shipped"
+
+
+def _warn_if_less_accurate(table):
+    """Warn (:class:`TableAccuracyWarning`) when the file records that its accuracy is worse
+    than the shipped table's (written by ``tablegen`` at build time)."""
+    note = str(table.attrs.get(ACCURACY_VERSUS_SHIPPED_ATTR, ""))
+    if note.startswith("worse"):
+        import warnings  # noqa: PLC0415
+
+        warnings.warn(f"table file {str(table.path)!r}: {note}", TableAccuracyWarning,
+                      stacklevel=3)
 
 
 # --------------------------------------------------------------------------------------------
@@ -419,7 +441,8 @@ def default_table_path(name, directory=None):
     stem = fname[:-3]
     raise FileNotFoundError(
         f"table file {fname!r} not found in {[str(p) for p in places]}; build it with "
-        f"`python -m tablegen build --only {stem}` or set {TABLES_DIR_ENV}")
+        f"`python -m tablegen build --only {stem}` (it writes ./tables-build) and set "
+        f"{TABLES_DIR_ENV} to that directory")
 
 
 def _read_netcdf_file(path):
@@ -759,10 +782,12 @@ class Table:
         if expected_name is not None and attrs.get("table_name") != expected_name:
             raise TableFileError(f"table file {str(path)!r} holds table "
                                  f"{attrs.get('table_name')!r}, expected {expected_name!r}")
-        return cls(path, attrs, content["axes"], content["variables"],
-                   content["variable_attrs"], content["values"],
-                   np.moveaxis(content["coefficients"], -1, 0),
-                   node_block=content["node_block"])
+        table = cls(path, attrs, content["axes"], content["variables"],
+                    content["variable_attrs"], content["values"],
+                    np.moveaxis(content["coefficients"], -1, 0),
+                    node_block=content["node_block"])
+        _warn_if_less_accurate(table)
+        return table
 
     def __call__(self, variable, points, derivative=None):
         """Evaluate one variable (see :meth:`TensorSpline.evaluate`)."""
