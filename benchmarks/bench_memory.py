@@ -12,7 +12,8 @@ what the user's process pays, imports included:
     ``fmpy.simulate_fmu`` of the FMU's default scene (the exact table), 10 steps, called in a
     loop in one Python process, the way fmpy users script parameter studies: the resident set
     after 2 warm-up calls and after ``--calls`` more; the growth per call (target <= 4 MB,
-    goal 0.5 MB, PythonFMU's own).
+    goal 0.5 MB, PythonFMU's own); ``sweep-trivial``: the same loop on a trivial PythonFMU
+    slave of the same interface size (benchmarks/bench_fmu.py's), what PythonFMU costs.
 ``fmpy-K``, ``libcosim-K``
     K instances of the default scene in one process (K = 1, 8, 16; one per wheel/rail
     contact of a vehicle), each initialised and stepped 10 times: the peak (target for 8
@@ -173,10 +174,28 @@ def child(code, *args, checkout=ROOT, env=None):
     return json.loads(lines[-1])
 
 
+def trivial_fmu(directory):
+    """A trivial PythonFMU slave with the FMU's interface size (benchmarks/bench_fmu.py's):
+    what PythonFMU itself costs."""
+    import importlib.util  # noqa: PLC0415
+
+    from pythonfmu.builder import FmuBuilder  # noqa: PLC0415
+
+    spec = importlib.util.spec_from_file_location("bench_fmu", ROOT / "benchmarks" /
+                                                  "bench_fmu.py")
+    bench_fmu = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench_fmu)
+    script = Path(directory) / "trivialcontact_bench.py"
+    script.write_text(bench_fmu.TRIVIAL)
+    return FmuBuilder.build_FMU(script, dest=Path(directory) / "TrivialContact.fmu")
+
+
 def measure(checkout, fmu, parts, calls):
     out = {}
     if "sweep" in parts:
         out["sweep"] = child(SWEEP, fmu, calls, checkout=checkout)
+        with tempfile.TemporaryDirectory() as work:
+            out["sweep-trivial"] = child(SWEEP, trivial_fmu(work), calls, checkout=checkout)
     for k in (1, 8, 16):
         if "fmpy" in parts:
             out[f"fmpy-{k}"] = child(FMPY_K, fmu, k, checkout=checkout)
@@ -200,7 +219,7 @@ def measure(checkout, fmu, parts, calls):
 def figure(name, result):
     if "error" in result:
         return f"error: {result['error']}"
-    if name == "sweep":
+    if name.startswith("sweep"):
         return (f"{result['per_call']:7.2f} MB/call (RSS {result['warm']:.0f} -> "
                 f"{result['end']:.0f} MB, peak {result['peak']:.0f} MB)")
     if name.startswith("load"):
