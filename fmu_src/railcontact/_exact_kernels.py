@@ -240,7 +240,7 @@ def _wheel_forces(f_par, f_perp, rho, tau, s, v_x, v_y, theta, mu_n):
 @njit(cache=True, inline="always")
 def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, tau_max, xi_x,
                  xi_y, phi, mu_n, a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res,
-                 work):
+                 work, n_var=4):
     """Forces, moment, stick fraction and their Jacobian at one contact, from the table.
 
     ``res`` (14,) <- tx [N], ty [N], mz [N m], stick fraction, |v|, then the (3, 3)
@@ -255,7 +255,8 @@ def _creep_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, t
     out = work[320:336].reshape((4, 4))
     small = want_jacobian and rho < JACOBIAN_RHO_MIN
     spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, log_g, nu, s,
-                  theta, tau, want_jacobian and not small, out, work)
+                  theta, tau, want_jacobian and not small, out, work,
+                  4 if want_jacobian else n_var)
     moment = out[0, 2]
     st = out[0, 3]
     if rho == 0.0 and tau == 0.0:   # (see _wheel_forces)
@@ -586,8 +587,9 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
 @njit(cache=True, inline="always")
 def _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, tau_max, log_g_min,
                  log_g_max, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                 poisson_ratio, friction_coefficient, want_jacobian, res, work):
-    """:func:`creep_table_point` on unpacked views, results in ``res`` (14,)."""
+                 poisson_ratio, friction_coefficient, want_jacobian, res, work, n_var=4):
+    """:func:`creep_table_point` on unpacked views, results in ``res`` (14,); with
+    ``n_var = 2`` (and no Jacobian) the forces only (the moment and stick fraction then 0)."""
     nu = poisson_ratio
     if not 0.0 <= nu <= 0.5:
         return False
@@ -605,7 +607,7 @@ def _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, tau_m
     c23 = c[2]
     done = _creep_point(coef, _NO_SLAB, False, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
                         tau_max, xi_x, xi_y, phi, friction_coefficient * normal_load, a0, b0,
-                        w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work)
+                        w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work, n_var)
     return done and _finite_forces(res)
 
 
@@ -644,7 +646,8 @@ def creep_table_force(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
 
 @njit(cache=True, inline="always")
 def _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                  poisson_ratio, friction_coefficient, want_jacobian, res, ok, lo, hi, work):
+                  poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok, lo, hi,
+                  work):
     """:func:`creep_table_point` at the points ``lo`` .. ``hi - 1`` (every input an array)."""
     t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, _, _ = _table_views(tbuf)
     for i in range(lo, hi):
@@ -652,30 +655,31 @@ def _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modul
                              tbuf[5], tbuf[6], tbuf[7], coef, xi_x[i], xi_y[i], phi[i],
                              normal_load[i], a0[i], b0[i], youngs_modulus[i],
                              poisson_ratio[i], friction_coefficient[i], want_jacobian, res[i],
-                             work)
+                             work, n_var)
 
 
 @njit(cache=True)
 def creep_table_batch(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                      poisson_ratio, friction_coefficient, want_jacobian, res, ok):
+                      poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok):
     """:func:`creep_table_point` over flat arrays, every point its own contact (a vehicle's
     contacts, a sweep over ellipses): ``res`` (n, 14), ``ok`` (n,) False where the caller
-    takes its fallback. No contact buffer, no Kalker coefficients from Python: the same
-    kernel as the scalar path."""
+    takes its fallback; ``n_var`` 4, or 2 for the forces only (no Jacobian: the moment and
+    stick fraction are then 0). No contact buffer, no Kalker coefficients from Python: the
+    same kernel as the scalar path."""
     _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                  poisson_ratio, friction_coefficient, want_jacobian, res, ok, 0,
+                  poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok, 0,
                   xi_x.shape[0], np.empty(336))
 
 
 @njit(cache=True, parallel=True)
 def creep_table_batch_parallel(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0,
                                youngs_modulus, poisson_ratio, friction_coefficient,
-                               want_jacobian, res, ok):
+                               want_jacobian, n_var, res, ok):
     """:func:`creep_table_batch` on numba's threads (see :func:`creep_contact_batch_parallel`)."""
     n = xi_x.shape[0]
     for c in prange((n + PARALLEL_CHUNK - 1) // PARALLEL_CHUNK):
         _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                      poisson_ratio, friction_coefficient, want_jacobian, res, ok,
+                      poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok,
                       c * PARALLEL_CHUNK, min(n, (c + 1) * PARALLEL_CHUNK), np.empty(336))
 
 

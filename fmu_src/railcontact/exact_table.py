@@ -618,7 +618,7 @@ class ExactCreepTable:
             return None
         return r[:, :5].reshape(shape + (5,)), r[:, 5:].reshape(shape + (3, 3))
 
-    def _evaluate(self, args, jacobian):
+    def _evaluate(self, args, jacobian, forces_only=False):
         from ._validation import check_creep_inputs  # noqa: PLC0415
 
         checked = check_creep_inputs(*args)   # any creepage: the table reaches full sliding
@@ -665,7 +665,7 @@ class ExactCreepTable:
                 with np.errstate(all="ignore"):
                     _batch("creep_table_batch", idx.size, self._tbuf, coef, xi_x[idx],
                            xi_y[idx], phi[idx], n_load[idx], a0[idx], b0[idx], e_mod[idx],
-                           nu[idx], mu[idx], jacobian, r, o)
+                           nu[idx], mu[idx], jacobian, 2 if forces_only else 4, r, o)
             o &= np.isfinite(r[:, :3]).all(axis=1)
             res[idx[o]] = r[o, :5]
             jac[idx[o]] = r[o, 5:].reshape(-1, 3, 3)
@@ -723,7 +723,7 @@ class ExactCreepTable:
             pass
         res = self._evaluate((creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                               b0, youngs_modulus, poisson_ratio, friction_coefficient),
-                             False)[0]
+                             False, forces_only=True)[0]
         return CreepForce3D(res[..., 0][()], res[..., 1][()])
 
     def creep_solution_3d(self, creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
