@@ -31,7 +31,7 @@ __all__ = ["EXPORTS", "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "c
 AOT_MODULE = "_aot_kernels"
 
 #: What the FMU build compiles ahead of time: (exported name, kernel module, numba
-#: signature[, the kernel's name in its module where it differs from the exported name]).
+#: signature). The exported name is the kernel's name in its module.
 EXPORTS = (
     ("tensor_eval", "_spline_kernels",
      "void(f8[:, ::1], i8[::1], f8[::1], i8[::1], i8[::1], i8[::1], f8[:, ::1], i8[::1], "
@@ -43,10 +43,6 @@ EXPORTS = (
      "UniTuple(f8, 2)(f8[::1], f8, f8, f8, f8, f8, f8, f8, f8)"),
     ("creep_table_point", "_exact_kernels",
      "b1(f8[::1], f4[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
-    # the same kernel on the coefficients summed over nu (float64, n1 = 1)
-    ("creep_table_point_nu_slab", "_exact_kernels",
-     "b1(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8, b1)",
-     "creep_table_point"),
     ("superposed_response", "_response_kernels",
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
 )
@@ -60,8 +56,7 @@ def aot_module():
     if not _AOT:
         try:   # made by the FMU build only
             from ._aot_kernels import (  # noqa: PLC0415
-                creep_contact, creep_contact_force, creep_table_force,
-                creep_table_force_nu_slab, creep_table_point, creep_table_point_nu_slab,
+                creep_contact, creep_contact_force, creep_table_force, creep_table_point,
                 cubic_basis, find_span, superposed_response, tensor_eval)
         except ImportError:
             _AOT.append(None)
@@ -69,9 +64,7 @@ def aot_module():
             _AOT.append(SimpleNamespace(creep_contact=creep_contact,
                                         creep_contact_force=creep_contact_force,
                                         creep_table_point=creep_table_point,
-                                        creep_table_point_nu_slab=creep_table_point_nu_slab,
                                         creep_table_force=creep_table_force,
-                                        creep_table_force_nu_slab=creep_table_force_nu_slab,
                                         cubic_basis=cubic_basis,
                                         find_span=find_span, tensor_eval=tensor_eval,
                                         superposed_response=superposed_response))
@@ -146,11 +139,10 @@ def creep_table_point(tbuf, coef):
     """The exact table's scalar kernel for any contact (``_exact_kernels.creep_table_point``:
     the five-dimensional spline) as a plain callable: the ahead-of-time copy, or the entry
     point of numba's signature for the table buffer ``tbuf`` and coefficients ``coef`` (see
-    :func:`creep_contact`): the file's (float32) or those summed over nu (float64, n1 = 1)."""
+    :func:`creep_contact`): the file's or those summed over nu (both float32)."""
     aot = aot_module()
     if aot is not None:
-        return (aot.creep_table_point if coef.dtype == np.float32
-                else aot.creep_table_point_nu_slab)
+        return aot.creep_table_point
     return _entry_point(exact_kernels().creep_table_point, tbuf, coef, 0.0, 0.0, 0.0, 1.0,
                         1.0, 1.0, 1.0, 0.25, 1.0, False)
 
@@ -158,12 +150,10 @@ def creep_table_point(tbuf, coef):
 def creep_table_force(tbuf, coef):
     """The exact table's forces-only scalar kernel for any contact
     (``_exact_kernels.creep_table_force``: returns ``(tx, ty)``, raises ArithmeticError for
-    the array path) as a plain callable, for the file's coefficients or those summed over nu
-    (see :func:`creep_table_point`)."""
+    the array path) as a plain callable (see :func:`creep_table_point`)."""
     aot = aot_module()
     if aot is not None:
-        return (aot.creep_table_force if coef.dtype == np.float32
-                else aot.creep_table_force_nu_slab)
+        return aot.creep_table_force
     return _entry_point(exact_kernels().creep_table_force, tbuf, coef, 0.0, 0.0, 0.0, 1.0,
                         1.0, 1.0, 1.0, 0.25, 1.0)
 
@@ -205,9 +195,8 @@ def build_aot(directory):
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False
-            for name, module, signature, *kernel in EXPORTS:
-                cc.export(name, signature)(getattr(modules[module], (kernel or [name])[0])
-                                           .py_func)
+            for name, module, signature in EXPORTS:
+                cc.export(name, signature)(getattr(modules[module], name).py_func)
             cc.compile()
     except Exception as exc:  # noqa: BLE001  (no compiler, no headers, a numba without pycc)
         return (f"ahead-of-time kernels not compiled ({type(exc).__name__}: "

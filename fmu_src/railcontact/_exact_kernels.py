@@ -573,8 +573,8 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     ``coef`` (n0, .., n4, 4) at one point, with Kalker's coefficients of a0/b0 and nu from
     their interpolant (:func:`_kalker_table_coefficients`); everything else the table needs
     is in ``tbuf`` (:data:`TABLE_HEAD`). ``coef`` may also be the coefficients summed over nu
-    at ``poisson_ratio`` (n1 = 1: :meth:`railcontact.exact_table.ExactCreepTable.prepare`),
-    a quarter of the products. Writes ``res`` inside ``tbuf`` (as :func:`creep_contact`);
+    at ``poisson_ratio`` (float32 too, n1 = 1:
+    :meth:`railcontact.exact_table.ExactCreepTable.prepare`), a quarter of the products. Writes ``res`` inside ``tbuf`` (as :func:`creep_contact`);
     False where the caller takes the array path (also a0/b0 beyond the table's axis, nu
     outside [0, 0.5])."""
     t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, res, work = _table_views(tbuf)

@@ -91,7 +91,7 @@ _new_tuple = tuple.__new__
 SLAB_AFTER_POINTS = 4096
 
 #: Points asked at one Poisson's ratio (any contacts) before the reader sums the table over
-#: nu there (:meth:`ExactCreepTable.prepare`: 0.1 s, after which a point of a changing
+#: nu there (:meth:`ExactCreepTable.prepare`: 0.1-0.3 s, after which a point of a changing
 #: contact costs about a third).
 NU_SLAB_AFTER_POINTS = 20000
 
@@ -498,15 +498,16 @@ class ExactCreepTable:
     def prepare(self, poisson_ratio):
         """Sum the table over Poisson's ratio at ``poisson_ratio`` now, so that every contact
         of that material, however its ellipse and load change, is evaluated on 4 x 64
-        instead of 16 x 64 coefficients per variable (:meth:`step_values` and the arrays of
-        varying contacts: about 3x faster; the values the same to round-off).
+        instead of 16 x 64 coefficients per variable (:meth:`step_values`, the public scalar
+        call and the arrays of changing contacts).
 
-        Costs about 0.1 s and holds 66 MB (float64; the two most recent Poisson's ratios
-        are kept). The pages of the mapped file it reads are given back to the operating
-        system as it goes, so the process's resident memory grows by the sum only. Called
-        by the FMU at initialisation (its Poisson's ratio is a fixed parameter); the API
-        calls it itself once a Poisson's ratio has been asked for
-        :data:`NU_SLAB_AFTER_POINTS` points.
+        The sum is held in float32, as the file's coefficients are: rounding it adds at most
+        2^-24 of a coefficient (about 1e-7 of mu N to a force), four orders of magnitude
+        below the table's own quantisation (2^-11) and error (0.5 %). Costs about 0.1-0.3 s
+        and 33 MB (the two most recent Poisson's ratios are kept); the pages of the mapped
+        file it reads are given back to the operating system as it goes. Made by the reader
+        itself once a Poisson's ratio has been asked for :data:`NU_SLAB_AFTER_POINTS` points
+        of changing contacts.
 
         Parameters
         ----------
@@ -525,13 +526,13 @@ class ExactCreepTable:
         w, dw = np.empty(4), np.empty(4)
         _compiled.cubic_basis()(t, i, nu, w, dw, np.empty(12))
         coef = self._coef
-        out = np.empty((coef.shape[0], 1) + coef.shape[2:])
+        out = np.empty((coef.shape[0], 1) + coef.shape[2:], dtype=np.float32)
         for p in range(coef.shape[0]):     # one a0/b0 plane at a time (9 MB of the file)
             block = coef[p, i - 3:i + 1]
-            plane = out[p, 0]
-            np.multiply(block[0], w[0], out=plane)
+            plane = w[0] * block[0]        # (summed in float64, stored in float32)
             for q in range(1, 4):
                 plane += w[q] * block[q]
+            out[p, 0] = plane
             release_pages(block)
         if self._tbuf is None:
             self._make_table_buffer()
@@ -590,6 +591,49 @@ class ExactCreepTable:
                              f"{res.shape[:-1]} (use creep_solution_3d)")
         return (float(res[0]), float(res[1]), float(res[2]), float(res[3]), float(res[4]),
                 jac if jacobian else None)
+
+    # -- many contacts, checked by the caller (the vehicle FMU) -------------------------------
+    def evaluate_contacts(self, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                          poisson_ratio, friction_coefficient, jacobian=True):
+        """K contacts, each its own ellipse, load and friction, in one compiled call: the
+        vehicle FMU's step.
+
+        The inputs are length-K float64 arrays (``youngs_modulus`` and ``poisson_ratio`` may
+        be scalars) that the caller has checked: finite, normal load > 0, a0, b0 and the
+        friction coefficient > 0. No further checks are made here. Contacts that the table
+        does not cover (a0/b0 or spin beyond its axes) are answered by the attached solver,
+        as :meth:`creep_solution_3d` does.
+
+        Returns
+        -------
+        res : ndarray, shape (K, 5)
+            tx [N], ty [N], mz [N m], stick area fraction [-], normalised creepage |v| [-].
+        jac : ndarray, shape (K, 3, 3)
+            d(tx, ty, mz)/d(xi_x, xi_y, phi) (stale unless ``jacobian``).
+        """
+        k = len(xi_x)
+        args = [np.ascontiguousarray(v, dtype=float) for v in (
+            xi_x, xi_y, phi, normal_load, a0, b0)]
+        e_mod = np.ascontiguousarray(np.broadcast_to(np.asarray(youngs_modulus, float), (k,)))
+        nu = np.ascontiguousarray(np.broadcast_to(np.asarray(poisson_ratio, float), (k,)))
+        mu = np.ascontiguousarray(friction_coefficient, dtype=float)
+        if self._tbuf is None:
+            self._make_table_buffer()
+        coef = self._coef
+        if k and np.all(nu == nu[0]):        # one material: its sum over nu, when made
+            nu_slab = self._nu_coefficients(float(nu[0]), k)
+            coef = coef if nu_slab is None else nu_slab[0]
+        r = np.empty((k, 14))
+        ok = np.zeros(k, dtype=bool)
+        _batch("creep_table_batch", k, self._tbuf, coef, *args, e_mod, nu, mu,
+               bool(jacobian), 4, r, ok)
+        if not ok.all():      # beyond the table (or an overflow): the checked array path
+            f = np.nonzero(~ok)[0]
+            res_f, jac_f, _ = self._evaluate(tuple(v[f] for v in (*args, e_mod, nu, mu)),
+                                             jacobian)
+            r[f, :5] = res_f
+            r[f, 5:] = jac_f.reshape(-1, 9)
+        return r[:, :5], r[:, 5:].reshape(k, 3, 3)
 
     # -- vectorised path ----------------------------------------------------------------------
     def _one_contact(self, checked, jacobian):
