@@ -483,7 +483,8 @@ class WheelRailContact(Fmi2Slave):
             self._vehicle = _effects.Vehicle(scene, self._contacts, tables_dir=tables_dir,
                                              warn=self._warn_once)
             self._pipeline = self._vehicle.pipelines[0]
-            self._auxiliary_all = lambda c: self._vehicle.auxiliary()
+            # (bound to the vehicle, not to self: no reference cycle through the slave)
+            self._auxiliary_all = lambda c, vehicle=self._vehicle: vehicle.auxiliary()
             summary = self._vehicle.summary
             self.__dict__.pop("do_step", None)
         else:

@@ -58,6 +58,32 @@ def test_unit_ellipses_equal_hertz_3d():
         assert [float(v[0]) for v in one] == [a1[k], b1[k], p1[k]]
 
 
+@pytest.mark.parametrize("contacts", [1, 3])
+def test_a_freed_slave_drops_its_contacts_and_effects(contacts, monkeypatch):
+    """Nothing module-level keeps a freed instance's objects: its contacts, effects and vehicle
+    go with it (the tables stay with their loader)."""
+    import gc
+    import importlib
+    import weakref
+
+    module = importlib.import_module("WheelRailContact")
+    monkeypatch.setattr(module, "CONTACTS", contacts)
+    slave = module.WheelRailContact(instance_name="freed", resources=None)
+    slave.scene_file = str(ROOT / "examples" / "scenes" / "creep_only_table.toml")
+    slave.exit_initialization_mode()
+    for c in slave._contacts:
+        c.normal_force, c.creepage_longitudinal = 8e4, 1e-3
+    slave.do_step(0.0, 1e-3)
+    refs = [weakref.ref(slave), weakref.ref(slave._pipeline),
+            weakref.ref(slave._pipeline.effects["creep"]),
+            weakref.ref(slave._pipeline.effects["normal"])]
+    if contacts > 1:
+        refs.append(weakref.ref(slave._vehicle))
+    del slave
+    gc.collect()
+    assert [r() for r in refs] == [None] * len(refs)
+
+
 # --------------------------------------------------------------------------------------------
 # helpers
 # --------------------------------------------------------------------------------------------
