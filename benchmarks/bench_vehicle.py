@@ -304,7 +304,8 @@ def main(argv=None):
     return 0
 
 
-def _report(args, vehicle, single, trivial, t_v, t_t):    print(f"scene {args.scene}, {args.contacts} contacts, every input changing at every step")
+def _report(args, vehicle, single, trivial, t_v, t_t):
+    print(f"scene {args.scene}, {args.contacts} contacts, every input changing at every step")
     print(f"\n1. one step (fmi2SetReal of {args.contacts * len(INPUTS)} inputs + fmi2DoStep + "
           f"fmi2GetReal of {args.contacts * len(FORCES)} forces), best of {args.rounds} "
           "rounds of 1000 steps, CPU time:")

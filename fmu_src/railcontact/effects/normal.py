@@ -32,14 +32,25 @@ _COMPLEX_STEP = 1e-30
 
 
 def _inverse_grid():
+    """``(nodes, coefficients)``: the nodes of log f (increasing from 0) and, per interval,
+    (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of u(log f) as
+    c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope du/dlog f
+    linear between the nodes' s0, s1."""
     if not _INVERSE_GRID:
         u = np.linspace(math.log(hertz._K_MIN), 0.0, 4001)
         k2 = np.exp(2.0 * u)
         z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
         f = hertz.elliprd(0.0, 1.0, z) / hertz.elliprd(0.0, z, 1.0)
-        slope = f.real / (f.imag / _COMPLEX_STEP)              # du / dlog f
-        _INVERSE_GRID.append(tuple(np.ascontiguousarray(v[::-1])
-                                   for v in (np.log(f.real), u, slope)))
+        nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
+            np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
+        nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
+        h = np.diff(nodes)
+        m0, m1 = slope[:-1] * h, slope[1:] * h
+        y0, y1 = y[:-1], y[1:]
+        coefficients = np.column_stack([
+            nodes[:-1], 1.0 / h, y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1,
+            2.0 * (y0 - y1) + m0 + m1, slope[:-1], slope[1:] - slope[:-1]])
+        _INVERSE_GRID.append((nodes, coefficients))
     return _INVERSE_GRID[0]
 
 
@@ -76,13 +87,12 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
     c_x = np.asarray(curvature_longitudinal, dtype=float)
     c_y = np.asarray(curvature_lateral, dtype=float)
     e_star = youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
-    x_major = c_y >= c_x
-    c_major = np.where(x_major, c_x, c_y)
-    c_minor = np.where(x_major, c_y, c_x)
+    c_major = np.minimum(c_x, c_y)        # the smaller curvature: the major axis along it
+    c_minor = np.maximum(c_x, c_y)
     log_ratio = np.log(c_minor / c_major)
-    nodes, grid_u, slope = _inverse_grid()
-    inside = log_ratio <= nodes[-1]
-    if not np.all(inside):      # beyond a0/b0 = 1e6: hertz_3d's clipped answer
+    nodes, coefficients = _inverse_grid()
+    if not log_ratio.max(initial=0.0) <= nodes[-1]:    # beyond a0/b0 = 1e6: hertz_3d's
+        inside = log_ratio <= nodes[-1]                  # clipped answer there
         out = [np.empty(c_x.shape) for _ in range(3)]
         for k in np.flatnonzero(~inside):
             for o, v in zip(out, hertz.hertz_3d(1.0, c_x[k], c_y[k], youngs_modulus,
@@ -93,22 +103,20 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
                                                poisson_ratio)):
                 o[inside] = v
         return tuple(out)
-    # cubic Hermite interpolation of u(log f), then one Newton step with its slope
-    i = np.clip(np.searchsorted(nodes, log_ratio) - 1, 0, nodes.size - 2)
-    x0, h = nodes[i], nodes[i + 1] - nodes[i]
-    t = (log_ratio - x0) / h
-    t2 = t * t
-    t3 = t2 * t
-    m0, m1 = slope[i] * h, slope[i + 1] * h
-    u = ((2.0 * t3 - 3.0 * t2 + 1.0) * grid_u[i] + (t3 - 2.0 * t2 + t) * m0
-         + (3.0 * t2 - 2.0 * t3) * grid_u[i + 1] + (t3 - t2) * m1)
+    # cubic Hermite interpolation of u(log f), then one Newton step with its slope (a circle,
+    # log_ratio = 0, gives u = 0 and k = 1 exactly)
+    c = coefficients[np.minimum(np.searchsorted(nodes, log_ratio, "right") - 1,
+                                nodes.size - 2)]
+    t = (log_ratio - c[:, 0]) * c[:, 1]
+    u = c[:, 2] + t * (c[:, 3] + t * (c[:, 4] + t * c[:, 5]))
     k2 = np.exp(2.0 * u)
     u = u - (np.log(hertz.elliprd(0.0, 1.0, k2) / hertz.elliprd(0.0, k2, 1.0)) - log_ratio) * (
-        (1.0 - t) * slope[i] + t * slope[i + 1])
-    k = np.where(log_ratio > 0.0, np.exp(u), 1.0)
+        c[:, 6] + t * c[:, 7])
+    k = np.exp(u)
     rd = hertz.elliprd(0.0, k * k, 1.0)
     c_max = np.cbrt(rd / (2.0 * np.pi * e_star * c_major))     # hertz_3d's formula at N = 1
     c_min = k * c_max
+    x_major = c_y >= c_x
     a1 = np.where(x_major, c_max, c_min)
     b1 = np.where(x_major, c_min, c_max)
     return a1, b1, 1.5 * (1.0 / (np.pi * a1 * b1))
