@@ -34,6 +34,7 @@ import json
 import math
 import operator
 import os
+from functools import partial
 import sys
 from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
@@ -484,7 +485,7 @@ class WheelRailContact(Fmi2Slave):
                                              warn=self._warn_once)
             self._pipeline = self._vehicle.pipelines[0]
             # (bound to the vehicle, not to self: no reference cycle through the slave)
-            self._auxiliary_all = lambda c, vehicle=self._vehicle: vehicle.auxiliary()
+            self._auxiliary_all = self._vehicle.auxiliary
             summary = self._vehicle.summary
             self.__dict__.pop("do_step", None)
         else:
@@ -649,14 +650,14 @@ class WheelRailContact(Fmi2Slave):
     def _real_getter(self, vrs):
         fields = self._real_fields(vrs)
         if not fields:
-            return lambda: Fmi2Slave.get_real(self, list(vrs))
+            return self._mixed_getter(vrs)
         if CONTACTS > 1:
             lazy = any(f in _LAZY for _, f in fields)
             aux = self._auxiliary_all
 
             def get(_fields=fields):
                 if lazy:
-                    aux(None)
+                    aux(None)               # (every contact's, once)
                 return [getattr(c, f) for c, f in _fields]
             return get
         c, get = self._contact, operator.attrgetter(*fields)
@@ -668,6 +669,30 @@ class WheelRailContact(Fmi2Slave):
         if lazy:
             return lambda: (self._auxiliary_all(c), list(get(c)))[1]
         return lambda: list(get(c))
+
+    def _mixed_getter(self, vrs):
+        """A list with parameters too (libcosim reads every variable each step): the contacts'
+        fields directly, the others through their getters, the lazy outputs evaluated once
+        first. A variable that is not Real keeps the generic path (and its TypeError)."""
+        calls, lazy = [], False
+        for vr in vrs:
+            entry = self._real_map.get(vr)
+            if entry is not None:
+                k, field = entry
+                calls.append(partial(getattr, self._contacts[k], field))
+                lazy = lazy or field in _LAZY
+            elif isinstance(self.vars.get(vr), Real):
+                calls.append(self.vars[vr].getter)
+            else:
+                return lambda: Fmi2Slave.get_real(self, list(vrs))
+        aux, contacts = self._auxiliary_all, self._contacts
+
+        def get():
+            if lazy:
+                for c in contacts:
+                    aux(c)
+            return [call() for call in calls]
+        return get
 
     def _evaluate(self):
         if self._vehicle is not None:

@@ -74,6 +74,7 @@ class Vehicle:
             self._table = table
             self._use_spin = creep.use_spin
         self.summary = first.summary()
+        self._pipeline_of = {id(c): p for c, p in zip(self.contacts, self.pipelines)}
 
     # -- the step ------------------------------------------------------------------------------
     def check_inputs(self):
@@ -205,8 +206,12 @@ class Vehicle:
             creep._aux_args = tuple(col[j] for col in columns)
 
     # -- the rest --------------------------------------------------------------------------------
-    def auxiliary(self):
-        """The outputs computed only when read, for every contact."""
+    def auxiliary(self, contact=None):
+        """The outputs computed only when read: of ``contact`` (one of :attr:`contacts`), or of
+        every contact (None)."""
+        if contact is not None:
+            self._pipeline_of[id(contact)].auxiliary(contact)
+            return
         for p, c in zip(self.pipelines, self.contacts):
             p.auxiliary(c)
 
