@@ -16,7 +16,8 @@ All figures from one run, on one machine, under the same load:
    time (imports, FMU extraction, table load, the loop; what a user waits for) and the loop
    alone: the K-contact FMU in fmpy (``FMU2Slave`` loop, and ``fmpy.simulate_fmu`` with the
    signals as its input array) and in libcosim (override manipulator + last-value observer),
-   against K single-contact instances in each. Targets: <= 2 s in fmpy, <= 3 s in libcosim.
+   against K single-contact instances in each, and the trivial slave in each (the host's own
+   cost). Targets: <= 2 s in fmpy, <= 3 s in libcosim.
 
 The FMUs are built for the current sources (``build_fmu.py [--contacts K]``) into a cache
 directory keyed by the source digest (as the tests do), so a second run builds nothing.
