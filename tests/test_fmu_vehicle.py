@@ -426,6 +426,13 @@ def test_each_vehicle_contact_keeps_its_own_nonsteady_state(vehicle_fmu, built_f
     _compare_with_single_contacts(vehicle_fmu, built_fmu, {"scene_toml": toml}, h=2e-4)
 
 
+def test_each_vehicle_contact_keeps_its_own_wear_and_corrugation(vehicle_fmu, built_fmu):
+    """Line contacts on a corrugated rail whose surface evolves by the wear of each contact's
+    own passages (rail_position differs per contact)."""
+    toml = (ROOT / "examples" / "scenes" / "corrugation_wear.toml").read_text()
+    _compare_with_single_contacts(vehicle_fmu, built_fmu, {"scene_toml": toml}, steps=8)
+
+
 def test_vehicle_bad_input_names_the_contact_and_the_input(vehicle_fmu):
     v = Slave(vehicle_fmu, strings={"scene_file": "creep_exact_table"})
     v.set({f"normal_force[{k}]": 8e4 for k in range(1, K + 1)})
