@@ -1,5 +1,7 @@
 #!/usr/bin/env python
-"""Build ``WheelRailContact.fmu``: ``python build_fmu.py [--dest DIR] [--no-validate]``.
+"""Build ``WheelRailContact.fmu``: ``python build_fmu.py [--dest DIR] [--no-validate]
+[--contacts K]`` (K = 1-32 contacts per instance; K > 1 builds
+``WheelRailContact_<K>contacts.fmu``, variables ``name[k]``).
 
 The command line of :mod:`railcontact.fmu_build` (the builder lives in the package, so that
 ``railcontact.run`` imports it normally); the names below are re-exported for scripts that
@@ -13,8 +15,9 @@ _PACKAGE_PARENT = str(Path(__file__).resolve().parent / "fmu_src")
 if _PACKAGE_PARENT not in sys.path:     # the checkout's package, also when not installed
     sys.path.insert(0, _PACKAGE_PARENT)
 
-from railcontact.fmu_build import (MODEL_NAME, ROOT, build, bundle_names,  # noqa: E402,F401
-                                   fmu_digest, main, source_hash)
+from railcontact.fmu_build import (MAX_CONTACTS, MODEL_NAME, ROOT,  # noqa: E402,F401
+                                   build, bundle_names, check_contacts, fmu_digest,
+                                   fmu_file_name, main, source_hash)
 
 if __name__ == "__main__":
     sys.exit(main())

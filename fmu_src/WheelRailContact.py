@@ -12,12 +12,21 @@ Semantics of a step: the outputs at the end of ``doStep(t, h)`` are the contact 
 the inputs set before the step (sample and hold); the outputs after initialisation are the
 solution for the start values of the inputs.
 
-Errors: PythonFMU (0.7) turns any Python exception into the status fmi2Fatal. An invalid
-parameter makes ``fmi2ExitInitializationMode`` fail, an invalid input (NaN, inf, negative
-normal force or speed) or step size (negative, NaN or inf) makes ``fmi2DoStep`` fail; in both
-cases an error message naming the parameter, input or step size is logged first (visible
-with debug logging on, e.g. ``fmpy simulate --debug-logging`` or ``simulate_fmu(...,
-debug_logging=True)``). No NaN is ever returned.
+Geometry and friction are inputs (:data:`railcontact.fmu_parameters.RUNTIME_INPUTS`): set
+before initialisation they override the scene like a parameter, after it they act from the
+next step. Every other parameter is fixed: a set after initialisation is refused (an error
+status and a message naming it).
+
+Errors: PythonFMU (0.7) turns any Python exception into the status fmi2Fatal (fmi2Error is not
+reachable from Python). An invalid parameter makes ``fmi2ExitInitializationMode`` fail, an
+invalid input (NaN, inf, negative normal force, speed or friction coefficient, curvature or
+semi-axis <= 0) or step size (negative, NaN or inf) makes ``fmi2DoStep`` fail, a fixed
+parameter set after initialisation makes ``fmi2Set*`` fail. In each case an error message
+naming the scene, parameter, input (and, for a vehicle FMU, the contact) or step size is
+logged first through the FMI logger, and also written to the host process's standard error:
+PythonFMU 0.7 forwards log messages only when the importer turned debug logging on
+(``loggingOn``), and importers leave it off by default (fmpy's ``simulate_fmu``, libcosim), so
+without the second copy the user would read only "status 4 (fatal)". No NaN is ever returned.
 """
 
 import ctypes
@@ -25,6 +34,7 @@ import json
 import math
 import operator
 import os
+from functools import partial
 import sys
 from pathlib import Path
 from xml.etree.ElementTree import Element, SubElement
@@ -32,6 +42,10 @@ from xml.etree.ElementTree import Element, SubElement
 from pythonfmu import Boolean, DefaultExperiment, Fmi2Causality, Fmi2Slave, Fmi2Variability
 from pythonfmu import Integer, Real, String
 from pythonfmu.enums import Fmi2Initial, Fmi2Status
+
+#: Number of contacts one instance serves (``build_fmu.py --contacts K`` writes K here; 1: the
+#: variables carry their plain names, else ``name[k]``, k = 1..K, FMI 2.0 structured naming).
+CONTACTS = 1
 
 # (railcontact.fmu_build rewrites these two imports to the bundled copy's unique name)
 import railcontact as _rc
@@ -222,14 +236,14 @@ def _described(description, unit):
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
          "corrugation_growth_rate", "Mz", "corrugation_series_error_estimate"}
 
-#: Real inputs and outputs held by the ContactPoint: variable name -> its field (the table
-#: behind get_real / set_real).
-_INPUT_FIELDS = {name: name for name in _scene.INPUTS}
-_REAL_FIELDS = dict(_INPUT_FIELDS, **{name: field for name, (_, _, field) in OUTPUTS.items()})
-
-
 def _no_auxiliary(contact):
     """Before initialisation: no effect computes anything on demand."""
+
+
+def _name(name, k):
+    """The FMI name of variable ``name`` of contact ``k`` (0-based): the plain name for a
+    single contact, ``name[k + 1]`` (FMI 2.0 structured naming) for a vehicle."""
+    return name if CONTACTS == 1 else f"{name}[{k + 1}]"
 
 
 #: SI units used by the variables: name -> exponents of kg, m, s.
@@ -250,7 +264,8 @@ _SCENE_PARAMETERS = (
 
 
 class WheelRailContact(Fmi2Slave):
-    """One wheel/rail rolling contact: normal force and creepages in, creep forces out."""
+    """Wheel/rail rolling contacts (one, or CONTACTS of one vehicle): normal force, creepages,
+    geometry and friction in, creep forces out."""
 
     author = "railcontact contributors"
     description = ("Wheel/rail rolling contact after J.B. Nielsen (1998): Hertz normal "
@@ -265,60 +280,110 @@ class WheelRailContact(Fmi2Slave):
         self.version = getattr(_rc, "__version__", "unknown")
         self.default_experiment = DefaultExperiment(start_time=0.0, stop_time=1.0,
                                                     step_size=1e-3)
+        if not (isinstance(CONTACTS, int) and 1 <= CONTACTS <= _effects.MAX_CONTACTS):
+            raise ValueError(f"CONTACTS must be an integer in [1, {_effects.MAX_CONTACTS}]; "
+                             f"got {CONTACTS!r}")
         self._units = {}
-        self._contact = _effects.ContactPoint()
+        self._contacts = [_effects.ContactPoint() for _ in range(CONTACTS)]
+        self._contact = self._contacts[0]
         self._pipeline = None
+        self._vehicle = None
         self._steps = ()
         self._checked_step = _effects.checked_steps(())    # (no effects before initialisation)
         self._auxiliary_all = _no_auxiliary
         self._warned = set()
         self._built_from = None
+        self._initialised = False
         self._real_getters, self._real_setters = {}, {}
+        #: value reference -> (contact index, ContactPoint field) of the Real inputs/outputs
+        self._real_map = {}
+        #: per contact: runtime inputs set before initialisation (vehicle FMU)
+        self._pending = [{} for _ in range(CONTACTS)]
+        #: value reference -> name of the fixed parameters (refused after initialisation)
+        self._fixed = {}
 
         self.scene_file = ""
         self.scene_toml = ""
         for name, desc in _SCENE_PARAMETERS:
-            self.register_variable(String(name, causality=Fmi2Causality.parameter,
-                                          variability=Fmi2Variability.fixed,
-                                          description=desc))
+            self._register_fixed(String(name, causality=Fmi2Causality.parameter,
+                                        variability=Fmi2Variability.fixed, description=desc))
         defaults = _parameters.scene_to_parameters()
+        runtime = []
         for spec in _parameters.FMU_PARAMETERS:
             setattr(self, spec.name, defaults[spec.name])
+            if spec.name in _parameters.RUNTIME_INPUTS:
+                runtime.append(spec)
+                continue
             cls = {"real": Real, "integer": Integer, "string": String,
                    "boolean": Boolean}[spec.kind]
-            self.register_variable(cls(spec.name, causality=Fmi2Causality.parameter,
-                                       variability=Fmi2Variability.fixed,
-                                       description=_described(spec.description, spec.unit)))
+            self._register_fixed(cls(spec.name, causality=Fmi2Causality.parameter,
+                                     variability=Fmi2Variability.fixed,
+                                     description=_described(spec.description, spec.unit)))
             if spec.unit:
                 self._units[spec.name] = spec.unit
 
-        c = self._contact
-        for name, (unit, desc) in _scene.INPUTS.items():
-            setattr(c, name, float(_scene.INPUT_DEFAULTS[name]))
-            self.register_variable(Real(
-                name, causality=Fmi2Causality.input, variability=Fmi2Variability.continuous,
-                description=_described(desc, unit), getter=(lambda n=name: getattr(c, n)),
-                setter=(lambda v, n=name: setattr(c, n, v))))
-            self._units[name] = unit
-        for name, (unit, desc, field) in OUTPUTS.items():
-            getter = ((lambda f=field: self._auxiliary(f)) if field in _LAZY
-                      else (lambda f=field: getattr(c, f)))
-            self.register_variable(Real(
-                name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
-                initial=Fmi2Initial.calculated, description=_described(desc, unit),
-                getter=getter))
-            self._units[name] = unit
-        for name, (desc, field) in BOOLEAN_OUTPUTS.items():
-            self.register_variable(Boolean(
-                name, causality=Fmi2Causality.output, variability=Fmi2Variability.discrete,
-                initial=Fmi2Initial.calculated, description=desc,
-                getter=(lambda f=field: self._auxiliary(f))))
+        for k, c in enumerate(self._contacts):
+            for name, (unit, desc) in _scene.INPUTS.items():
+                setattr(c, name, float(_scene.INPUT_DEFAULTS[name]))
+                self._register_real(Real(
+                    _name(name, k), causality=Fmi2Causality.input,
+                    variability=Fmi2Variability.continuous,
+                    description=_described(desc, unit), getter=(lambda n=name, c=c: getattr(c, n)),
+                    setter=(lambda v, n=name, c=c: setattr(c, n, v))), k, name, unit)
+            for spec in runtime:
+                self._register_real(Real(
+                    _name(spec.name, k), causality=Fmi2Causality.input,
+                    variability=Fmi2Variability.continuous,
+                    description=_described(spec.description, spec.unit),
+                    getter=(lambda n=spec.name, k=k: self._get_runtime(n, k)),
+                    setter=(lambda v, n=spec.name, k=k: self._set_runtime(n, k, v))),
+                    k, spec.name, spec.unit)
+            for name, (unit, desc, field) in OUTPUTS.items():
+                getter = ((lambda f=field, c=c: self._auxiliary(f, c)) if field in _LAZY
+                          else (lambda f=field, c=c: getattr(c, f)))
+                self._register_real(Real(
+                    _name(name, k), causality=Fmi2Causality.output,
+                    variability=Fmi2Variability.continuous,
+                    initial=Fmi2Initial.calculated, description=_described(desc, unit),
+                    getter=getter), k, field, unit)
+            for name, (desc, field) in BOOLEAN_OUTPUTS.items():
+                self.register_variable(Boolean(
+                    _name(name, k), causality=Fmi2Causality.output,
+                    variability=Fmi2Variability.discrete,
+                    initial=Fmi2Initial.calculated, description=desc,
+                    getter=(lambda f=field, c=c: self._auxiliary(f, c))))
+
+    def _register_fixed(self, var):
+        self.register_variable(var)
+        self._fixed[var.value_reference] = var.name
+
+    def _register_real(self, var, k, field, unit):
+        self.register_variable(var)
+        self._real_map[var.value_reference] = (k, field)
+        if unit:
+            self._units[var.name] = unit
+
+    # -- the runtime inputs (geometry, friction): a parameter before initialisation ----------
+    def _get_runtime(self, name, k):
+        if self._initialised:
+            return getattr(self._contacts[k], name)
+        return self._pending[k].get(name, getattr(self, name))
+
+    def _set_runtime(self, name, k, value):
+        if self._initialised:
+            setattr(self._contacts[k], name, value)
+        elif CONTACTS == 1:
+            setattr(self, name, value)      # overrides the scene, like a parameter
+        else:
+            self._pending[k][name] = value  # this contact's start value
 
     # ---------------------------------------------------------------------------------------
-    # model description: units, InitialUnknowns (PythonFMU writes neither)
+    # model description: units, InitialUnknowns (PythonFMU writes neither), structured names
     # ---------------------------------------------------------------------------------------
     def to_xml(self, model_options=None):
         root = super().to_xml(model_options or {})
+        if CONTACTS > 1:
+            root.set("variableNamingConvention", "structured")
         unit_defs = Element("UnitDefinitions")
         for unit in sorted(set(self._units.values())):
             u = SubElement(unit_defs, "Unit", {"name": unit})
@@ -333,7 +398,7 @@ class WheelRailContact(Fmi2Slave):
             if unit is not None and real is not None:
                 real.set("unit", unit)
             typed = real if real is not None else node.find("Integer")
-            for key, value in LIMITS.get(node.get("name"), {}).items():
+            for key, value in LIMITS.get(node.get("name").split("[")[0], {}).items():
                 typed.set(key, f"{value:.16g}")
         structure = root.find("ModelStructure")
         initial = SubElement(structure, "InitialUnknowns")
@@ -342,6 +407,24 @@ class WheelRailContact(Fmi2Slave):
                 SubElement(initial, "Unknown", {"index": str(index)})
         assert len(names) == len(set(names))
         return root
+
+    # ---------------------------------------------------------------------------------------
+    # errors: the FMI log and the host's standard error
+    # ---------------------------------------------------------------------------------------
+    def _report(self, message, status=Fmi2Status.error):
+        """Log ``message`` with ``status`` and write it to the host's standard error.
+
+        PythonFMU 0.7's native library passes log messages to the importer only when debug
+        logging is on (``fmi2Instantiate(..., loggingOn)``, ``fmi2SetDebugLogging``), which
+        importers leave off by default: without this second copy a plain ``fmpy.simulate_fmu``
+        or a libcosim run would show only the status ("status 4 (fatal)")."""
+        self.log(message, status)
+        try:
+            sys.stderr.write(f"{type(self).__name__} {self.instance_name!r}: "
+                             f"{status.name.upper()}: {message}\n")
+            sys.stderr.flush()
+        except (AttributeError, OSError, ValueError):   # no usable stderr in this host
+            pass
 
     # ---------------------------------------------------------------------------------------
     # initialisation: read the scene, build only the effects it switches on
@@ -363,8 +446,12 @@ class WheelRailContact(Fmi2Slave):
             try:
                 text = path.read_text(encoding="utf-8")
             except OSError as exc:
+                scenes = (sorted(p.stem for p in bundled.parent.glob("*.toml"))
+                          if bundled is not None and bundled.parent.is_dir() else [])
+                hint = (f"; the scenes bundled in this FMU are {', '.join(scenes)}"
+                        if scenes else "")
                 raise _scene.SceneError(f"scene_file: cannot read {str(path)!r}: "
-                                        f"{exc.strerror}") from None
+                                        f"{exc.strerror}{hint}") from None
             try:
                 base = _scene.tomllib.loads(text)
             except _scene.tomllib.TOMLDecodeError as exc:
@@ -387,19 +474,34 @@ class WheelRailContact(Fmi2Slave):
         tables_dir = None
         if self._bundle_dir is not None and (self._bundle_dir / "tables").is_dir():
             tables_dir = self._bundle_dir / "tables"
-        self._pipeline = _effects.build_pipeline(scene, tables_dir=tables_dir,
-                                                 warn=self._warn_once)
-        self._steps = self._pipeline.steps
-        self._checked_step = self._pipeline.checked_step
-        self._auxiliary_all = self._pipeline.auxiliary
-        # the whole step in one Python frame (an instance attribute shadows the do_step
-        # method; PythonFMU looks the method up by name on each step)
-        self.do_step = self._pipeline.fmu_step(self._contact, self._do_step_full,
-                                               self._log_step_failure)
-        self._contact.friction_coefficient = scene.friction_coefficient
+        geo = scene.geometry
+        for c in self._contacts:
+            c.friction_coefficient = scene.friction_coefficient
+            for name in _effects.ContactPoint.GEOMETRY_FIELDS:
+                # (a line scene holds none of them: their defaults, unused there)
+                setattr(c, name, float(geo.get(name, _scene.DEFAULT_SCENE["geometry"][name])))
+        if CONTACTS > 1:
+            self._vehicle = _effects.Vehicle(scene, self._contacts, tables_dir=tables_dir,
+                                             warn=self._warn_once)
+            self._pipeline = self._vehicle.pipelines[0]
+            # (bound to the vehicle, not to self: no reference cycle through the slave)
+            self._auxiliary_all = self._vehicle.auxiliary
+            summary = self._vehicle.summary
+            self.__dict__.pop("do_step", None)
+        else:
+            self._pipeline = _effects.build_pipeline(scene, tables_dir=tables_dir,
+                                                     warn=self._warn_once)
+            self._steps = self._pipeline.steps
+            self._checked_step = self._pipeline.checked_step
+            self._auxiliary_all = self._pipeline.auxiliary
+            # the whole step in one Python frame (an instance attribute shadows the do_step
+            # method; PythonFMU looks the method up by name on each step)
+            self.do_step = self._pipeline.fmu_step(self._contact, self._do_step_full,
+                                                   self._log_step_failure)
+            summary = self._pipeline.summary()
         self._built_from = values
-        self.log(f"scene {scene.name!r}: effects on: {self._pipeline.summary()}",
-                 Fmi2Status.ok)
+        self.log(f"scene {scene.name!r}: effects on: {summary}"
+                 + (f" ({CONTACTS} contacts)" if CONTACTS > 1 else ""), Fmi2Status.ok)
 
     def _warn_once(self, key, message):
         if key not in self._warned:
@@ -416,48 +518,68 @@ class WheelRailContact(Fmi2Slave):
     def exit_initialization_mode(self):
         try:
             self._build(self._parameter_values())
+        except _effects.MissingDependency as exc:
+            self._report(f"initialisation failed: {exc}", Fmi2Status.fatal)
+            raise
         except ValueError as exc:   # SceneError is a ValueError
-            self.log(f"invalid parameter: {exc}", Fmi2Status.error)
+            self._report(f"invalid parameter: {exc}", Fmi2Status.error)
             raise
         except Exception as exc:    # report, then let PythonFMU return fmi2Fatal
-            self.log(f"initialisation failed: {exc!r}", Fmi2Status.fatal)
+            self._report(f"initialisation failed: {exc!r}", Fmi2Status.fatal)
             raise
+        for c, pending in zip(self._contacts, self._pending):
+            for name, value in pending.items():
+                setattr(c, name, value)
         try:
             self._check_inputs()
+            self._evaluate()
         except ValueError as exc:
-            self.log(f"invalid input (start value): {exc}", Fmi2Status.error)
+            self._report(f"invalid input (start value): {exc}", Fmi2Status.error)
             raise
-        self._evaluate()
+        self._initialised = True
+        self._real_getters.clear()
+        self._real_setters.clear()
         _release_interpreter_guard_at_exit(self.resources, "initialised")
 
     # ---------------------------------------------------------------------------------------
     # stepping
     # ---------------------------------------------------------------------------------------
     def _check_inputs(self):
+        if self._vehicle is not None:
+            self._vehicle.check_inputs()
+            return
         c = self._contact
         total = (c.normal_force + c.creepage_longitudinal + c.creepage_lateral + c.spin
-                 + c.rolling_speed + c.rail_position)
-        if math.isfinite(total) and c.normal_force >= 0.0 and c.rolling_speed >= 0.0:
+                 + c.rolling_speed + c.rail_position + c.friction_coefficient)
+        if math.isfinite(total) and c.normal_force >= 0.0 and c.rolling_speed >= 0.0 \
+                and c.friction_coefficient >= 0.0:
             return
         for name, lower in (("normal_force", 0.0), ("creepage_longitudinal", None),
                             ("creepage_lateral", None), ("spin", None),
-                            ("rolling_speed", 0.0), ("rail_position", None)):
-            _rc.check_range(name, getattr(c, name), _scene.INPUTS[name][0], lower, None)
+                            ("rolling_speed", 0.0), ("rail_position", None),
+                            ("friction_coefficient", 0.0)):
+            unit = _scene.INPUTS[name][0] if name in _scene.INPUTS else "1"
+            _rc.check_range(name, getattr(c, name), unit, lower, None)
 
-    def _auxiliary(self, field):
-        """Value of an output some effects compute only when it is read (after a step)."""
-        self._auxiliary_all(self._contact)
-        return getattr(self._contact, field)
+    def _auxiliary(self, field, c=None):
+        """Value of an output some effects compute only when it is read (after a step), of
+        contact ``c`` (default: the first)."""
+        c = self._contact if c is None else c
+        self._auxiliary_all(c)
+        return getattr(c, field)
 
     # ---------------------------------------------------------------------------------------
     # reading outputs and setting inputs: a precomputed table per list of value references
     # ---------------------------------------------------------------------------------------
     # PythonFMU's generic get_real/set_real look every variable up and call a lambda per
     # variable; an importer asks for the same lists of value references step after step, so
-    # each list gets, on first use, one operator.attrgetter over the ContactPoint fields it
-    # names (the lazy outputs' auxiliary evaluation made once before it). Lists with a
-    # parameter or a non-Real variable keep the generic path (and its error).
+    # each list gets, on first use after initialisation, one operator.attrgetter over the
+    # ContactPoint fields it names (the lazy outputs' auxiliary evaluation made once before
+    # it; a vehicle: (contact, field) pairs). Lists with a parameter or a non-Real variable keep
+    # the generic path (and its error); a fixed parameter set after initialisation is refused.
     def get_real(self, vrs):
+        if not self._initialised:
+            return Fmi2Slave.get_real(self, vrs)
         key = tuple(vrs)
         getter = self._real_getters.get(key)
         if getter is None:
@@ -465,28 +587,79 @@ class WheelRailContact(Fmi2Slave):
         return getter()
 
     def set_real(self, vrs, values):
+        if not self._initialised:
+            return Fmi2Slave.set_real(self, vrs, values)
         key = tuple(vrs)
         fields = self._real_setters.get(key)
         if fields is None:
-            fields = self._real_setters[key] = self._real_fields(key, _INPUT_FIELDS)
+            fields = self._real_setters[key] = self._real_fields(key, inputs=True)
         if not fields:
-            return super().set_real(vrs, values)
-        c = self._contact
-        for field, value in zip(fields, values):
-            setattr(c, field, value)
+            self._refuse_fixed(vrs)
+            return Fmi2Slave.set_real(self, vrs, values)
+        if CONTACTS == 1:
+            c = self._contact
+            for field, value in zip(fields, values):
+                setattr(c, field, value)
+        else:
+            for (c, field), value in zip(fields, values):
+                setattr(c, field, value)
 
-    def _real_fields(self, vrs, allowed):
-        """The ContactPoint fields of the Real variables ``vrs`` (names in ``allowed``), or ()
-        if one of them is not such a variable."""
-        names = [getattr(self.vars.get(vr), "name", None) for vr in vrs]
-        if not names or not all(allowed.get(n) for n in names):
-            return ()
-        return tuple(allowed[n] for n in names)
+    def set_integer(self, vrs, values):
+        self._refuse_fixed(vrs)
+        return Fmi2Slave.set_integer(self, vrs, values)
+
+    def set_boolean(self, vrs, values):
+        self._refuse_fixed(vrs)
+        return Fmi2Slave.set_boolean(self, vrs, values)
+
+    def set_string(self, vrs, values):
+        self._refuse_fixed(vrs)
+        return Fmi2Slave.set_string(self, vrs, values)
+
+    def _refuse_fixed(self, vrs):
+        """After initialisation, a ValueError (fmi2Fatal through PythonFMU) and an error
+        message naming each fixed parameter in ``vrs`` (FMI 2.0: variability fixed)."""
+        if not self._initialised:
+            return
+        names = [self._fixed[vr] for vr in vrs if vr in self._fixed]
+        if names:
+            message = (f"parameter{'s' if len(names) > 1 else ''} {', '.join(names)} "
+                       f"{'are' if len(names) > 1 else 'is'} fixed (variability fixed): "
+                       "it cannot be set after initialisation; the value is not taken (set "
+                       "it before fmi2ExitInitializationMode, or reset the instance). "
+                       "Geometry and friction are inputs: "
+                       f"{', '.join(_parameters.RUNTIME_INPUTS)}")
+            self._report(message, Fmi2Status.error)
+            raise ValueError(message)
+
+    _INPUT_NAMES = frozenset(_scene.INPUTS) | frozenset(_parameters.RUNTIME_INPUTS)
+
+    def _real_fields(self, vrs, inputs=False):
+        """The (contact, field) of the Real variables ``vrs`` (inputs only if ``inputs``), as
+        fields of the one contact for a single-contact FMU, or () if one of them is not such a
+        variable."""
+        out = []
+        for vr in vrs:
+            entry = self._real_map.get(vr)
+            if entry is None or (inputs and entry[1] not in self._INPUT_NAMES):
+                return ()
+            k, field = entry
+            out.append(field if CONTACTS == 1 else (self._contacts[k], field))
+        return tuple(out)
 
     def _real_getter(self, vrs):
-        fields = self._real_fields(vrs, _REAL_FIELDS)
+        fields = self._real_fields(vrs)
         if not fields:
-            return lambda: Fmi2Slave.get_real(self, list(vrs))
+            return self._mixed_getter(vrs)
+        if CONTACTS > 1:
+            lazy = any(f in _LAZY for _, f in fields)
+            aux = self._auxiliary_all
+
+            def get(_fields=fields):
+                if lazy:
+                    aux(None)               # (every contact's, once)
+                return [getattr(c, f) for c, f in _fields]
+            return get
         c, get = self._contact, operator.attrgetter(*fields)
         lazy = any(f in _LAZY for f in fields)
         if len(fields) == 1:
@@ -497,19 +670,46 @@ class WheelRailContact(Fmi2Slave):
             return lambda: (self._auxiliary_all(c), list(get(c)))[1]
         return lambda: list(get(c))
 
+    def _mixed_getter(self, vrs):
+        """A list with parameters too (libcosim reads every variable each step): the contacts'
+        fields directly, the others through their getters, the lazy outputs evaluated once
+        first. A variable that is not Real keeps the generic path (and its TypeError)."""
+        calls, lazy = [], False
+        for vr in vrs:
+            entry = self._real_map.get(vr)
+            if entry is not None:
+                k, field = entry
+                calls.append(partial(getattr, self._contacts[k], field))
+                lazy = lazy or field in _LAZY
+            elif isinstance(self.vars.get(vr), Real):
+                calls.append(self.vars[vr].getter)
+            else:
+                return lambda: Fmi2Slave.get_real(self, list(vrs))
+        aux, contacts = self._auxiliary_all, self._contacts
+
+        def get():
+            if lazy:
+                for c in contacts:
+                    aux(c)
+            return [call() for call in calls]
+        return get
+
     def _evaluate(self):
+        if self._vehicle is not None:
+            self._vehicle.step(0.0)
+            return
         c = self._contact
         for step in self._steps:
             step(c)
 
     def do_step(self, current_time, step_size):
         # The pipeline's checked step (railcontact.effects.Pipeline.checked_step) makes a cheap
-        # input check (one isfinite on the sum of the inputs, N >= 0, V >= 0) and evaluates the
-        # effects in one call; it returns False, changing nothing, when that check does not
-        # pass: then _do_step_full's range check names the bad input (or finds all valid, e.g.
-        # when only their sum overflowed) before the effects run. _build replaces this method
-        # by Pipeline.fmu_step, the same in one frame.
-        if not 0.0 <= step_size < math.inf:        # (NaN fails too)
+        # input check (one isfinite on the sum of the inputs, N >= 0, V >= 0, mu >= 0) and
+        # evaluates the effects in one call; it returns False, changing nothing, when that
+        # check does not pass: then _do_step_full's range check names the bad input (or finds
+        # all valid, e.g. when only their sum overflowed) before the effects run. _build
+        # replaces this method by Pipeline.fmu_step, the same in one frame (one contact).
+        if self._vehicle is not None or not 0.0 <= step_size < math.inf:   # (NaN fails too)
             return self._do_step_full(current_time, step_size)
         self._contact.step_size = step_size        # (NonSteady: the rolled distance V h)
         try:
@@ -524,30 +724,34 @@ class WheelRailContact(Fmi2Slave):
         """The step with the full input check: an error message naming the bad input (or the
         step size: negative, NaN or infinite, which would move the non-steady state by an
         undefined rolled distance)."""
-        try:
-            _rc.check_range("step_size", step_size, "s", 0.0, None)
-        except ValueError as exc:
-            self.log(f"invalid communication step at t = {current_time:g} s: {exc}",
-                     Fmi2Status.error)
-            raise
-        self._contact.step_size = step_size
+        if not 0.0 <= step_size < math.inf:
+            try:
+                _rc.check_range("step_size", step_size, "s", 0.0, None)
+            except ValueError as exc:
+                self._report(f"invalid communication step at t = {current_time:g} s: {exc}",
+                             Fmi2Status.error)
+                raise
         try:
             self._check_inputs()
         except ValueError as exc:
-            self.log(f"invalid input at t = {current_time:g} s: {exc}", Fmi2Status.error)
+            self._report(f"invalid input at t = {current_time:g} s: {exc}", Fmi2Status.error)
             raise
         try:
-            for step in self._steps:
-                step(self._contact)
+            if self._vehicle is not None:
+                self._vehicle.step(step_size)
+            else:
+                self._contact.step_size = step_size
+                for step in self._steps:
+                    step(self._contact)
         except ValueError as exc:
             self._log_step_failure(current_time, exc)
             raise
         return True
 
     def _log_step_failure(self, current_time, exc):
-        # a model's own range check (e.g. Eq. (4.2) as the surface evolves): an error status
-        # with the model's message
-        self.log(f"step at t = {current_time:g} s failed: {exc}", Fmi2Status.error)
+        # a model's own range check (e.g. Eq. (4.2) as the surface evolves, a geometry input
+        # <= 0): an error status with the model's message
+        self._report(f"step at t = {current_time:g} s failed: {exc}", Fmi2Status.error)
 
     # ---------------------------------------------------------------------------------------
     # FMU state: everything (parameters, inputs, outputs, effect state, warnings logged)
@@ -555,10 +759,13 @@ class WheelRailContact(Fmi2Slave):
     def _get_fmu_state(self):
         return {
             "parameters": dict(self._parameter_values()),
-            "contact": self._contact.as_dict(),
+            "contacts": [c.as_dict() for c in self._contacts],
+            "pending": [dict(p) for p in self._pending],
             "built_from": None if self._built_from is None else dict(self._built_from),
-            "effects": None if self._pipeline is None else self._pipeline.get_state(),
+            "effects": (self._vehicle.get_state() if self._vehicle is not None
+                        else None if self._pipeline is None else self._pipeline.get_state()),
             "warned": sorted(self._warned),
+            "initialised": self._initialised,
         }
 
     def _set_fmu_state(self, state):
@@ -566,17 +773,22 @@ class WheelRailContact(Fmi2Slave):
             setattr(self, name, value)
         built_from = state["built_from"]
         if built_from is None:
-            self._pipeline, self._steps, self._built_from = None, (), None
+            self._pipeline, self._vehicle, self._steps, self._built_from = None, None, (), None
             self._checked_step = _effects.checked_steps(())
             self._auxiliary_all = _no_auxiliary
             self.__dict__.pop("do_step", None)
         elif built_from != self._built_from:
             self._build(dict(built_from))
-        for name, value in state["contact"].items():
-            setattr(self._contact, name, value)
+        for c, values in zip(self._contacts, state["contacts"]):
+            for name, value in values.items():
+                setattr(c, name, value)
+        self._pending = [dict(p) for p in state["pending"]]
         if state["effects"] is not None:
-            self._pipeline.set_state(state["effects"])
+            (self._vehicle or self._pipeline).set_state(state["effects"])
         self._warned = set(state["warned"])
+        self._initialised = state["initialised"]
+        self._real_getters.clear()
+        self._real_setters.clear()
 
     @staticmethod
     def _fmu_state_to_bytes(state):

@@ -2,9 +2,15 @@ r"""Build ``WheelRailContact.fmu`` (FMI 2.0 co-simulation, PythonFMU) from a sou
 
 Usage (the command line is the thin script ``build_fmu.py`` at the top of the checkout)::
 
-    python build_fmu.py [--dest DIR] [--no-validate]
+    python build_fmu.py [--dest DIR] [--no-validate] [--contacts K]
 
 or from Python: ``from railcontact.fmu_build import build; build(dest)``
+
+``--contacts K`` (1-32, default 1) builds a vehicle FMU, ``WheelRailContact_<K>contacts.fmu``:
+one instance serves K contacts of one scene, its inputs and outputs are ``name[k]``, k = 1..K
+(FMI 2.0 structured naming), its parameters those of the single-contact FMU, and every step
+evaluates all K contacts together (:class:`railcontact.effects.Vehicle`). K = 1 is the
+single-contact ``WheelRailContact.fmu`` with its plain names.
 (:mod:`railcontact.run` builds the FMU this way when the sources changed).
 
 Sources: the slave script ``fmu_src/WheelRailContact.py`` beside this package, the package
@@ -52,7 +58,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-__all__ = ["build", "source_hash", "bundle_names", "fmu_digest", "main", "MODEL_NAME", "ROOT"]
+__all__ = ["build", "source_hash", "bundle_names", "fmu_digest", "main", "MODEL_NAME", "ROOT",
+           "MAX_CONTACTS", "check_contacts", "fmu_file_name", "up_to_date_fmu"]
 
 #: The source checkout: the package lives in ``<ROOT>/fmu_src/railcontact``.
 ROOT = Path(__file__).resolve().parents[2]
@@ -61,6 +68,8 @@ SLAVE = PACKAGE.parent / "WheelRailContact.py"
 TABLES = ROOT / "tables"
 SCENES = ROOT / "examples" / "scenes"
 MODEL_NAME = "WheelRailContact"
+#: The range of ``--contacts`` (railcontact.effects.MAX_CONTACTS).
+MAX_CONTACTS = 32
 REQUIREMENTS = "numpy>=1.26\nscipy>=1.13\nnumba>=0.59\nnetCDF4>=1.6\n"
 
 _IGNORE = shutil.ignore_patterns("__pycache__", "*.pyc", "*.pyo", "_aot_kernels.*")
@@ -86,9 +95,27 @@ def _bundled_files():
     return files
 
 
-def source_hash():
-    """Digest (12 hex digits) of everything the FMU bundles; names the bundled modules."""
+def check_contacts(contacts):
+    """``contacts`` as an int if it is an integer in [1, :data:`MAX_CONTACTS`], else a
+    ValueError saying so (before any work)."""
+    if isinstance(contacts, bool) or not isinstance(contacts, int) \
+            or not 1 <= contacts <= MAX_CONTACTS:
+        raise ValueError(f"contacts (the number of wheel/rail contacts one FMU instance "
+                         f"serves) must be an integer in [1, {MAX_CONTACTS}]; got {contacts!r}")
+    return contacts
+
+
+def fmu_file_name(contacts=1):
+    """``WheelRailContact.fmu`` (one contact) or ``WheelRailContact_<K>contacts.fmu``."""
+    return f"{MODEL_NAME}.fmu" if contacts == 1 else f"{MODEL_NAME}_{contacts}contacts.fmu"
+
+
+def source_hash(contacts=1):
+    """Digest (12 hex digits) of everything the FMU bundles (and of the number of contacts,
+    when not 1); names the bundled modules."""
     digest = hashlib.sha256()
+    if contacts != 1:
+        digest.update(f"contacts={contacts}\0".encode())
     for path in _bundled_files():
         digest.update(str(path.relative_to(ROOT)).encode())
         digest.update(b"\0")
@@ -126,13 +153,19 @@ def _rewrite_package(directory, package_name):
             path.write_text(new, encoding="utf-8")
 
 
-def _stage(stage, digest, aot=True, log=None):
+_CONTACTS_RE = re.compile(r"^CONTACTS = 1$", re.MULTILINE)
+
+
+def _stage(stage, digest, aot=True, log=None, contacts=1):
     module_name, package_name = bundle_names(digest)
     script = stage / f"{module_name}.py"
     text = SLAVE.read_text(encoding="utf-8")
     new = _rewrite_imports(SLAVE, text, package_name)
     if new == text:
         raise RuntimeError(f"{SLAVE}: no 'railcontact' import for the build to rewrite")
+    new, found = _CONTACTS_RE.subn(f"CONTACTS = {contacts}", new)
+    if found != 1:
+        raise RuntimeError(f"{SLAVE}: no line 'CONTACTS = 1' for the build to set")
     script.write_text(new, encoding="utf-8")
     shutil.copytree(PACKAGE, stage / package_name, ignore=_IGNORE)
     _rewrite_package(stage / package_name, package_name)
@@ -172,7 +205,11 @@ module = importlib.import_module(sys.argv[2])
 slave = module.WheelRailContact(instance_name="check", resources=sys.argv[1])
 # every bundled scene (and the parameters' default one) initialised and stepped once in
 # contact: the data files and lazily imported modules come from the bundle too
+# (a vehicle FMU: the default scene with its K contacts, the others with one -- what is
+# checked here is where the code comes from, and K contacts would cost K times the time)
+contacts = module.CONTACTS
 for scene in [""] + sorted(p.stem for p in (Path(sys.argv[1]) / "scenes").glob("*.toml")):
+    module.CONTACTS = contacts if scene == "" else 1
     slave = module.WheelRailContact(instance_name="check", resources=sys.argv[1])
     slave.scene_file = scene
     slave.enter_initialization_mode()
@@ -181,7 +218,9 @@ for scene in [""] + sorted(p.stem for p in (Path(sys.argv[1]) / "scenes").glob("
     for name, value in (("normal_force", 8e4), ("creepage_longitudinal", 1e-3),
                         ("creepage_lateral", 1e-4), ("spin", 0.05), ("rolling_speed", 30.0),
                         ("rail_position", 0.01)):
-        setters[name](value)
+        for var, setter in setters.items():     # (a vehicle: name[1] ... name[K])
+            if var.split("[")[0] == name:
+                setter(value)
     slave.do_step(0.0, 1e-3)
     slave.do_step(1e-3, 1e-3)
 assert not any(m == "railcontact" or m.startswith("railcontact.") for m in sys.modules)
@@ -198,8 +237,9 @@ def _check_isolation(stage, digest):
                            + proc.stderr[-3000:])
 
 
-def build(dest=ROOT, validate=True, aot=True, log=None):
-    """Build ``WheelRailContact.fmu`` into ``dest`` and return its path.
+def build(dest=ROOT, validate=True, aot=True, log=None, contacts=1):
+    """Build ``WheelRailContact.fmu`` (or, for ``contacts`` > 1, the vehicle FMU
+    ``WheelRailContact_<K>contacts.fmu``) into ``dest`` and return its path.
 
     Parameters
     ----------
@@ -213,6 +253,8 @@ def build(dest=ROOT, validate=True, aot=True, log=None):
         the FMU loads numba's kernels at run time). Default True.
     log : callable, optional
         Called with a line saying whether the kernels were compiled ahead of time.
+    contacts : int
+        Number of contacts one instance serves, 1-32 (checked first); default 1.
 
     Raises
     ------
@@ -221,15 +263,16 @@ def build(dest=ROOT, validate=True, aot=True, log=None):
     RuntimeError
         If the bundle is not self-contained or the model description has problems.
     """
+    check_contacts(contacts)
     from pythonfmu.builder import FmuBuilder
 
     dest = Path(dest)
     dest.mkdir(parents=True, exist_ok=True)
-    digest = source_hash()
-    target = dest / f"{MODEL_NAME}.fmu"
+    digest = source_hash(contacts)
+    target = dest / fmu_file_name(contacts)
     with tempfile.TemporaryDirectory(prefix="wrc_build_") as tmp:
         stage = Path(tmp)
-        script, project_files = _stage(stage, digest, aot, log)
+        script, project_files = _stage(stage, digest, aot, log, contacts)
         if validate:
             _check_isolation(stage, digest)
         # a private folder beside the target: pythonfmu < 0.7 takes ``dest`` as a folder only,
@@ -259,6 +302,18 @@ def build(dest=ROOT, validate=True, aot=True, log=None):
     return target
 
 
+def up_to_date_fmu(contacts=1, dest=ROOT, verbose=True):
+    """Path of the FMU for ``contacts`` contacts in ``dest`` (:func:`fmu_file_name`), built
+    first if it is missing or was built from other sources (:func:`fmu_digest`)."""
+    check_contacts(contacts)
+    target = Path(dest) / fmu_file_name(contacts)
+    if not target.is_file() or fmu_digest(target) != source_hash(contacts):
+        if verbose:
+            print(f"building {target.name} (sources changed or FMU missing) ...", flush=True)
+        build(dest, contacts=contacts)
+    return target
+
+
 def fmu_digest(path):
     """The source digest a built FMU was made from (None if it is not one of ours)."""
     import zipfile
@@ -280,8 +335,18 @@ def main(argv=None):
     parser.add_argument("--no-aot", action="store_true",
                         help="do not compile the table kernels ahead of time (the FMU then "
                              "imports numba in its table scenes)")
+    parser.add_argument("--contacts", default="1", metavar="K",
+                        help=f"contacts one instance serves, 1-{MAX_CONTACTS} (default 1: "
+                             "WheelRailContact.fmu; K > 1: WheelRailContact_<K>contacts.fmu "
+                             "with variables name[k])")
     args = parser.parse_args(argv)
-    path = build(args.dest, validate=not args.no_validate, aot=not args.no_aot, log=print)
+    try:
+        contacts = check_contacts(int(args.contacts))
+    except ValueError:
+        parser.error(f"--contacts must be an integer in [1, {MAX_CONTACTS}]; got "
+                     f"{args.contacts!r}")
+    path = build(args.dest, validate=not args.no_validate, aot=not args.no_aot, log=print,
+                 contacts=contacts)
     print(path)
     return 0
 

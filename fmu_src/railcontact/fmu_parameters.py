@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from .scene import (DEFAULT_SCENE, FRICTION_SERIES_DEGREE, FRICTION_TOLERANCE,
                     scene_with_defaults)
 
-__all__ = ["ParameterSpec", "FMU_PARAMETERS", "scene_to_parameters",
+__all__ = ["ParameterSpec", "FMU_PARAMETERS", "RUNTIME_INPUTS", "scene_to_parameters",
            "parameters_to_scene_dict"]
 
 
@@ -45,15 +45,24 @@ FMU_PARAMETERS = (
                   "force), 'semi_axes' (fixed ellipse a0, b0) or 'line' (2-D line contact of "
                   "radius R and width contact_width)"),
     ParameterSpec("curvature_longitudinal", ("geometry", "curvature_longitudinal"), "real",
-                  "1/m", "A' = 1/(2 R'_x), relative curvature (gap coefficient) in the "
-                  "rolling direction"),
+                  "1/m", "A' = 1/(2 R'_x): HALF the relative curvature 1/R'_x = 1/R_x1 + 1/R_x2 "
+                  "in the rolling direction (the gap is h = A' x^2 + B' y^2; entering 1/R'_x "
+                  "doubles the curvature), > 0; geometry_kind = 'curvatures'. An input: may "
+                  "change at every step (effective from the next step), start value from the "
+                  "scene"),
     ParameterSpec("curvature_lateral", ("geometry", "curvature_lateral"), "real", "1/m",
-                  "B' = 1/(2 R'_y), lateral relative curvature (gap coefficient)"),
+                  "B' = 1/(2 R'_y): HALF the lateral relative curvature 1/R'_y = 1/R_y1 + "
+                  "1/R_y2 (entering 1/R'_y doubles the curvature), > 0; geometry_kind = "
+                  "'curvatures'. An input: may change at every step (effective from the next "
+                  "step), start value from the scene"),
     ParameterSpec("semi_axis_longitudinal", ("geometry", "semi_axis_longitudinal"), "real",
-                  "m", "Fixed semi-axis a0 along the rolling direction (geometry_kind = "
-                  "'semi_axes')"),
+                  "m", "Semi-axis a0 along the rolling direction, > 0 (geometry_kind = "
+                  "'semi_axes'). An input: may change at every step (effective from the next "
+                  "step), start value from the scene"),
     ParameterSpec("semi_axis_lateral", ("geometry", "semi_axis_lateral"), "real", "m",
-                  "Fixed lateral semi-axis b0 (geometry_kind = 'semi_axes')"),
+                  "Lateral semi-axis b0, > 0 (geometry_kind = 'semi_axes'). An input: may "
+                  "change at every step (effective from the next step), start value from the "
+                  "scene"),
     ParameterSpec("radius", ("geometry", "radius"), "real", "m",
                   "Equivalent radius R of a line contact, 1/R = 1/R_wheel + 1/R_rail "
                   "(geometry_kind = 'line', Carter and Ch. 4 models)"),
@@ -61,7 +70,9 @@ FMU_PARAMETERS = (
                   "Length of a line contact across the rail; the load per unit length is "
                   "normal_force / contact_width (geometry_kind = 'line')"),
     ParameterSpec("friction_coefficient", ("friction", "friction_coefficient"), "real", "1",
-                  "Coulomb friction coefficient mu, >= 0"),
+                  "Coulomb friction coefficient mu, >= 0. An input: may change at every step "
+                  "(wet rail, leaves, sand; effective from the next step), start value from "
+                  "the scene"),
     ParameterSpec("creep_method", ("effects", "creep", "method"), "string", "",
                   "Creep theory: exact (default: Kalker's exact theory from the table "
                   "creep_exact; 0.15 % of mu N on CONTACT's converged cases, up to about 1.2 % "
@@ -180,6 +191,14 @@ FMU_PARAMETERS = (
                   "Stress for the non-steady displacement u_x(x0, t): 'carter' (Eqs. "
                   "(7.16)-(7.20)) or 'johnson' (Eqs. (7.11)-(7.15))"),
 )
+
+
+#: Scene keys of :data:`FMU_PARAMETERS` that the FMU takes as *inputs* (causality input,
+#: continuous): geometry and friction change along a track. Set before initialisation they
+#: override the scene like a parameter; after it, they change the contact from the next step.
+#: Every other entry of :data:`FMU_PARAMETERS` is a fixed parameter.
+RUNTIME_INPUTS = ("curvature_longitudinal", "curvature_lateral", "semi_axis_longitudinal",
+                  "semi_axis_lateral", "friction_coefficient")
 
 
 #: Start values of the FMU parameters whose scene key :data:`DEFAULT_SCENE` does not hold.

@@ -53,9 +53,11 @@ from __future__ import annotations
 from ..scene import EFFECTS
 from .base import JACOBIAN_FIELDS, NOT_ESTIMATED, ContactPoint, Effect, EffectUnavailable
 from .normal import NO_NORMAL_FORCE_MESSAGE, NormalContact
-from .pipeline import Pipeline, build_pipeline, checked_steps, inputs_plausible
+from .pipeline import (MissingDependency, Pipeline, build_pipeline, checked_steps,
+                       inputs_plausible)
+from .vehicle import MAX_CONTACTS, Vehicle
 
-__all__ = ["ContactPoint", "Effect", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
+__all__ = ["ContactPoint", "Vehicle", "MAX_CONTACTS", "MissingDependency", "Effect", "NormalContact", "Creep3D", "Creep2D", "VelocityFriction",
            "Corrugation", "Wear", "NonSteady", "Roughness",
            "Pipeline", "build_pipeline", "EffectUnavailable", "NOT_ESTIMATED",
            "JACOBIAN_FIELDS", "NO_NORMAL_FORCE_MESSAGE", "EFFECTS",

@@ -65,7 +65,14 @@ class ContactPoint:
                  "gap_curvature", "gap_skewness", "gap_flatness", "critical_creepage",
                  # creep-force Jacobian d(Fx, Fy, Mz)/d(xi_x, xi_y, phi) (exact table)
                  "dFx_dxi_x", "dFx_dxi_y", "dFx_dphi", "dFy_dxi_x", "dFy_dxi_y", "dFy_dphi",
-                 "dMz_dxi_x", "dMz_dxi_y", "dMz_dphi")
+                 "dMz_dxi_x", "dMz_dxi_y", "dMz_dphi",
+                 # geometry inputs (NormalContact; None = the scene's)
+                 "curvature_longitudinal", "curvature_lateral", "semi_axis_longitudinal",
+                 "semi_axis_lateral")
+
+    #: The geometry inputs: None (the scene's values) until set.
+    GEOMETRY_FIELDS = ("curvature_longitudinal", "curvature_lateral", "semi_axis_longitudinal",
+                       "semi_axis_lateral")
 
     def __init__(self):
         for name in self.__slots__:
@@ -76,6 +83,8 @@ class ContactPoint:
         self.friction_iteration_residual = NOT_ESTIMATED
         self.corrugation_series_error_estimate = NOT_ESTIMATED
         self.friction_table_error_estimate = NOT_ESTIMATED
+        for name in self.GEOMETRY_FIELDS:
+            setattr(self, name, None)
 
     def as_dict(self):
         """Field name -> value (plain floats)."""

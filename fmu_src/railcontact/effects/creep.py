@@ -108,7 +108,7 @@ class Creep3D(Effect):
 
     name = "creep"
 
-    def __init__(self, scene, table_path=None, tables_dir=None, warn=None):
+    def __init__(self, scene, table_path=None, tables_dir=None, warn=None, table=None):
         super().__init__()
         opts = scene.effects["creep"]
         self.method = opts["method"]
@@ -131,7 +131,7 @@ class Creep3D(Effect):
         self.table_error_estimate = NOT_ESTIMATED
         # the forces of one source, chosen here (``step`` calls it when there is contact)
         if self.source == "table":
-            self._table_setup(opts, table_path, tables_dir)
+            self._table_setup(opts, table_path, tables_dir, table)
             self._forces = self._exact_table     # (modified strip: self._force, in step)
         elif self.method in creep3d.COMPARISON_METHODS:
             self._forces = self._comparison
@@ -139,7 +139,7 @@ class Creep3D(Effect):
             self._force = self._analytic_force
             self._stick_measures = self._analytic_stick
 
-    def _table_setup(self, opts, table_path, tables_dir):
+    def _table_setup(self, opts, table_path, tables_dir, table=None):
         if self.method not in ("modified_strip", "exact"):
             raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
                              f"with source = 'table' (the shipped creep tables); got "
@@ -147,7 +147,9 @@ class Creep3D(Effect):
         if table_path is None and tables_dir is not None:
             table_path = Path(tables_dir) / f"{opts['table']}.nc"
         try:
-            if self._exact:
+            if table is not None:       # (another contact's reader: Vehicle)
+                self._table = table
+            elif self._exact:
                 self._table = creep3d.load_exact_table(table_path)
             else:
                 from .. import strip_table      # (its spline: loaded only by a table scene)

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .. import hertz
+from .._validation import check_range
+from ..scene import DEFAULT_SCENE
 from .base import Effect
 
-__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE"]
+__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipses"]
 
 _FLOAT_MAX = 1.7976931348623157e308
 
@@ -17,6 +21,113 @@ _FLOAT_MAX = 1.7976931348623157e308
 NO_NORMAL_FORCE_MESSAGE = (
     "normal_force = 0 N with non-zero creepage: no contact, so every force output is 0 (the "
     "input's start value is 0 N; set or connect normal_force)")
+
+
+#: The inverse of log f(e^u) (f of :func:`railcontact.hertz.hertz_3d`, decreasing in k = e^u):
+#: nodes (log f increasing), u and du/dlog f there, made on first use. Module level because it
+#: is data, the same for every instance (no per-instance object is kept here).
+_INVERSE_GRID = []
+#: Complex-step size of the node slopes d log f / du (exact to round-off for any small step).
+_COMPLEX_STEP = 1e-30
+
+
+def _inverse_grid():
+    """``(nodes, coefficients)``: the nodes of log f (increasing from 0) and, per interval,
+    (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of u(log f) as
+    c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope du/dlog f
+    linear between the nodes' s0, s1."""
+    if not _INVERSE_GRID:
+        u = np.linspace(math.log(hertz._K_MIN), 0.0, 4001)
+        k2 = np.exp(2.0 * u)
+        z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
+        f = hertz.elliprd(0.0, 1.0, z) / hertz.elliprd(0.0, z, 1.0)
+        nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
+            np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
+        nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
+        h = np.diff(nodes)
+        m0, m1 = slope[:-1] * h, slope[1:] * h
+        y0, y1 = y[:-1], y[1:]
+        coefficients = np.column_stack([
+            nodes[:-1], 1.0 / h, y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1,
+            2.0 * (y0 - y1) + m0 + m1, slope[:-1], slope[1:] - slope[:-1]])
+        _INVERSE_GRID.append((nodes, coefficients))
+    return _INVERSE_GRID[0]
+
+
+def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
+    r"""Hertz ellipses at N = 1 N for many curvature pairs: what
+    :func:`railcontact.hertz.hertz_3d` gives, at the cost of a few ufunc calls.
+
+    ``hertz_3d`` finds the eccentricity k = c_min/c_max of ``f(k) = B'/A'`` (or its inverse)
+    by 64 bisection steps (about 0.5 ms a call); a contact whose curvatures change at every
+    step (the contact point moves over the wheel and rail profiles) cannot pay that. Here the
+    same equation, ``log f(e^u) = log(c_minor/c_major)`` with ``f(k) = R_D(0, 1, k^2) /
+    R_D(0, k^2, 1)`` (Johnson (1985) Eq. (4.17), the module docstring of
+    :mod:`railcontact.hertz`), starts from the cubic Hermite interpolant of its inverse on a
+    grid of 4001 values of u (slopes by complex step; error ~1e-13) and takes one Newton step
+    (error: round-off). The semi-axes and the pressure then follow by ``hertz_3d``'s own
+    formulas. Same values as ``hertz_3d`` to a few ulp (tests/test_fmu_vehicle.py: 4e-15
+    relative on 10^3 random pairs); about 40 us for 1-8 pairs.
+
+    Parameters
+    ----------
+    curvature_longitudinal, curvature_lateral : ndarray
+        A', B' > 0 and finite (checked by the caller), 1-D. [1/m]
+    youngs_modulus : float
+        E. [Pa]
+    poisson_ratio : float
+        nu in [0, 0.5). [-]
+
+    Returns
+    -------
+    a1, b1, p1 : ndarray
+        Semi-axes [m] and maximum pressure [Pa] at N = 1 N (a0 = a1 N^(1/3), b0 = b1 N^(1/3),
+        p0 = p1 N^(1/3)).
+    """
+    c_x = np.asarray(curvature_longitudinal, dtype=float)
+    c_y = np.asarray(curvature_lateral, dtype=float)
+    e_star = youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
+    c_major = np.minimum(c_x, c_y)        # the smaller curvature: the major axis along it
+    c_minor = np.maximum(c_x, c_y)
+    log_ratio = np.log(c_minor / c_major)
+    nodes, coefficients = _inverse_grid()
+    if not log_ratio.max(initial=0.0) <= nodes[-1]:    # beyond a0/b0 = 1e6: hertz_3d's
+        inside = log_ratio <= nodes[-1]                  # clipped answer there
+        out = [np.empty(c_x.shape) for _ in range(3)]
+        for k in np.flatnonzero(~inside):
+            for o, v in zip(out, hertz.hertz_3d(1.0, c_x[k], c_y[k], youngs_modulus,
+                                                poisson_ratio)):
+                o[k] = v
+        if np.any(inside):
+            for o, v in zip(out, unit_ellipses(c_x[inside], c_y[inside], youngs_modulus,
+                                               poisson_ratio)):
+                o[inside] = v
+        return tuple(out)
+    # cubic Hermite interpolation of u(log f), then one Newton step with its slope (a circle,
+    # log_ratio = 0, gives u = 0 and k = 1 exactly)
+    c = coefficients[np.minimum(np.searchsorted(nodes, log_ratio, "right") - 1,
+                                nodes.size - 2)]
+    t = (log_ratio - c[:, 0]) * c[:, 1]
+    u = c[:, 2] + t * (c[:, 3] + t * (c[:, 4] + t * c[:, 5]))
+    k2 = np.exp(2.0 * u)
+    u = u - (np.log(hertz.elliprd(0.0, 1.0, k2) / hertz.elliprd(0.0, k2, 1.0)) - log_ratio) * (
+        c[:, 6] + t * c[:, 7])
+    k = np.exp(u)
+    rd = hertz.elliprd(0.0, k * k, 1.0)
+    c_max = np.cbrt(rd / (2.0 * np.pi * e_star * c_major))     # hertz_3d's formula at N = 1
+    c_min = k * c_max
+    x_major = c_y >= c_x
+    a1 = np.where(x_major, c_max, c_min)
+    b1 = np.where(x_major, c_min, c_max)
+    return a1, b1, 1.5 * (1.0 / (np.pi * a1 * b1))
+
+
+def check_geometry_input(name, value, unit):
+    """``value`` as a float if it is in (0, inf), else a ValueError naming the input."""
+    if 0.0 < value < math.inf:
+        return float(value)
+    check_range(name, value, unit, 0.0, None, lower_closed=False)
+    return float(value)     # (not reached)
 
 
 class NormalContact(Effect):
@@ -30,6 +141,13 @@ class NormalContact(Effect):
     ``N / contact_width``, once for 1 N/m and then the exact scaling a0, p0 proportional to
     sqrt(N); ``b0`` is half the contact width. ``contact_half_width`` is a0 (the corrugation
     effect replaces it by the actual half-width).
+
+    Geometry as inputs (the FMU's ``curvature_longitudinal``, ``curvature_lateral``,
+    ``semi_axis_longitudinal``, ``semi_axis_lateral``): the contact's fields of those names,
+    when not None, override the scene's. A changed pair of curvatures gives a new ellipse at
+    1 N by :func:`unit_ellipses` (the same values as ``hertz_3d`` to a few ulp); unchanged
+    ones reuse the last (at the scene's own values, ``hertz_3d``'s own result). A value that
+    is not in (0, inf) is a ValueError naming the input.
     """
 
     name = "normal"
@@ -46,8 +164,8 @@ class NormalContact(Effect):
             self._width = geo["contact_width"]
             self._fixed = False
         elif geo["kind"] == "curvatures":
-            a1, b1, p1 = hertz.hertz_3d(1.0, geo["curvature_longitudinal"],
-                                        geo["curvature_lateral"], scene.youngs_modulus,
+            self._cx, self._cy = geo["curvature_longitudinal"], geo["curvature_lateral"]
+            a1, b1, p1 = hertz.hertz_3d(1.0, self._cx, self._cy, scene.youngs_modulus,
                                         scene.poisson_ratio)
             self._a1, self._b1, self._p1 = float(a1), float(b1), float(p1)
             self._fixed = False
@@ -56,12 +174,51 @@ class NormalContact(Effect):
             self._b1 = geo["semi_axis_lateral"]
             self._p1 = 1.5 / (math.pi * self._a1 * self._b1)
             self._fixed = True
+        self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
+        # (a line scene holds none of them: the defaults, unused there)
+        self._scene_geometry = tuple(
+            float(geo.get(name, DEFAULT_SCENE["geometry"][name]))
+            for name in ("curvature_longitudinal", "curvature_lateral",
+                         "semi_axis_longitudinal", "semi_axis_lateral"))
+
+    def geometry_changed(self, c):
+        """True if the contact's geometry inputs differ from those of the current ellipse
+        (curvatures, or semi-axes; never for a line contact). Inputs not set yet (None) take
+        the scene's values."""
+        if c.curvature_longitudinal is None:
+            (c.curvature_longitudinal, c.curvature_lateral, c.semi_axis_longitudinal,
+             c.semi_axis_lateral) = self._scene_geometry
+        if self._line:
+            return False
+        if self._fixed:
+            return (c.semi_axis_longitudinal != self._a1
+                    or c.semi_axis_lateral != self._b1)
+        return c.curvature_longitudinal != self._cx or c.curvature_lateral != self._cy
+
+    def set_geometry(self, c, unit=None):
+        """Take the contact's geometry inputs (checked: a ValueError names a bad one); ``unit``:
+        the ellipse at 1 N for them, if the caller computed it (:func:`unit_ellipses`)."""
+        if self._fixed:
+            a = check_geometry_input("semi_axis_longitudinal", c.semi_axis_longitudinal, "m")
+            b = check_geometry_input("semi_axis_lateral", c.semi_axis_lateral, "m")
+            self._a1, self._b1 = a, b
+            self._p1 = 1.5 / (math.pi * a * b)
+            return
+        cx = check_geometry_input("curvature_longitudinal", c.curvature_longitudinal, "1/m")
+        cy = check_geometry_input("curvature_lateral", c.curvature_lateral, "1/m")
+        if unit is None:
+            unit = [float(v[0]) for v in unit_ellipses(np.array([cx]), np.array([cy]),
+                                                       self._e, self._nu)]
+        self._a1, self._b1, self._p1 = unit
+        self._cx, self._cy = cx, cy
 
     def step(self, c):
         self.calls += 1
         n = c.normal_force
         if n <= 0.0 and (c.creepage_longitudinal or c.creepage_lateral or c.spin):
             self._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
+        if self.geometry_changed(c):
+            self.set_geometry(c)
         if self._line:
             n_line = n / self._width
             if n_line == math.inf:

@@ -4,12 +4,23 @@ evaluate them once per step (behind a cheap input check, for the FMU's ``do_step
 from __future__ import annotations
 
 import math
+import sys
 
 from ..scene import EFFECTS
 from .base import EffectUnavailable
 from .normal import NormalContact
 
-__all__ = ["Pipeline", "build_pipeline", "checked_steps", "inputs_plausible"]
+__all__ = ["Pipeline", "build_pipeline", "checked_steps", "inputs_plausible",
+           "MissingDependency"]
+
+
+class MissingDependency(RuntimeError):
+    """The host Python lacks a third-party module an effect needs (not a scene error)."""
+
+
+#: pip names of the modules whose import name differs (none today; netCDF4, numba, scipy
+#: install under their import names).
+_PIP_NAMES = {}
 
 
 class Pipeline:
@@ -63,9 +74,9 @@ class Pipeline:
 
         def do_step(current_time, step_size, _isfinite=math.isfinite, _inf=math.inf):
             c = contact
-            n, v = c.normal_force, c.rolling_speed
+            n, v, mu = c.normal_force, c.rolling_speed, c.friction_coefficient
             if not (_isfinite(n + c.creepage_longitudinal + c.creepage_lateral + c.spin + v
-                              + c.rail_position) and n >= 0.0 and v >= 0.0
+                              + c.rail_position + mu) and n >= 0.0 and v >= 0.0 and mu >= 0.0
                     and 0.0 <= step_size < _inf):
                 return otherwise(current_time, step_size)
             c.step_size = step_size
@@ -109,13 +120,15 @@ class Pipeline:
 
 
 def inputs_plausible(c, _isfinite=math.isfinite):
-    """Cheap check: all six inputs finite (one isfinite on their sum), N >= 0 and V >= 0.
+    """Cheap check: the six inputs and the friction coefficient finite (one isfinite on their
+    sum), N >= 0, V >= 0 and mu >= 0. (The geometry inputs are checked by NormalContact when
+    they change.)
 
     False does not mean invalid (a sum may overflow): the caller then makes the full range
     check, with messages naming the input."""
-    n, v = c.normal_force, c.rolling_speed
+    n, v, mu = c.normal_force, c.rolling_speed, c.friction_coefficient
     return (_isfinite(n + c.creepage_longitudinal + c.creepage_lateral + c.spin + v
-                      + c.rail_position) and n >= 0.0 and v >= 0.0)
+                      + c.rail_position + mu) and n >= 0.0 and v >= 0.0 and mu >= 0.0)
 
 
 def checked_steps(steps):
@@ -130,7 +143,7 @@ def checked_steps(steps):
     return checked
 
 
-def build_pipeline(scene, tables_dir=None, warn=None):
+def build_pipeline(scene, tables_dir=None, warn=None, creep_table=None):
     """Build the effects ``scene`` switches on (and only those), in the registry's order.
 
     The normal contact comes first, then the effects of :data:`railcontact.scene.EFFECTS` that
@@ -147,11 +160,17 @@ def build_pipeline(scene, tables_dir=None, warn=None):
         :func:`railcontact.tables.default_table_path`.
     warn : callable, optional
         ``warn(key, message)`` for warnings the effects log (the caller logs each key once).
+    creep_table : optional
+        A creep table reader already loaded for this scene (another contact's): the creep
+        effect uses it instead of loading one (:class:`railcontact.effects.Vehicle`).
 
     Raises
     ------
     SceneError
         If an effect is not available in this build or its options are invalid.
+    MissingDependency
+        If the host Python lacks a third-party module an effect needs (netCDF4 to read a
+        table, numba): named, with how to install it.
     """
     for name in scene.effects:
         if name not in EFFECTS:
@@ -170,8 +189,17 @@ def build_pipeline(scene, tables_dir=None, warn=None):
 
                 wear = Wear(scene, tables_dir=tables_dir, warn=warn)
             effect = (wear if name == "wear" and wear is not None
-                      else _build_effect(name, scene, tables_dir, warn, wear))
-        except ImportError as exc:          # a model module missing from this build
+                      else _build_effect(name, scene, tables_dir, warn, wear, creep_table))
+        except ImportError as exc:
+            missing = (exc.name or "").split(".")[0]
+            if missing and missing != __name__.split(".")[0]:
+                # a module of the host's Python environment, not of this package
+                raise MissingDependency(
+                    f"effect {name} needs the Python module {missing!r}, which the host Python "
+                    f"({sys.executable}) cannot import: {exc} (install it in that interpreter, "
+                    f"e.g. `python -m pip install {_PIP_NAMES.get(missing, missing)}`)"
+                ) from None
+            # a model module missing from this build
             raise EffectUnavailable(f"effect {name} not available in this build ({exc})"
                                     ) from None
         effects[name] = effect
@@ -180,7 +208,7 @@ def build_pipeline(scene, tables_dir=None, warn=None):
     return Pipeline(scene, effects, replaced)
 
 
-def _build_effect(name, scene, tables_dir, warn, wear):
+def _build_effect(name, scene, tables_dir, warn, wear, creep_table=None):
     """The effect object ``name`` of the registry for ``scene`` (its module, and with it its
     model's, is imported here: a scene loads only the effects it switches on)."""
     if name == "nonsteady":
@@ -192,7 +220,7 @@ def _build_effect(name, scene, tables_dir, warn, wear):
 
         if scene.effects["creep"]["method"] == "carter":
             return Creep2D(scene)
-        return Creep3D(scene, tables_dir=tables_dir, warn=warn)
+        return Creep3D(scene, tables_dir=tables_dir, warn=warn, table=creep_table)
     if name == "velocity_friction":
         from .velocity_friction import VelocityFriction
 
