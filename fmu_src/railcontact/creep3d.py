@@ -89,6 +89,7 @@ from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
                            spin_coefficient)
 from .creep_common import (EXACT_TABLE_LATERAL_ELEMENTS_NARROW,
                            EXACT_TABLE_NARROW_ASPECT_MAX)
+from .errors import RollingConvergenceError
 from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
@@ -344,7 +345,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
                    *, grid=EXACT_DEFAULT_GRID, extrapolate=EXACT_DEFAULT_EXTRAPOLATE,
                    tolerance=EXACT_DEFAULT_TOLERANCE, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
-                   grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, **method_options):
+                   grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, rolling_speed=None, **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -367,8 +368,20 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         Young's modulus E of both bodies, > 0. [Pa]
     poisson_ratio : array_like
         Poisson's ratio nu of both bodies, in [0, 0.5]. [-]
-    friction_coefficient : array_like
-        Coulomb friction coefficient mu, >= 0. [-]
+    friction_coefficient : array_like or friction law
+        Coulomb friction coefficient mu, >= 0; or a friction law: a callable ``mu(s)`` of the
+        slip magnitude ``s = |slip velocity| / V`` [-] such as
+        :class:`railcontact.friction.SmoothFriction` (Eq. (5.16)), or a law in the slip
+        velocity ``w`` [m/s] (``needs_rolling_speed = True``), such as
+        :class:`railcontact.friction.PolachFriction` (Polach 2005,
+        ``mu0 ((1 - A) exp(-B w) + A)``), which needs ``rolling_speed``. A law is honoured by
+        ``method="exact"`` (Kalker's exact theory with slip-dependent friction: the bound
+        ``mu(|s|) p`` element by element, at the local slip; the force scale is
+        ``mu(0) N``), ``"exact_table"`` (a fast approximation of it, see
+        :mod:`railcontact.falling3d`) and ``"polach"`` (a :class:`PolachFriction` only: its
+        own 2005 law, at the slip velocity ``V |xi|`` of the contact); every other method
+        raises ValueError. The law must give a finite ``mu >= 0`` at every slip and
+        ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model. "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016):
         :mod:`railcontact.fastsim`; "polach" (Polach 1999/2005): :mod:`railcontact.polach`.
@@ -454,6 +467,10 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         O 0.58 / 0.19 %, C 0.71 / 0.23 %; (80, 20) 46 / 22 ms, O 0.50 / 0.17 %,
         C 0.63 / 0.21 %; (80, 40) 111 / 73 ms, O 0.39 / 0.16 %, C 0.52 / 0.20 % (each with
         ``extrapolate=False, grid_shifts=1``). [-]
+    rolling_speed : array_like, optional, keyword-only
+        Rolling speed V > 0 for a friction law in the slip velocity
+        (``friction_coefficient`` with ``needs_rolling_speed``; other laws and Coulomb
+        friction ignore it); with ``method="polach"`` its ``rolling_speed`` option. [m/s]
     **method_options
         Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
         (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
@@ -481,10 +498,16 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     ----------
     .. [1] J.B. Nielsen, IMM-PHD-1998-51, DTU, 1998, Secs. 2.5-2.6.
     """
-    if method == "exact_table" and not method_options:
+    if method == "exact_table" and not method_options and not callable(friction_coefficient):
         table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
         return table.creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                                     a0, b0, youngs_modulus, poisson_ratio, friction_coefficient)
+    friction_coefficient, law, speed, method_options = _friction_input(
+        friction_coefficient, rolling_speed, method, method_options)
+    if law is not None and method == "exact_table":
+        return _falling_table(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                              b0, youngs_modulus, poisson_ratio, friction_coefficient, law,
+                              speed)
     if method in COMPARISON_METHODS:
         tx, ty = _comparison(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                              youngs_modulus, poisson_ratio, friction_coefficient, method,
@@ -494,10 +517,77 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                            extrapolate, tolerance, transport_order, grid_shifts)
+                            extrapolate, tolerance, transport_order, grid_shifts, law, speed)
     tx, ty = _solve(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, method)[:2]
     return CreepForce3D(tx[()], ty[()])
+
+
+def _friction_input(friction_coefficient, rolling_speed, method, method_options):
+    """``(mu, law, speed, method_options)`` of the ``friction_coefficient`` input.
+
+    Coulomb (a number): ``(friction_coefficient, None, None, options)``. A friction law: ``mu``
+    its static value ``mu(0)`` (the force scale), ``law`` a callable of the slip ``s`` [-]
+    (a law in the slip velocity is evaluated at ``s V``; ``speed`` is V, broadcastable), and
+    for ``method="polach"`` a :class:`railcontact.friction.PolachFriction` as Polach's own
+    options. ``rolling_speed`` becomes the option of ``method="polach"`` in any case.
+    Raises ValueError for a method that cannot honour a law, a law that is not a callable
+    ``mu(s)`` or gives a negative or non-finite mu, or a missing ``rolling_speed``."""
+    options = dict(method_options)
+    if method == "polach" and rolling_speed is not None:
+        if "rolling_speed" in options:
+            raise ValueError("rolling_speed given twice (keyword and method option)")
+        options["rolling_speed"] = rolling_speed
+    if not callable(friction_coefficient):
+        return friction_coefficient, None, None, options
+    law = friction_coefficient
+    if method not in ("exact", "exact_table", "polach"):
+        raise ValueError(
+            f"method {method!r} cannot honour a friction law (friction_coefficient={law!r}): "
+            f"it is a Coulomb-friction theory; use method='exact' or 'exact_table' (or pass a "
+            f"number for friction_coefficient)")
+    needs_speed = bool(getattr(law, "needs_rolling_speed", False))
+    speed = None
+    if needs_speed:
+        if rolling_speed is None:
+            raise ValueError(f"rolling_speed must be given [m/s] for the friction law {law!r}, "
+                             f"a law in the slip velocity; got None")
+        speed = check_range("rolling_speed", rolling_speed, "m/s", 0.0, None,
+                            lower_closed=False)
+    slips = np.concatenate([[0.0], np.logspace(-8, 1, 91)])
+    try:
+        probe = law(slips * (float(np.max(speed)) if needs_speed else 1.0))
+        values = np.broadcast_to(np.asarray(probe, dtype=float), slips.shape)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"friction_coefficient must be a number or a friction law mu(slip) "
+                         f"[-] (railcontact.friction); got {law!r}, which fails on an array of "
+                         f"slips ({exc})") from None
+    bad = ~(np.isfinite(values) & (values >= 0.0))
+    if np.any(bad) or not values[0] > 0.0:
+        i = int(np.flatnonzero(bad)[0]) if np.any(bad) else 0
+        raise ValueError(f"friction_coefficient {law!r} must give a finite mu >= 0 at every "
+                         f"slip and mu(0) > 0 [-]; got mu = {values[i]:g} at slip "
+                         f"{slips[i]:g}")
+    mu0 = float(values[0])
+    if method == "polach":
+        from .friction import PolachFriction  # noqa: PLC0415
+        if not isinstance(law, PolachFriction):
+            raise ValueError(f"method 'polach' honours only its own law "
+                             f"(railcontact.friction.PolachFriction) as friction_coefficient; "
+                             f"got {law!r}: use method='exact' or 'exact_table'")
+        clash = sorted({"friction_ratio_limit", "friction_decay"} & set(options))
+        if clash:
+            raise ValueError(f"method 'polach': {clash} given both as options and by the "
+                             f"friction law {law!r}")
+        options.update(friction_ratio_limit=law.friction_ratio_limit,
+                       friction_decay=law.friction_decay)
+        return mu0, None, None, options
+    return mu0, law, speed, options
+
+
+def _falling_table(*args):
+    raise ValueError("method 'exact_table' cannot honour a friction law yet "
+                     "(friction_coefficient); use method='exact'")
 
 
 _OPTIONS = {"fastsim": ("n_strips", "n_elements"), "fastrip": ("n_strips", "n_elements"),
@@ -672,7 +762,8 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
                       extrapolate=EXACT_DEFAULT_EXTRAPOLATE, tolerance=EXACT_DEFAULT_TOLERANCE,
                       sensitivities=False, fields=False,
                       transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
-                      grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, **method_options):
+                      grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, rolling_speed=None,
+                      **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -722,6 +813,20 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     railcontact.reference.rolling3d.RollingConvergenceError
         ``method="exact"``: the iteration did not converge.
     """
+    friction_coefficient, law, speed, method_options = _friction_input(
+        friction_coefficient, rolling_speed, method, method_options)
+    if law is not None and method == "exact_table":
+        if fields or sensitivities:
+            raise ValueError("fields and sensitivities need method='exact' and, for "
+                             "sensitivities, a constant friction_coefficient; got "
+                             "method='exact_table' with a friction law")
+        return _falling_table(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                              b0, youngs_modulus, poisson_ratio, friction_coefficient, law,
+                              speed, solution=True)
+    if law is not None and sensitivities:
+        raise ValueError("sensitivities need a constant friction_coefficient (the Jacobian of "
+                         "the linearised problem); got the friction law "
+                         f"{law!r}")
     if method in COMPARISON_METHODS:
         tx, ty, stick_own = _comparison(creepage_longitudinal, creepage_lateral, spin,
                                         normal_load, a0, b0, youngs_modulus, poisson_ratio,
@@ -742,7 +847,7 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,
                                extrapolate, sensitivities, fields, tolerance, transport_order,
-                               grid_shifts)
+                               grid_shifts, law, speed)
     if sensitivities or fields:
         raise ValueError(f"sensitivities and fields need method='exact'; got method={method!r}")
     (tx, ty, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0) = _solve(
@@ -777,10 +882,46 @@ def _check_exact_grid(grid):
     return mx, my
 
 
+def _reference_law(law, creepage_scale, speed, mu0):
+    """The friction law on the similar reference contact: ``s_r -> mu_r(s_r)``.
+
+    Slips scale like creepages (``s_r = k s``, k = ``creepage_scale``) and the friction bound
+    like ``mu / mu0`` (the reference contact's coefficient times ``mu(s) / mu(0)``); a law in
+    the slip velocity is evaluated at ``s V``."""
+    mu_ref = REFERENCE_CONTACT["friction_coefficient"]
+    factor = (1.0 if speed is None else speed) / creepage_scale
+
+    def mu_r(slip_r):
+        slip = np.abs(np.asarray(slip_r, dtype=float)) * factor
+        mu = np.broadcast_to(np.asarray(law(slip), dtype=float), slip.shape)
+        if not np.all(np.isfinite(mu) & (mu >= 0.0)):
+            i = np.flatnonzero(~(np.isfinite(mu) & (mu >= 0.0)))[0]
+            raise ValueError(f"friction_coefficient {law!r} must give a finite mu >= 0 at "
+                             f"every slip [-]; got {mu.flat[i]:g} at slip "
+                             f"{slip.flat[i] / (1.0 if speed is None else speed):g}")
+        return mu_ref * mu / mu0
+    return mu_r
+
+
+def _solve_case(case, *args, **kw):
+    """``solve_rolling_3d`` on the similar contact; a convergence failure names the user's
+    case (not only the similar one)."""
+    from .reference.rolling3d import solve_rolling_3d  # noqa: PLC0415
+
+    try:
+        return solve_rolling_3d(*args, **kw)
+    except RollingConvergenceError as exc:
+        raise RollingConvergenceError(f"method='exact' did not converge for the case {case}: "
+                                      f"{exc}") from None
+
+
 def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
            poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, grid_shifts=1):
-    """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`."""
+           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, grid_shifts=1, law=None,
+           speed=None):
+    """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`.
+    ``law``: a friction law mu(s) (then ``friction_coefficient`` is its mu(0)), with ``speed``
+    (V, broadcast) for a law in the slip velocity."""
     from .reference.rolling3d import solve_rolling_3d
 
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
@@ -799,6 +940,11 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
     sim = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, "exact")
     args = np.broadcast_arrays(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
     shape = args[0].shape
+    speeds = None if speed is None else np.broadcast_to(speed, np.broadcast_shapes(
+        shape, np.shape(speed)))
+    if speeds is not None and speeds.shape != shape:
+        raise ValueError(f"rolling_speed must broadcast with the other inputs (shape {shape}); "
+                         f"got shape {np.shape(speed)}")
     tx, ty, mz = np.zeros(shape), np.zeros(shape), np.zeros(shape)
     stick, width = np.ones(shape), np.ones(shape)
     iters = np.zeros(shape, dtype=int)
@@ -809,6 +955,14 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
+        case = (f"creepage_longitudinal={x_:g}, creepage_lateral={y_:g}, spin={p_:g}, "
+                f"normal_load={n_:g}, a0={a_:g}, b0={b_:g}, youngs_modulus={e_:g}, "
+                f"poisson_ratio={v_:g}, friction_coefficient="
+                + (f"{m_:g}" if law is None else f"{law!r}")
+                + ("" if speeds is None else f", rolling_speed={float(speeds[idx]):g}"))
+        if law is not None:
+            similar[8] = _reference_law(law, float(sim["creepage_scale"][idx]),
+                                        None if speeds is None else float(speeds[idx]), m_)
         kw = dict(tolerance=tolerance, sensitivities=sensitivities,
                   transport_order=int(transport_order))
         total = [0.0, 0.0, 0.0]
@@ -818,12 +972,12 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         w_c, w_f = (-1.0, 2.0) if extrapolate else (0.0, 1.0)
         for shift in shifts:  # grids moved along x, their forces averaged (grid_shifts)
             # the first grid starts from a half-size solve, a shifted one from the last grid
-            one = solve_rolling_3d(*similar, mx=mx, my=my, coarse_start=one is None,
-                                   initial_guess=one, grid_shift=shift, **kw)
+            one = _solve_case(case, *similar, mx=mx, my=my, coarse_start=one is None,
+                              initial_guess=one, grid_shift=shift, **kw)
             fine = one
             if extrapolate:  # one Richardson step in the rolling-direction element size
-                fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, grid_shift=shift,
-                                        initial_guess=one, **kw)  # prolongated coarse start
+                fine = _solve_case(case, *similar, mx=2 * mx, my=my, grid_shift=shift,
+                                   initial_guess=one, **kw)  # prolongated coarse start
                 iters[idx] += fine.iterations
             iters[idx] += one.iterations
             for k, name in enumerate(("tx", "ty", "mz")):
@@ -831,6 +985,9 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
             if sensitivities:
                 sens_sum = sens_sum + (w_f * fine.sensitivity
                                        + w_c * one.sensitivity) / len(shifts)
+        if not all(np.isfinite(total)):
+            raise RollingConvergenceError(f"method='exact' gave a non-finite force for the "
+                                          f"case {case}")
         force, moment = sim["force_scale"][idx], sim["moment_scale"][idx]
         tx[idx] = total[0] * force
         ty[idx] = total[1] * force
@@ -861,20 +1018,21 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
 
 def _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                 tolerance, transport_order, grid_shifts=1):
+                 tolerance, transport_order, grid_shifts=1, law=None, speed=None):
     out = _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate, False,
-                 False, tolerance, transport_order, grid_shifts)
+                 False, tolerance, transport_order, grid_shifts, law, speed)
     return CreepForce3D(out[0][()], out[1][()])
 
 
 def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                    sensitivities, fields, tolerance, transport_order, grid_shifts=1):
+                    sensitivities, fields, tolerance, transport_order, grid_shifts=1,
+                    law=None, speed=None):
     tx, ty, mz, stick, width, sens, res, iters, checked = _exact(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-        tolerance, transport_order, grid_shifts)
+        tolerance, transport_order, grid_shifts, law, speed)
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = checked
     z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu),
                         tx.shape)
