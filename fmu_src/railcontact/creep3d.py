@@ -911,8 +911,16 @@ def _solve_case(case, *args, **kw):
     try:
         return solve_rolling_3d(*args, **kw)
     except RollingConvergenceError as exc:
+        note = ""
+        if callable(args[8]):   # a law: its steepness on the similar contact
+            from .reference.halfspace2d import falling_friction_steepness  # noqa: PLC0415
+            p0 = 1.5 * args[3] / (np.pi * args[4] * args[5])
+            steep = falling_friction_steepness(args[8], p0, args[6], args[7], slip_max=1.0)
+            note = (f" (the law's steepness number (3/2) ln 3 K p0 max|mu'| is {steep:.3g}; "
+                    f"above about 1 a falling law can make the discrete problem non-unique, "
+                    f"see railcontact.reference.halfspace2d.falling_friction_steepness)")
         raise RollingConvergenceError(f"method='exact' did not converge for the case {case}: "
-                                      f"{exc}") from None
+                                      f"{exc}{note}") from None
 
 
 def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
