@@ -75,6 +75,7 @@ References
 
 from __future__ import annotations
 
+import math
 from types import SimpleNamespace
 
 import numpy as np
@@ -93,14 +94,20 @@ from .errors import RollingConvergenceError
 from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
-           "COMPARISON_METHODS", "creep_coefficients", "creep_force_3d", "creep_solution_3d",
+           "COMPARISON_METHODS", "creep_coefficients", "exact_default_grid", "creep_force_3d",
+           "creep_solution_3d",
            "load_exact_table", "spin_coefficient", "saturation_creepage_3d",
            "normalised_creepage_3d", "strip_force_function"]
 
 METHODS = ("linear", "she", "strip", "modified_strip")
 # method="exact" defaults, the setting on the accuracy-per-cost frontier (see creep_force_3d):
 # one Richardson step 30x20 -> 60x20, averaged over two grids moved -1/4 and +1/4 of an element
-EXACT_DEFAULT_GRID = (30, 20)  # elements (rolling, lateral)
+EXACT_DEFAULT_GRID = (30, 20)  # elements (rolling, lateral) at a0/b0 >= 1 or little spin
+# narrower contacts with spin coordinate |tau| > 1: my = 20 (b0/a0)^0.7, at most 48
+# (exact_default_grid)
+EXACT_DEFAULT_LATERAL_EXPONENT = 0.7
+EXACT_DEFAULT_LATERAL_MAX = 48
+EXACT_DEFAULT_SPIN_MIN = 1.0
 EXACT_DEFAULT_EXTRAPOLATE = True  # one Richardson step in the rolling-direction element size
 EXACT_DEFAULT_GRID_SHIFTS = 2  # grids averaged, moved by 1/grid_shifts of an element along x
 EXACT_DEFAULT_TOLERANCE = 1e-3  # relative traction change per sweep at which to stop
@@ -343,7 +350,7 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
-                   *, grid=EXACT_DEFAULT_GRID, extrapolate=EXACT_DEFAULT_EXTRAPOLATE,
+                   *, grid=None, extrapolate=EXACT_DEFAULT_EXTRAPOLATE,
                    tolerance=EXACT_DEFAULT_TOLERANCE, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
                    grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, rolling_speed=None, **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
@@ -393,10 +400,18 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         (:func:`railcontact.reference.rolling3d.solve_rolling_3d`: the Hertzian normal problem
         solved on the grid, then the frictional steady rolling problem), one solve per
         broadcast element; it needs ``|creepage| <= 1`` and ``|spin| max(a0, b0) <= 1``.
-    grid : (int, int), keyword-only
+    grid : (int, int) or None, keyword-only
         ``method="exact"`` only: elements (mx, my) in the rolling and lateral direction over
         ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]`` (CONTACT's potential area); with
-        ``extrapolate`` and ``grid_shifts`` the accuracy knob. The default is the setting on
+        ``extrapolate`` and ``grid_shifts`` the accuracy knob. Default None:
+        :func:`exact_default_grid` per case, (30, 20) for a0/b0 >= 1 or little spin and, for
+        narrower contacts with spin coordinate |tau| > 1, lateral elements following the
+        ellipse, ``my = ceil(20 (b0/a0)^0.7)`` up to 48 (a0/b0 <= 0.29). Measured against a converged reference (Richardson in both
+        directions, ``benchmarks/exact_table_accuracy.py --classes 6``, docs/reference_solvers.md):
+        max error 0.09 % of mu N at a0/b0 < 0.2 with large spin (30 x 20 there: 1.42 %),
+        <= 0.12 % in every a/b x spin class, at about 1.3-2.7x the time of 30 x 20 at
+        a0/b0 < 0.5 (the same above 1). The rest of this paragraph is for a0/b0 >= 1, where
+        the default is the setting on
         the accuracy-per-cost frontier that meets 0.2 % of mu N: ``grid=(30, 20),
         extrapolate=True, grid_shifts=2, tolerance=1e-3``. Measured on one core over CONTACT's
         21 grid-convergence cases (a0/b0 = 0.2, 1, 5; longitudinal, lateral, combined
@@ -758,7 +773,7 @@ def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
 
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
-                      method="modified_strip", *, grid=EXACT_DEFAULT_GRID,
+                      method="modified_strip", *, grid=None,
                       extrapolate=EXACT_DEFAULT_EXTRAPOLATE, tolerance=EXACT_DEFAULT_TOLERANCE,
                       sensitivities=False, fields=False,
                       transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
@@ -870,6 +885,48 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
 # --------------------------------------------------------------------------------------------
 # method="exact": Kalker's exact theory, discretised (railcontact.reference.rolling3d)
 # --------------------------------------------------------------------------------------------
+def exact_default_grid(a0, b0, spin_coordinate=np.inf):
+    """The default grid of ``method="exact"``: ``(30, my)`` elements with ``my = 20`` for
+    ``a0/b0 >= 1`` or spin coordinate ``|tau| <= 1`` and ``my = ceil(20 (b0/a0)^0.7)``, at
+    most 48, for narrower contacts with more spin (the lateral element follows the ellipse:
+    with 20 lateral elements a narrow contact with large spin errs by up to 1.4 % of mu N
+    at a0/b0 < 0.2, the discrete solution depending on where the spin pole falls between
+    element rows; measured in ``benchmarks/exact_table_accuracy.py --classes``).
+
+    Parameters
+    ----------
+    a0, b0 : float
+        Semi-axes, > 0. [m]
+    spin_coordinate : float, optional
+        tau = phi hypot(b0 C11, a0 C22) / w_sat, the exact table's spin coordinate
+        (:func:`railcontact.exact_table.exact_table_coordinates`); default: large. [-]
+
+    Returns
+    -------
+    (int, int)
+        Elements (rolling, lateral). [-]
+    """
+    ratio = float(b0) / float(a0)
+    my = EXACT_DEFAULT_GRID[1]
+    if ratio > 1.0 and abs(spin_coordinate) > EXACT_DEFAULT_SPIN_MIN:
+        my = min(EXACT_DEFAULT_LATERAL_MAX,
+                 max(my, int(np.ceil(my * ratio ** EXACT_DEFAULT_LATERAL_EXPONENT - 1e-9))))
+    return EXACT_DEFAULT_GRID[0], my
+
+
+def _spin_coordinate(phi, n_load, a0, b0, e_mod, nu, mu):
+    """The exact table's spin coordinate tau = phi hypot(b0 C11, a0 C22) / w_sat, w_sat =
+    pi^2 (1 + nu) mu p0 / E, of one case (floats; 0 without spin). [-]"""
+    if phi == 0.0:
+        return 0.0
+    c11, c22, _ = kalker_coefficients(a0 / b0, nu)
+    p0 = 1.5 * n_load / (np.pi * a0 * b0)
+    with np.errstate(over="ignore", divide="ignore"):
+        w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+        tau = abs(phi) * math.hypot(b0 * float(c11), a0 * float(c22)) / w_sat
+    return float(tau) if np.isfinite(tau) else np.inf
+
+
 def _check_exact_grid(grid):
     try:
         mx, my = (int(v) for v in grid)
@@ -935,7 +992,7 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, creepage_bound=1.0)
-    mx, my = _check_exact_grid(grid)
+    mx, my = (0, 0) if grid is None else _check_exact_grid(grid)
     if isinstance(grid_shifts, bool) or grid_shifts not in (1, 2, 3, 4):
         raise ValueError(f"grid_shifts must be an integer in [1, 4] [-] (grids averaged, "
                          f"shifted by 1/grid_shifts of an element); got {grid_shifts!r}")
@@ -963,6 +1020,8 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
+        if grid is None:   # the default: the lateral elements follow a0/b0 (with spin)
+            mx, my = exact_default_grid(a_, b_, _spin_coordinate(p_, n_, a_, b_, e_, v_, m_))
         case = (f"creepage_longitudinal={x_:g}, creepage_lateral={y_:g}, spin={p_:g}, "
                 f"normal_load={n_:g}, a0={a_:g}, b0={b_:g}, youngs_modulus={e_:g}, "
                 f"poisson_ratio={v_:g}, friction_coefficient="
