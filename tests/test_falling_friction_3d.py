@@ -258,3 +258,10 @@ def test_steep_law_converges_or_names_the_case():
     else:
         assert np.isfinite(f.tx) and np.isfinite(f.ty)
         assert np.hypot(f.tx, f.ty) <= 0.3 * N
+
+
+def test_exact_table_refuses_a_law():
+    for fun in (rc.creep_force_3d, rc.creep_solution_3d):
+        with pytest.raises(ValueError, match="method 'exact_table' cannot honour a friction law"):
+            fun(SAT, 0.0, 0.0, **ROUND, friction_coefficient=SmoothFriction(0.3, 0.1, 10.0),
+                method="exact_table")

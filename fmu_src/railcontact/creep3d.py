@@ -384,10 +384,9 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         ``mu0 ((1 - A) exp(-B w) + A)``), which needs ``rolling_speed``. A law is honoured by
         ``method="exact"`` (Kalker's exact theory with slip-dependent friction: the bound
         ``mu(|s|) p`` element by element, at the local slip; the force scale is
-        ``mu(0) N``), ``"exact_table"`` (a fast approximation of it, see
-        :mod:`railcontact.falling3d`) and ``"polach"`` (a :class:`PolachFriction` only: its
-        own 2005 law, at the slip velocity ``V |xi|`` of the contact); every other method
-        raises ValueError. The law must give a finite ``mu >= 0`` at every slip and
+        ``mu(0) N``) and ``"polach"`` (a :class:`PolachFriction` only: its own 2005 law, at
+        the slip velocity ``V |xi|`` of the contact); every other method, ``"exact_table"``
+        included (no table fast path yet: docs/reference_solvers.md), raises ValueError. The law must give a finite ``mu >= 0`` at every slip and
         ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model. "fastsim" (Kalker 1982), "fastrip" (Sichani et al. 2016):
@@ -600,9 +599,10 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
     return mu0, law, speed, options
 
 
-def _falling_table(*args):
-    raise ValueError("method 'exact_table' cannot honour a friction law yet "
-                     "(friction_coefficient); use method='exact'")
+def _falling_table(*args, solution=False):
+    raise ValueError("method 'exact_table' cannot honour a friction law (friction_coefficient): "
+                     "no fast path meets its accuracy yet (docs/reference_solvers.md); use "
+                     "method='exact'")
 
 
 _OPTIONS = {"fastsim": ("n_strips", "n_elements"), "fastrip": ("n_strips", "n_elements"),
