@@ -21,7 +21,12 @@ at <= 20 us per scalar call):
   the creepage);
 * ``sliding ratio``: the table at mu_0 times |T_fs(law)| / |T_fs(mu_0)|, T_fs the full-sliding
   force with the rigid slip field (8 x 16 Gauss points over the ellipse), which carries the
-  spread of the slip over the patch that large spin makes.
+  spread of the slip over the patch that large spin makes;
+* ``dissipation``: the table at mu_eff = mu(s_eff), s_eff the traction-weighted mean slip of
+  the table's own Coulomb solution at mu_eff: the frictional power of steady rolling over V,
+  |Tx xi + Ty eta + Mz phi|, divided by mu_eff N (1 - stick area fraction) (the load on the
+  slip area, taken as its share of the area); six fixed-point steps, relaxed by 1/2 from the
+  second (seven table calls with the spin moment).
 """
 
 from __future__ import annotations
@@ -99,6 +104,16 @@ def candidate(name, table, args, law):
         xi, eta, phi, _, a0, b0 = args[:6]
         s_r = math.sqrt(xi * xi + eta * eta + phi * phi * (a0 * a0 + b0 * b0) / 5.0)
         return table.creep_force_3d(*args[:8], float(law(s_r)))
+    if name == "dissipation":
+        xi, eta, phi, n_load = args[:4]
+        mu = law.mu_static
+        for it in range(6):
+            sol = table.creep_solution_3d(*args[:8], mu)
+            power = abs(sol.tx * xi + sol.ty * eta + sol.spin_moment * phi)
+            slip_load = n_load * min(max(1.0 - float(sol.stick_area_fraction), 1e-3), 1.0)
+            new = float(law(power / (mu * slip_load)))
+            mu = new if it == 0 else 0.5 * (mu + new)
+        return table.creep_force_3d(*args[:8], mu)
     ratio = sliding_ratio(args, law)
     f = table.creep_force_3d(*args)
     return type(f)(f.tx * ratio, f.ty * ratio)
@@ -132,7 +147,7 @@ def main(argv=None):
                ("|tau| > 1", np.abs(tau) > 1.0), ("kappa_n > 1", kn > 1.0),
                ("m < 0.5", m < 0.5))
     print("error in % of mu_0 N, max / RMS; time per scalar call (least of 3 passes)")
-    for name in ("coulomb", "mu(rigid)", "sliding ratio"):
+    for name in ("coulomb", "mu(rigid)", "sliding ratio", "dissipation"):
         err = []
         for (args, law, *_), (rx, ry) in zip(kept, ref):
             f = candidate(name, table, args, law)

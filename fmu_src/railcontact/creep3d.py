@@ -987,7 +987,6 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
     """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`.
     ``law``: a friction law mu(s) (then ``friction_coefficient`` is its mu(0)), with ``speed``
     (V, broadcast) for a law in the slip velocity."""
-    from .reference.rolling3d import solve_rolling_3d
 
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
