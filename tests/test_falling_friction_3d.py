@@ -265,3 +265,18 @@ def test_exact_table_refuses_a_law():
         with pytest.raises(ValueError, match="method 'exact_table' cannot honour a friction law"):
             fun(SAT, 0.0, 0.0, **ROUND, friction_coefficient=SmoothFriction(0.3, 0.1, 10.0),
                 method="exact_table")
+
+
+def test_step_law_gives_the_coulomb_solution_with_the_kinetic_coefficient():
+    """Nielsen Sec. 5.2: with Ohyama's step law the (minimum) solution is Carter's with mu_k, the
+    static coefficient acting only where the slip is exactly zero. The 3-D exact theory with
+    the step law (tabulated: mu_0 at s = 0, mu_k from s = 1e-8 on) gives the Coulomb solution
+    with mu_k (measured: to 4e-6 of mu_0 N, with spin too)."""
+    from railcontact.friction import StepFriction
+
+    xi, eta, phi = (np.array([1e-3, 3e-3, 0.0]), np.array([0.0, 1e-3, 0.0]),
+                    np.array([0.0, 0.3, 2.0]))
+    step = _exact(xi, eta, phi, StepFriction(0.3, 0.2))
+    kinetic = _exact(xi, eta, phi, 0.2)
+    np.testing.assert_allclose(step.tx, kinetic.tx, atol=1e-4 * 0.3 * N)
+    np.testing.assert_allclose(step.ty, kinetic.ty, atol=1e-4 * 0.3 * N)
