@@ -198,6 +198,8 @@ def test_polach_method_takes_its_own_law():
                                     friction_ratio_limit=0.4, friction_decay=0.6,
                                     rolling_speed=20.0)
     assert via_law.tx == via_options.tx and via_law.ty == via_options.ty
+    with pytest.raises(ValueError, match="rolling_speed must be given"):   # not V = 0 silently
+        rc.creep_force_3d(*args, **ROUND, friction_coefficient=law, method="polach")
 
 
 @pytest.mark.parametrize("method", ["modified_strip", "strip", "she", "linear", "fastsim",

@@ -562,6 +562,8 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
             f"number for friction_coefficient)")
     needs_speed = bool(getattr(law, "needs_rolling_speed", False))
     speed = None
+    if method == "polach" and rolling_speed is None:
+        rolling_speed = options.get("rolling_speed")      # given as Polach's option
     if needs_speed:
         if rolling_speed is None:
             raise ValueError(f"rolling_speed must be given [m/s] for the friction law {law!r}, "
