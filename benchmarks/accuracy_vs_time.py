@@ -737,6 +737,67 @@ def family_friction(quick):
     return fam
 
 
+def family_falling_3d(quick):
+    """Kalker's exact theory with Polach's falling law, element by element (method "exact"
+    with a friction law), against its own fine grids; the cheaper stand-ins: Polach 2005 (the
+    law at the contact's slip velocity V |xi|), the Coulomb exact table at mu_0 and at mu of
+    the RMS rigid slip (benchmarks/bench_falling_friction_3d.py has more)."""
+    from railcontact import creep_force_3d
+    from railcontact.creep3d import load_exact_table
+    from railcontact.friction import PolachFriction
+
+    speed, mu0, n_load, a0, b0 = 30.0, 0.3, 1.0e5, 6e-3, 9e-3
+    law = PolachFriction(mu0, 0.4, 6.93)       # B as CONTACT's veldep_fric example: strong fall
+    cases = [(1e-3, 0.0, 0.0), (1e-2, 0.0, 0.0), (2e-3, 1e-3, 0.5)]
+    if not quick:
+        cases += [(3e-3, 0.0, 0.0), (0.0, 0.0, 2.0)]
+    xi, eta, phi = (np.array(v) for v in zip(*cases))
+    contact = (n_load, a0, b0, E, NU)
+    fam = Family("Falling friction (3-D)",
+                 f"T/(mu_0 N), a0 = 6 mm, b0 = 9 mm, Polach's law mu0 = {mu0}, A = 0.4, "
+                 f"B = 6.93 s/m at V = {speed:g} m/s; {len(cases)} cases (creepage 1e-3 to "
+                 "1e-2, lateral creepage with spin" + (", pure spin)" if not quick else ")"),
+                 "method='exact' with the law on 60x40 -> 120x40, two grid shifts, tolerance "
+                 "1e-4; error max |dT|/(mu_0 N)")
+    scale = mu0 * n_load
+    ref = creep_force_3d(xi, eta, phi, *contact, law, method="exact", rolling_speed=speed,
+                         grid=(60, 40), tolerance=1e-4)
+    table = load_exact_table()
+
+    def exact(grid_kw):
+        return lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="exact",
+                                              rolling_speed=speed, **grid_kw)
+
+    def rigid(x, y, p):
+        s_r = np.sqrt(np.asarray(x) ** 2 + np.asarray(y) ** 2
+                      + np.asarray(p) ** 2 * (a0 * a0 + b0 * b0) / 5.0)
+        return table.creep_force_3d(x, y, p, *contact, law(s_r * speed))
+
+    runs = [("exact, friction law", "default (30x20 -> 60x20, two shifts)", exact({}), True),
+            ("exact, friction law", "40x20, one grid", exact(
+                dict(grid=(40, 20), extrapolate=False, grid_shifts=1)), True),
+            ("polach 2005, its law at V s_C", "k_A = k_S = 1",
+             lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="polach",
+                                            rolling_speed=speed), False),
+            ("exact table, Coulomb mu_0", "the law ignored",
+             lambda x, y, p: table.creep_force_3d(x, y, p, *contact, mu0), False),
+            ("exact table, mu(RMS rigid slip)", "one table call", rigid, False)]
+    for method, knob, fun, slow in runs:
+        t0 = time.perf_counter()
+        f = fun(xi, eta, phi)
+        tb = (time.perf_counter() - t0) / xi.size
+        if slow:
+            t1 = median_time(lambda: fun(2e-3, 1e-3, 0.5), repeat=2, warmup=0, budget=2.0)
+        else:
+            t1 = per_call(lambda: fun(2e-3, 1e-3, 0.5))
+        fam.rows.append(Row(fam.name, method, knob, _vec_err(f.tx, f.ty, ref.tx, ref.ty, scale),
+                            t1, tb))
+    fam.notes.append("no table fast path with a friction law yet: one effective coefficient "
+                     "on the Coulomb table misses 1 % of mu_0 N with large spin (docs/"
+                     "reference_solvers.md, benchmarks/bench_falling_friction_3d.py)")
+    return fam
+
+
 def family_other(quick):
     """Non-steady and roughness closed forms: timed; error only where a limit is exact."""
     fam = Family("Non-steady & one asperity", "closed forms of Ch. 6-7",
@@ -1303,8 +1364,8 @@ def main(argv=None):
     parser.add_argument("--out", default=str(ROOT / "docs"),
                         help="output directory (default: the checkout's docs/)")
     parser.add_argument("--skip", nargs="*", default=[],
-                        help="families to skip: 2d corrugated 3d wear friction other "
-                             "roughness fmu")
+                        help="families to skip: 2d corrugated 3d wear friction falling3d "
+                             "other roughness fmu")
     args = parser.parse_args(argv)
     out = Path(args.out)
     if args.quick:
@@ -1317,7 +1378,8 @@ def main(argv=None):
     fams, series, amp = [], [], []
     steps = [("2d", family_2d_hertz), ("corrugated", family_2d_corrugated),
              ("3d", lambda q: family_3d(q, work)), ("wear", family_wear),
-             ("friction", family_friction), ("other", family_other),
+             ("friction", family_friction), ("falling3d", family_falling_3d),
+             ("other", family_other),
              ("roughness", family_two_patch),
              ("fmu", lambda q: family_fmu(q, work))]
     try:

@@ -3,7 +3,7 @@ at the table's setting (interpolation error), and CONTACT's 21 converged cases (
 whole error against the exact theory). Prints figures by a/b and spin class; asserts nothing.
 
     python benchmarks/exact_table_accuracy.py [--n 1000] [--seed 7] [--theta-scans] [--axes N]
-        [--converged N] [--creepage-scans N]
+        [--converged N] [--creepage-scans N] [--classes N]
 
 Random cases: a0/b0 log-uniform in [0.1, 10], nu uniform in [0, 0.5], creepage direction
 uniform on the circle, |v| / sqrt(1 + tau^2) (|v| the Kalker-weighted creepage over the
@@ -21,7 +21,10 @@ domain rather than at CONTACT's 21 cases. ``--creepage-scans N`` scans N random 
 the creepage magnitude: random points rarely meet the creepage where the adhesion area
 vanishes, and where it collapses between two creepage nodes the table errs most (3.7 % of
 mu N at a0/b0 = 10, tau = 1.3, theta = 90 deg on the grid of 2026-11-27; 1,000 random points
-found 1.1 % at most).
+found 1.1 % at most). ``--classes N`` prints only the error by a/b class (< 0.2, 0.2-5, > 5) x
+spin class (none, moderate, large, pure) of the solver's public default, the previous
+default and the table against a converged reference (Richardson in both directions, lateral
+elements following a/b), with the default's time per case.
 """
 
 from __future__ import annotations
@@ -254,6 +257,88 @@ def creepage_scans(table, n, rng):
     _by_class(e, np.concatenate(line_g), np.concatenate(line_tau))
 
 
+#: a/b classes and spin classes of the class table (--classes), as in issue 40
+ASPECT_CLASSES = (("a/b < 0.2", 0.1, 0.2), ("0.2 <= a/b <= 5", 0.2, 5.0), ("a/b > 5", 5.0, 10.0))
+SPIN_CLASSES = ("none", "moderate", "large", "pure")
+
+
+def _class_case(rng, g_lo, g_hi, spin_class):
+    """Table coordinates (ln g, nu, s, theta, tau) of one random case of a class: a0/b0
+    log-uniform in the class, nu uniform, theta uniform, rho / w log-uniform in [0.05, 3]
+    (partial slip to well past saturation); tau 0 (none), |tau| log-uniform in [0.3, 3]
+    (moderate) or [3, 20] (large), or no creepage and |tau| log-uniform in [0.5, 20] (pure)."""
+    g = math.exp(rng.uniform(math.log(g_lo), math.log(g_hi)))
+    tau = {"none": 0.0,
+           "moderate": math.exp(rng.uniform(math.log(0.3), math.log(3.0))),
+           "large": math.exp(rng.uniform(math.log(3.0), math.log(20.0))),
+           "pure": math.exp(rng.uniform(math.log(0.5), math.log(20.0)))}[spin_class]
+    tau *= rng.choice([-1.0, 1.0])
+    rho = 0.0 if spin_class == "pure" else (
+        math.exp(rng.uniform(math.log(0.05), math.log(3.0))) * math.hypot(1.0, tau))
+    return (math.log(g), rng.uniform(0.0, 0.5), float(creepage_coordinate(rho, tau)),
+            rng.uniform(-math.pi, math.pi), tau)
+
+
+def reference_grids(g):
+    """(mx, my_coarse, my_fine) of the converged reference at a0/b0 = g: the lateral element
+    follows the ellipse (160 lateral elements below a0/b0 = 0.5, 120 up to 2, and 80 with 60
+    along x beyond), each grid the default x-setting (Richardson mx -> 2 mx on the two moved
+    grids) and one more Richardson step in the lateral element size (second order) between
+    my_coarse and my_fine."""
+    if g < 0.5:
+        return 30, 80, 160
+    if g <= 2.0:
+        return 30, 60, 120
+    return 60, 40, 80
+
+
+def class_table(table, n, rng):
+    """Error by a/b class x spin class against a converged reference (:func:`reference_grids`,
+    Richardson in both directions): the solver's public default (``creep_force_3d(...,
+    method="exact")``: :func:`railcontact.creep3d.exact_default_grid`), the previous default
+    (30 x 20 everywhere) and the table, max / RMS in % of mu N, and the default's time per
+    case (set-ups cached). The reference's own error is estimated by the size of its lateral
+    Richardson correction, ``|R - F(my_fine)|``."""
+    from railcontact.creep3d import exact_default_grid  # noqa: PLC0415
+
+    keys = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+            "youngs_modulus", "poisson_ratio", "friction_coefficient")
+    print(f"\n== class table: {n} random cases per a/b x spin class against the converged "
+          "exact theory (Richardson in x and y), % of mu N ==")
+    print(f"  {'class':32s} {'default max / RMS':>18s} {'(ms)':>6s} {'30x20 max / RMS':>16s} "
+          f"{'table max / RMS':>16s} {'ref. corr.':>10s}  my")
+    for a_name, g_lo, g_hi in ASPECT_CLASSES:
+        for spin_class in SPIN_CLASSES:
+            e_new, e_old, e_tab, corr, t_new, mys = [], [], [], [], [], set()
+            for _ in range(n):
+                pt = _class_case(rng, g_lo, g_hi, spin_class)
+                phys = exact_table_inverse(*pt, contact=REFERENCE_CONTACT)
+                args = [float(phys[k]) for k in keys]
+                mu_n = args[3] * args[8]
+                mx, my_c, my_f = reference_grids(math.exp(pt[0]))
+                f_c = creep_force_3d(*args, method="exact", grid=(mx, my_c), tolerance=1e-4)
+                f_f = creep_force_3d(*args, method="exact", grid=(mx, my_f), tolerance=1e-4)
+                rx = (4.0 * f_f.tx - f_c.tx) / 3.0
+                ry = (4.0 * f_f.ty - f_c.ty) / 3.0
+                creep_force_3d(*args, method="exact")           # set-up cached
+                t0 = time.perf_counter()
+                new = creep_force_3d(*args, method="exact")
+                t_new.append(time.perf_counter() - t0)
+                old = creep_force_3d(*args, method="exact", grid=(30, 20))
+                tab = table.creep_force_3d(*args)
+                mys.add(exact_default_grid(args[4], args[5], pt[4])[1])
+                for store, f in ((e_new, new), (e_old, old), (e_tab, tab)):
+                    store.append(math.hypot(f.tx - rx, f.ty - ry) / mu_n * 100)
+                corr.append(math.hypot(f_f.tx - rx, f_f.ty - ry) / mu_n * 100)
+
+            def mr(e):
+                e = np.asarray(e)
+                return f"{e.max():.2f} / {math.sqrt(np.mean(e**2)):.2f}"
+            print(f"  {a_name + ', ' + spin_class:32s} {mr(e_new):>18s} "
+                  f"{np.mean(t_new) * 1e3:6.0f} {mr(e_old):>16s} {mr(e_tab):>16s} "
+                  f"{max(corr):10.3f}  {min(mys)}-{max(mys)}", flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=1000)
@@ -269,8 +354,14 @@ def main(argv=None):
     ap.add_argument("--creepage-scans", type=int, default=0, metavar="N",
                     help="also N random lines along the creepage magnitude (24 points each) "
                          "and the known kinks (N = 100: about 3 min)")
+    ap.add_argument("--classes", type=int, default=0, metavar="N",
+                    help="only the class table: N random cases per a/b x spin class against "
+                         "the converged exact theory (N = 6: about 6 min)")
     opts = ap.parse_args(argv)
     table = load_exact_table()
+    if opts.classes:
+        class_table(table, opts.classes, np.random.default_rng(opts.seed + 4))
+        return
     print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
 
     print("\n== against CONTACT's 21 cases, converged (Richardson of 120x60 and 240x60) ==")

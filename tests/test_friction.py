@@ -58,6 +58,25 @@ def test_laws_values_and_derivative():
     assert np.all(SmoothFriction(0.4, 0.2, 0.0)(s) == 0.4)   # kappa = 0: Coulomb
 
 
+def test_polach_law_in_slip_velocity():
+    """Polach 2005: mu0 ((1 - A) exp(-B w) + A), written out here; as a law in s at speed V."""
+    from railcontact.friction import PolachFriction
+
+    law = PolachFriction(0.3, 0.4, 0.6)
+    w = np.array([0.0, 0.5, 2.0, 100.0])
+    np.testing.assert_allclose(law(w), 0.3 * (0.6 * np.exp(-0.6 * w) + 0.4), rtol=1e-15)
+    assert law.needs_rolling_speed and law.mu_kinetic == pytest.approx(0.12)
+    in_slip = law.at_rolling_speed(20.0)
+    np.testing.assert_allclose(in_slip(w / 20.0), law(w), rtol=1e-15)
+    assert in_slip.mu_static == 0.3 and "rolling_speed=20" in repr(in_slip)
+    for ctor, name in ((lambda: PolachFriction(0.0, 0.4, 0.6), "mu_static"),
+                       (lambda: PolachFriction(0.3, 1.4, 0.6), "friction_ratio_limit"),
+                       (lambda: PolachFriction(0.3, 0.4, -1.0), "friction_decay"),
+                       (lambda: law.at_rolling_speed(0.0), "rolling_speed")):
+        with pytest.raises(ValueError, match=name):
+            ctor()
+
+
 @pytest.mark.parametrize("ctor, name", [
     (lambda: SmoothFriction(-0.1, 0.2, 1.0), "mu_static"),
     (lambda: SmoothFriction(0.1, -0.2, 1.0), "mu_kinetic"),

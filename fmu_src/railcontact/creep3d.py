@@ -75,6 +75,7 @@ References
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -90,17 +91,24 @@ from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
                            spin_coefficient)
 from .creep_common import (EXACT_TABLE_LATERAL_ELEMENTS_NARROW,
                            EXACT_TABLE_NARROW_ASPECT_MAX)
+from .errors import RollingConvergenceError
 from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
-           "COMPARISON_METHODS", "creep_coefficients", "creep_force_3d", "creep_solution_3d",
+           "COMPARISON_METHODS", "creep_coefficients", "exact_default_grid", "creep_force_3d",
+           "creep_solution_3d",
            "load_exact_table", "spin_coefficient", "saturation_creepage_3d",
            "normalised_creepage_3d", "strip_force_function"]
 
 METHODS = ("linear", "she", "strip", "modified_strip")
 # method="exact" defaults, the setting on the accuracy-per-cost frontier (see creep_force_3d):
 # one Richardson step 30x20 -> 60x20, averaged over two grids moved -1/4 and +1/4 of an element
-EXACT_DEFAULT_GRID = (30, 20)  # elements (rolling, lateral)
+EXACT_DEFAULT_GRID = (30, 20)  # elements (rolling, lateral) at a0/b0 >= 1 or little spin
+# narrower contacts with spin coordinate |tau| > 1: my = 20 (b0/a0)^0.7, at most 48
+# (exact_default_grid)
+EXACT_DEFAULT_LATERAL_EXPONENT = 0.7
+EXACT_DEFAULT_LATERAL_MAX = 48
+EXACT_DEFAULT_SPIN_MIN = 1.0
 EXACT_DEFAULT_EXTRAPOLATE = True  # one Richardson step in the rolling-direction element size
 EXACT_DEFAULT_GRID_SHIFTS = 2  # grids averaged, moved by 1/grid_shifts of an element along x
 EXACT_DEFAULT_TOLERANCE = 1e-3  # relative traction change per sweep at which to stop
@@ -343,9 +351,9 @@ def _solve(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
 
 def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                    youngs_modulus, poisson_ratio, friction_coefficient, method="modified_strip",
-                   *, grid=EXACT_DEFAULT_GRID, extrapolate=EXACT_DEFAULT_EXTRAPOLATE,
+                   *, grid=None, extrapolate=EXACT_DEFAULT_EXTRAPOLATE,
                    tolerance=EXACT_DEFAULT_TOLERANCE, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
-                   grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, **method_options):
+                   grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, rolling_speed=None, **method_options):
     r"""Creep force on the wheel for a Hertzian contact ellipse, Eqs. (2.61)-(2.99).
 
     See the module docstring for the four methods and their formulas. Inputs broadcast.
@@ -368,8 +376,19 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         Young's modulus E of both bodies, > 0. [Pa]
     poisson_ratio : array_like
         Poisson's ratio nu of both bodies, in [0, 0.5]. [-]
-    friction_coefficient : array_like
-        Coulomb friction coefficient mu, >= 0. [-]
+    friction_coefficient : array_like or friction law
+        Coulomb friction coefficient mu, >= 0; or a friction law: a callable ``mu(s)`` of the
+        slip magnitude ``s = |slip velocity| / V`` [-] such as
+        :class:`railcontact.friction.SmoothFriction` (Eq. (5.16)), or a law in the slip
+        velocity ``w`` [m/s] (``needs_rolling_speed = True``), such as
+        :class:`railcontact.friction.PolachFriction` (Polach 2005,
+        ``mu0 ((1 - A) exp(-B w) + A)``), which needs ``rolling_speed``. A law is honoured by
+        ``method="exact"`` (Kalker's exact theory with slip-dependent friction: the bound
+        ``mu(|s|) p`` element by element, at the local slip; the force scale is
+        ``mu(0) N``) and ``"polach"`` (a :class:`PolachFriction` only: its own 2005 law, at
+        the slip velocity ``V |xi|`` of the contact); every other method, ``"exact_table"``
+        included (no table fast path yet: docs/reference_solvers.md), raises ValueError. The law must give a finite ``mu >= 0`` at every slip and
+        ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model (default "modified_strip", the thesis's method; the module docstring
         gives the formulas):
@@ -390,12 +409,14 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
 
         Speed and error of each: docs/figures.md; the exact solver's settings, measured:
         docs/reference_solvers.md.
-    grid : (int, int), keyword-only
+    grid : (int, int) or None, keyword-only
         ``method="exact"`` only: elements (mx, my) in the rolling and lateral direction over
-        ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]`` (CONTACT's potential area). The default
-        (30, 20), with ``extrapolate=True, grid_shifts=2, tolerance=1e-3``, is within 0.2 % of
-        mu N of the converged theory on CONTACT's 21 cases; a plain solve on one grid:
-        ``extrapolate=False, grid_shifts=1``.
+        ``[-1.08 a0, 1.08 a0] x [-1.08 b0, 1.08 b0]`` (CONTACT's potential area). Default None:
+        :func:`exact_default_grid` per case, (30, 20) where a0/b0 >= 1 or the spin coordinate
+        |tau| <= 1, else lateral elements following the ellipse, ``my = ceil(20 (b0/a0)^0.7)``
+        up to 48. With ``extrapolate=True, grid_shifts=2, tolerance=1e-3`` within 0.2 % of mu N
+        of the converged theory in every a/b x spin class (docs/reference_solvers.md); a plain
+        solve on one grid: ``extrapolate=False, grid_shifts=1``.
     extrapolate : bool, keyword-only
         ``method="exact"`` only: one Richardson step in the rolling direction,
         ``2 F(2 mx, my) - F(mx, my)``. Default True.
@@ -409,6 +430,10 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     transport_order : {1, 2}, keyword-only
         ``method="exact"`` only: difference of the rolling term, 1 (first-order upwind, as
         Kalker's and CONTACT's; default) or 2 (three-point upwind). [-]
+    rolling_speed : array_like, optional, keyword-only
+        Rolling speed V > 0 for a friction law in the slip velocity
+        (``friction_coefficient`` with ``needs_rolling_speed``; other laws and Coulomb
+        friction ignore it); with ``method="polach"`` its ``rolling_speed`` option. [m/s]
     **method_options
         Only for "fastsim"/"fastrip" (``n_strips``, ``n_elements``) and "polach"
         (``reduction_adhesion``, ``reduction_slip``, ``friction_ratio_limit``,
@@ -438,10 +463,16 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     .. [2] J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.
     .. [3] E.A.H. Vollebregt, CONTACT (the potential area and the reference cases).
     """
-    if method == "exact_table" and not method_options:
+    if method == "exact_table" and not method_options and not callable(friction_coefficient):
         table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
         return table.creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                                     a0, b0, youngs_modulus, poisson_ratio, friction_coefficient)
+    friction_coefficient, law, speed, method_options = _friction_input(
+        friction_coefficient, rolling_speed, method, method_options)
+    if law is not None and method == "exact_table":
+        return _falling_table(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                              b0, youngs_modulus, poisson_ratio, friction_coefficient, law,
+                              speed)
     if method in COMPARISON_METHODS:
         tx, ty = _comparison(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                              youngs_modulus, poisson_ratio, friction_coefficient, method,
@@ -451,10 +482,80 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     if method == "exact":
         return _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                             youngs_modulus, poisson_ratio, friction_coefficient, grid,
-                            extrapolate, tolerance, transport_order, grid_shifts)
+                            extrapolate, tolerance, transport_order, grid_shifts, law, speed)
     tx, ty = _solve(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, method)[:2]
     return CreepForce3D(tx[()], ty[()])
+
+
+def _friction_input(friction_coefficient, rolling_speed, method, method_options):
+    """``(mu, law, speed, method_options)`` of the ``friction_coefficient`` input.
+
+    Coulomb (a number): ``(friction_coefficient, None, None, options)``. A friction law: ``mu``
+    its static value ``mu(0)`` (the force scale), ``law`` a callable of the slip ``s`` [-]
+    (a law in the slip velocity is evaluated at ``s V``; ``speed`` is V, broadcastable), and
+    for ``method="polach"`` a :class:`railcontact.friction.PolachFriction` as Polach's own
+    options. ``rolling_speed`` becomes the option of ``method="polach"`` in any case.
+    Raises ValueError for a method that cannot honour a law, a law that is not a callable
+    ``mu(s)`` or gives a negative or non-finite mu, or a missing ``rolling_speed``."""
+    options = dict(method_options)
+    if method == "polach" and rolling_speed is not None:
+        if "rolling_speed" in options:
+            raise ValueError("rolling_speed given twice (keyword and method option)")
+        options["rolling_speed"] = rolling_speed
+    if not callable(friction_coefficient):
+        return friction_coefficient, None, None, options
+    law = friction_coefficient
+    if method not in ("exact", "exact_table", "polach"):
+        raise ValueError(
+            f"method {method!r} cannot honour a friction law (friction_coefficient={law!r}): "
+            f"it is a Coulomb-friction theory; use method='exact' or 'exact_table' (or pass a "
+            f"number for friction_coefficient)")
+    needs_speed = bool(getattr(law, "needs_rolling_speed", False))
+    speed = None
+    if method == "polach" and rolling_speed is None:
+        rolling_speed = options.get("rolling_speed")      # given as Polach's option
+    if needs_speed:
+        if rolling_speed is None:
+            raise ValueError(f"rolling_speed must be given [m/s] for the friction law {law!r}, "
+                             f"a law in the slip velocity; got None")
+        speed = check_range("rolling_speed", rolling_speed, "m/s", 0.0, None,
+                            lower_closed=False)
+    slips = np.concatenate([[0.0], np.logspace(-8, 1, 91)])
+    try:
+        probe = law(slips * (float(np.max(speed)) if needs_speed else 1.0))
+        values = np.broadcast_to(np.asarray(probe, dtype=float), slips.shape)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"friction_coefficient must be a number or a friction law mu(slip) "
+                         f"[-] (railcontact.friction); got {law!r}, which fails on an array of "
+                         f"slips ({exc})") from None
+    bad = ~(np.isfinite(values) & (values >= 0.0))
+    if np.any(bad) or not values[0] > 0.0:
+        i = int(np.flatnonzero(bad)[0]) if np.any(bad) else 0
+        raise ValueError(f"friction_coefficient {law!r} must give a finite mu >= 0 at every "
+                         f"slip and mu(0) > 0 [-]; got mu = {values[i]:g} at slip "
+                         f"{slips[i]:g}")
+    mu0 = float(values[0])
+    if method == "polach":
+        from .friction import PolachFriction  # noqa: PLC0415
+        if not isinstance(law, PolachFriction):
+            raise ValueError(f"method 'polach' honours only its own law "
+                             f"(railcontact.friction.PolachFriction) as friction_coefficient; "
+                             f"got {law!r}: use method='exact' or 'exact_table'")
+        clash = sorted({"friction_ratio_limit", "friction_decay"} & set(options))
+        if clash:
+            raise ValueError(f"method 'polach': {clash} given both as options and by the "
+                             f"friction law {law!r}")
+        options.update(friction_ratio_limit=law.friction_ratio_limit,
+                       friction_decay=law.friction_decay)
+        return mu0, None, None, options
+    return mu0, law, speed, options
+
+
+def _falling_table(*args, solution=False):
+    raise ValueError("method 'exact_table' cannot honour a friction law (friction_coefficient): "
+                     "no fast path meets its accuracy yet (docs/reference_solvers.md); use "
+                     "method='exact'")
 
 
 _OPTIONS = {"fastsim": ("n_strips", "n_elements"), "fastrip": ("n_strips", "n_elements"),
@@ -625,11 +726,12 @@ def _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method):
 
 def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                       youngs_modulus, poisson_ratio, friction_coefficient,
-                      method="modified_strip", *, grid=EXACT_DEFAULT_GRID,
+                      method="modified_strip", *, grid=None,
                       extrapolate=EXACT_DEFAULT_EXTRAPOLATE, tolerance=EXACT_DEFAULT_TOLERANCE,
                       sensitivities=False, fields=False,
                       transport_order=EXACT_DEFAULT_TRANSPORT_ORDER,
-                      grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, **method_options):
+                      grid_shifts=EXACT_DEFAULT_GRID_SHIFTS, rolling_speed=None,
+                      **method_options):
     r"""Creep force plus stick zone, spin coefficient and validity flag.
 
     Same inputs as :func:`creep_force_3d`.
@@ -679,6 +781,20 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     railcontact.reference.rolling3d.RollingConvergenceError
         ``method="exact"``: the iteration did not converge.
     """
+    friction_coefficient, law, speed, method_options = _friction_input(
+        friction_coefficient, rolling_speed, method, method_options)
+    if law is not None and method == "exact_table":
+        if fields or sensitivities:
+            raise ValueError("fields and sensitivities need method='exact' and, for "
+                             "sensitivities, a constant friction_coefficient; got "
+                             "method='exact_table' with a friction law")
+        return _falling_table(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
+                              b0, youngs_modulus, poisson_ratio, friction_coefficient, law,
+                              speed, solution=True)
+    if law is not None and sensitivities:
+        raise ValueError("sensitivities need a constant friction_coefficient (the Jacobian of "
+                         "the linearised problem); got the friction law "
+                         f"{law!r}")
     if method in COMPARISON_METHODS:
         tx, ty, stick_own = _comparison(creepage_longitudinal, creepage_lateral, spin,
                                         normal_load, a0, b0, youngs_modulus, poisson_ratio,
@@ -699,7 +815,7 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
         return _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                b0, youngs_modulus, poisson_ratio, friction_coefficient, grid,
                                extrapolate, sensitivities, fields, tolerance, transport_order,
-                               grid_shifts)
+                               grid_shifts, law, speed)
     if sensitivities or fields:
         raise ValueError(f"sensitivities and fields need method='exact'; got method={method!r}")
     (tx, ty, z, w_abs, w_sat, has_force, mu_n, xi_x, xi_y, phi, a0, b0) = _solve(
@@ -722,6 +838,48 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
 # --------------------------------------------------------------------------------------------
 # method="exact": Kalker's exact theory, discretised (railcontact.reference.rolling3d)
 # --------------------------------------------------------------------------------------------
+def exact_default_grid(a0, b0, spin_coordinate=np.inf):
+    """The default grid of ``method="exact"``: ``(30, my)`` elements with ``my = 20`` for
+    ``a0/b0 >= 1`` or spin coordinate ``|tau| <= 1`` and ``my = ceil(20 (b0/a0)^0.7)``, at
+    most 48, for narrower contacts with more spin (the lateral element follows the ellipse:
+    with 20 lateral elements a narrow contact with large spin errs by up to 1.4 % of mu N
+    at a0/b0 < 0.2, the discrete solution depending on where the spin pole falls between
+    element rows; measured in ``benchmarks/exact_table_accuracy.py --classes``).
+
+    Parameters
+    ----------
+    a0, b0 : float
+        Semi-axes, > 0. [m]
+    spin_coordinate : float, optional
+        tau = phi hypot(b0 C11, a0 C22) / w_sat, the exact table's spin coordinate
+        (:func:`railcontact.exact_table.exact_table_coordinates`); default: large. [-]
+
+    Returns
+    -------
+    (int, int)
+        Elements (rolling, lateral). [-]
+    """
+    ratio = float(b0) / float(a0)
+    my = EXACT_DEFAULT_GRID[1]
+    if ratio > 1.0 and abs(spin_coordinate) > EXACT_DEFAULT_SPIN_MIN:
+        my = min(EXACT_DEFAULT_LATERAL_MAX,
+                 max(my, int(np.ceil(my * ratio ** EXACT_DEFAULT_LATERAL_EXPONENT - 1e-9))))
+    return EXACT_DEFAULT_GRID[0], my
+
+
+def _spin_coordinate(phi, n_load, a0, b0, e_mod, nu, mu):
+    """The exact table's spin coordinate tau = phi hypot(b0 C11, a0 C22) / w_sat, w_sat =
+    pi^2 (1 + nu) mu p0 / E, of one case (floats; 0 without spin). [-]"""
+    if phi == 0.0:
+        return 0.0
+    c11, c22, _ = kalker_coefficients(a0 / b0, nu)
+    p0 = 1.5 * n_load / (np.pi * a0 * b0)
+    with np.errstate(over="ignore", divide="ignore"):
+        w_sat = np.pi**2 * (1.0 + nu) * mu * p0 / e_mod
+        tau = abs(phi) * math.hypot(b0 * float(c11), a0 * float(c22)) / w_sat
+    return float(tau) if np.isfinite(tau) else np.inf
+
+
 def _check_exact_grid(grid):
     try:
         mx, my = (int(v) for v in grid)
@@ -734,16 +892,59 @@ def _check_exact_grid(grid):
     return mx, my
 
 
+def _reference_law(law, creepage_scale, speed, mu0):
+    """The friction law on the similar reference contact: ``s_r -> mu_r(s_r)``.
+
+    Slips scale like creepages (``s_r = k s``, k = ``creepage_scale``) and the friction bound
+    like ``mu / mu0`` (the reference contact's coefficient times ``mu(s) / mu(0)``); a law in
+    the slip velocity is evaluated at ``s V``."""
+    mu_ref = REFERENCE_CONTACT["friction_coefficient"]
+    factor = (1.0 if speed is None else speed) / creepage_scale
+
+    def mu_r(slip_r):
+        slip = np.abs(np.asarray(slip_r, dtype=float)) * factor
+        mu = np.broadcast_to(np.asarray(law(slip), dtype=float), slip.shape)
+        if not np.all(np.isfinite(mu) & (mu >= 0.0)):
+            i = np.flatnonzero(~(np.isfinite(mu) & (mu >= 0.0)))[0]
+            raise ValueError(f"friction_coefficient {law!r} must give a finite mu >= 0 at "
+                             f"every slip [-]; got {mu.flat[i]:g} at slip "
+                             f"{slip.flat[i] / (1.0 if speed is None else speed):g}")
+        return mu_ref * mu / mu0
+    return mu_r
+
+
+def _solve_case(case, *args, **kw):
+    """``solve_rolling_3d`` on the similar contact; a convergence failure names the user's
+    case (not only the similar one)."""
+    from .reference.rolling3d import solve_rolling_3d  # noqa: PLC0415
+
+    try:
+        return solve_rolling_3d(*args, **kw)
+    except RollingConvergenceError as exc:
+        note = ""
+        if callable(args[8]):   # a law: its steepness on the similar contact
+            from .reference.halfspace2d import falling_friction_steepness  # noqa: PLC0415
+            p0 = 1.5 * args[3] / (np.pi * args[4] * args[5])
+            steep = falling_friction_steepness(args[8], p0, args[6], args[7], slip_max=1.0)
+            note = (f" (the law's steepness number (3/2) ln 3 K p0 max|mu'| is {steep:.3g}; "
+                    f"above about 1 a falling law can make the discrete problem non-unique, "
+                    f"see railcontact.reference.halfspace2d.falling_friction_steepness)")
+        raise RollingConvergenceError(f"method='exact' did not converge for the case {case}: "
+                                      f"{exc}{note}") from None
+
+
 def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
            poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, grid_shifts=1):
-    """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`."""
-    from .reference.rolling3d import solve_rolling_3d
+           tolerance, transport_order=EXACT_DEFAULT_TRANSPORT_ORDER, grid_shifts=1, law=None,
+           speed=None):
+    """Loop of the exact solver over broadcast inputs; see :func:`creep_solution_3d`.
+    ``law``: a friction law mu(s) (then ``friction_coefficient`` is its mu(0)), with ``speed``
+    (V, broadcast) for a law in the slip velocity."""
 
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = check_creep_inputs(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, creepage_bound=1.0)
-    mx, my = _check_exact_grid(grid)
+    mx, my = (0, 0) if grid is None else _check_exact_grid(grid)
     if isinstance(grid_shifts, bool) or grid_shifts not in (1, 2, 3, 4):
         raise ValueError(f"grid_shifts must be an integer in [1, 4] [-] (grids averaged, "
                          f"shifted by 1/grid_shifts of an element); got {grid_shifts!r}")
@@ -756,6 +957,11 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
     sim = _similar_reference(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, "exact")
     args = np.broadcast_arrays(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu)
     shape = args[0].shape
+    speeds = None if speed is None else np.broadcast_to(speed, np.broadcast_shapes(
+        shape, np.shape(speed)))
+    if speeds is not None and speeds.shape != shape:
+        raise ValueError(f"rolling_speed must broadcast with the other inputs (shape {shape}); "
+                         f"got shape {np.shape(speed)}")
     tx, ty, mz = np.zeros(shape), np.zeros(shape), np.zeros(shape)
     stick, width = np.ones(shape), np.ones(shape)
     iters = np.zeros(shape, dtype=int)
@@ -766,6 +972,16 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         if n_ == 0.0 or m_ == 0.0 or a_ == 0.0 or b_ == 0.0:
             continue  # no contact or no friction: no force (as the other methods)
         similar = [float(v[idx]) for v in sim["args"]]   # the case on REFERENCE_CONTACT
+        if grid is None:   # the default: the lateral elements follow a0/b0 (with spin)
+            mx, my = exact_default_grid(a_, b_, _spin_coordinate(p_, n_, a_, b_, e_, v_, m_))
+        case = (f"creepage_longitudinal={x_:g}, creepage_lateral={y_:g}, spin={p_:g}, "
+                f"normal_load={n_:g}, a0={a_:g}, b0={b_:g}, youngs_modulus={e_:g}, "
+                f"poisson_ratio={v_:g}, friction_coefficient="
+                + (f"{m_:g}" if law is None else f"{law!r}")
+                + ("" if speeds is None else f", rolling_speed={float(speeds[idx]):g}"))
+        if law is not None:
+            similar[8] = _reference_law(law, float(sim["creepage_scale"][idx]),
+                                        None if speeds is None else float(speeds[idx]), m_)
         kw = dict(tolerance=tolerance, sensitivities=sensitivities,
                   transport_order=int(transport_order))
         total = [0.0, 0.0, 0.0]
@@ -775,12 +991,12 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
         w_c, w_f = (-1.0, 2.0) if extrapolate else (0.0, 1.0)
         for shift in shifts:  # grids moved along x, their forces averaged (grid_shifts)
             # the first grid starts from a half-size solve, a shifted one from the last grid
-            one = solve_rolling_3d(*similar, mx=mx, my=my, coarse_start=one is None,
-                                   initial_guess=one, grid_shift=shift, **kw)
+            one = _solve_case(case, *similar, mx=mx, my=my, coarse_start=one is None,
+                              initial_guess=one, grid_shift=shift, **kw)
             fine = one
             if extrapolate:  # one Richardson step in the rolling-direction element size
-                fine = solve_rolling_3d(*similar, mx=2 * mx, my=my, grid_shift=shift,
-                                        initial_guess=one, **kw)  # prolongated coarse start
+                fine = _solve_case(case, *similar, mx=2 * mx, my=my, grid_shift=shift,
+                                   initial_guess=one, **kw)  # prolongated coarse start
                 iters[idx] += fine.iterations
             iters[idx] += one.iterations
             for k, name in enumerate(("tx", "ty", "mz")):
@@ -788,6 +1004,9 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
             if sensitivities:
                 sens_sum = sens_sum + (w_f * fine.sensitivity
                                        + w_c * one.sensitivity) / len(shifts)
+        if not all(np.isfinite(total)):
+            raise RollingConvergenceError(f"method='exact' gave a non-finite force for the "
+                                          f"case {case}")
         force, moment = sim["force_scale"][idx], sim["moment_scale"][idx]
         tx[idx] = total[0] * force
         ty[idx] = total[1] * force
@@ -818,20 +1037,21 @@ def _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, y
 
 def _exact_force(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                 tolerance, transport_order, grid_shifts=1):
+                 tolerance, transport_order, grid_shifts=1, law=None, speed=None):
     out = _exact(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                  youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate, False,
-                 False, tolerance, transport_order, grid_shifts)
+                 False, tolerance, transport_order, grid_shifts, law, speed)
     return CreepForce3D(out[0][()], out[1][()])
 
 
 def _exact_solution(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                     youngs_modulus, poisson_ratio, friction_coefficient, grid, extrapolate,
-                    sensitivities, fields, tolerance, transport_order, grid_shifts=1):
+                    sensitivities, fields, tolerance, transport_order, grid_shifts=1,
+                    law=None, speed=None):
     tx, ty, mz, stick, width, sens, res, iters, checked = _exact(
         creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0, youngs_modulus,
         poisson_ratio, friction_coefficient, grid, extrapolate, sensitivities, fields,
-        tolerance, transport_order, grid_shifts)
+        tolerance, transport_order, grid_shifts, law, speed)
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu = checked
     z = np.broadcast_to(normalised_creepage_3d(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu),
                         tx.shape)

@@ -13,6 +13,12 @@ A friction law is any vectorised callable ``mu(s)`` of the dimensionless slip ma
 * :class:`StepFriction` -- Ohyama's step law, ``mu_static`` at ``s = 0``, ``mu_kinetic`` else (5.3);
 * :class:`SmoothFriction` -- ``mu(s) = (mu_0 - mu_k) / (1 + |kappa s|) + mu_k`` (5.16).
 
+A law in the slip *velocity* ``w = s V`` [m/s] needs the rolling speed V: :class:`PolachFriction`
+(Polach 2005, ``mu = mu0 ((1 - A) exp(-B w) + A)``) says so with ``needs_rolling_speed = True``
+and becomes a law in ``s`` with :meth:`PolachFriction.at_rolling_speed`. The 3-D creep methods
+(:func:`railcontact.creep3d.creep_force_3d`, ``friction_coefficient`` and ``rolling_speed``) do
+this themselves.
+
 Users may pass their own callable (e.g. ``lambda s: 0.3 - 0.1 * np.tanh(50 * s)``); the static
 value is ``mu(0)``.
 
@@ -84,7 +90,7 @@ from ._validation import check_range
 from .hertz import hertz_2d
 
 __all__ = [
-    "CoulombFriction", "StepFriction", "SmoothFriction",
+    "CoulombFriction", "StepFriction", "SmoothFriction", "PolachFriction",
     "normalised_inputs",
     "ohyama_creep_force_normalised", "ohyama_traction_normalised",
     "step_law_creep_force_normalised", "step_law_traction_normalised",
@@ -184,7 +190,98 @@ class SmoothFriction:
                 f"kappa={self.kappa:g})")
 
 
+class PolachFriction:
+    r"""Polach's falling friction in the slip velocity (Polach 2005 [4]):
+    ``mu(w) = mu0 ((1 - A) exp(-B w) + A)``, ``w`` the slip velocity magnitude [m/s].
+
+    The same formula as :func:`railcontact.polach.polach_friction`, as a law object. Polach's
+    own creep-force method evaluates it at the slip velocity of the whole contact, ``V |xi|``;
+    the exact theory (``creep_force_3d(..., method="exact", friction_coefficient=law,
+    rolling_speed=V)``) evaluates it element by element at the local slip velocity ``V |s|``.
+
+    Parameters
+    ----------
+    mu_static : float
+        mu0 = mu(0), > 0. [-]
+    friction_ratio_limit : float
+        A = mu(inf) / mu0, in [0, 1]; 1 = Coulomb. [-]
+    friction_decay : float
+        Exponential decrease rate B, >= 0 (0 = Coulomb). [s/m]
+
+    Attributes
+    ----------
+    needs_rolling_speed : bool
+        True: the argument is the slip velocity, not the slip ``s = w / V``. The 3-D creep
+        methods then need ``rolling_speed``; :meth:`at_rolling_speed` gives the law in ``s``.
+
+    References
+    ----------
+    .. [4] O. Polach, Creep forces in simulations of traction vehicles running on adhesion
+       limit, Wear 258 (2005) 992-1000.
+    """
+
+    needs_rolling_speed = True
+
+    def __init__(self, mu_static, friction_ratio_limit, friction_decay):
+        self.mu_static = float(check_range("mu_static", mu_static, "-", 0.0, None,
+                                           lower_closed=False))
+        self.friction_ratio_limit = float(check_range(
+            "friction_ratio_limit", friction_ratio_limit, "-", 0.0, 1.0))
+        self.friction_decay = float(check_range("friction_decay", friction_decay, "s/m", 0.0,
+                                                None))
+
+    @property
+    def mu_kinetic(self):
+        """mu(inf) = A mu0. [-]"""
+        return self.friction_ratio_limit * self.mu_static
+
+    def __call__(self, slip_velocity):
+        from .polach import polach_friction  # noqa: PLC0415  (one formula, polach.py's)
+
+        return polach_friction(self.mu_static, np.abs(np.asarray(slip_velocity, dtype=float)),
+                               self.friction_ratio_limit, self.friction_decay)
+
+    def at_rolling_speed(self, rolling_speed):
+        """The law in the slip ``s = w / V`` at rolling speed V > 0 [m/s]: ``s -> mu(s V)``."""
+        speed = float(check_range("rolling_speed", rolling_speed, "m/s", 0.0, None,
+                                  lower_closed=False))
+        return LawAtRollingSpeed(self, speed)
+
+    def __repr__(self):
+        return (f"PolachFriction(mu_static={self.mu_static:g}, friction_ratio_limit="
+                f"{self.friction_ratio_limit:g}, friction_decay={self.friction_decay:g})")
+
+
+class LawAtRollingSpeed:
+    """A law in slip velocity seen as a law in the slip s at a rolling speed: ``mu(s V)``.
+
+    Parameters
+    ----------
+    law : callable
+        mu(w) of the slip velocity w. [m/s] -> [-]
+    rolling_speed : float
+        V > 0. [m/s]
+    """
+
+    def __init__(self, law, rolling_speed):
+        self.law = law
+        self.rolling_speed = float(rolling_speed)
+
+    @property
+    def mu_static(self):
+        return float(np.asarray(self.law(np.zeros(1)), dtype=float).ravel()[0])
+
+    def __call__(self, slip):
+        return self.law(np.abs(np.asarray(slip, dtype=float)) * self.rolling_speed)
+
+    def __repr__(self):
+        return f"{self.law!r} at rolling_speed={self.rolling_speed:g} m/s"
+
+
 def _mu_static(law):
+    if getattr(law, "needs_rolling_speed", False):
+        raise ValueError(f"friction_law {law!r} is a law in the slip velocity [m/s]; pass "
+                         f"law.at_rolling_speed(V), a law in the slip s = w / V [-]")
     if not callable(law):
         raise ValueError(f"friction_law must be a callable mu(s) [-]; got {law!r}")
     mu0 = np.asarray(law(np.zeros(1)), dtype=float).ravel()

@@ -9,7 +9,8 @@ the costly parts are evaluated for all K contacts at once:
 * the creep forces of a table scene (``source = "table"``: Kalker's exact theory from
   ``creep_exact``, the modified strip theory from ``creep_modified_strip``) in ONE vectorised
   call of the table reader with length-K arrays (:meth:`railcontact.exact_table.ExactCreepTable.
-  _evaluate`, :meth:`railcontact.strip_table.CreepTable._solve`), not K calls. The analytic
+  evaluate_contacts`: one compiled loop, Kalker's coefficients inside it;
+  :meth:`railcontact.strip_table.CreepTable._solve`), not K calls. The analytic
   theories keep their per-contact scalar paths (a loop over the contacts).
 
 A contact gives what a single-contact instance with the same inputs gives: the same effect
@@ -172,7 +173,8 @@ class Vehicle:
         live = self._live()
         if not live:
             return
-        res, jac, _ = self._table._evaluate(self._arguments(live), True)
+        # the inputs are checked (finite, N > 0, mu >= 0: fmu_step): one compiled call
+        res, jac = self._table.evaluate_contacts(*self._arguments(live), jacobian=True)
         res, jac = res.tolist(), jac.reshape(len(live), 9).tolist()
         sqrt = math.sqrt
         for j, k in enumerate(live):

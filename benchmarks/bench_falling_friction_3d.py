@@ -1,0 +1,177 @@
+"""Falling friction in 3-D: cheap corrections on the Coulomb exact table against Kalker's exact
+theory with the smooth law (5.16) (``creep_force_3d(..., method="exact",
+friction_coefficient=SmoothFriction(...))``). Prints the error by class and the time per
+scalar call of each candidate; asserts nothing.
+
+    python benchmarks/bench_falling_friction_3d.py [--n 200] [--seed 11]
+
+Cases: a0/b0 log-uniform in [0.2, 5], nu uniform in [0, 0.5], creepage direction uniform,
+|v| / sqrt(1 + tau^2) log-uniform in [0.05, 10] (a tenth pure spin), spin coordinate tau 0 (30 %)
+or |tau| log-uniform in [0.1, 10]; the law mu_k / mu_0 uniform in [0.3, 1] and kappa (mu_0 p0 /
+G) uniform in [0, 2] (a strongly falling curve: the law's steepness number (3/2) ln 3 K p0
+max|mu'| up to about 1, where the discrete exact problem stays unique; steeper laws may not
+converge, see railcontact.creep3d).
+
+Candidates (each one call of the Coulomb exact table; the target of issue 38 is 1 % of mu_0 N
+at <= 20 us per scalar call):
+
+* ``coulomb``: the table at mu_0 (the law ignored);
+* ``mu(rigid)``: the table at mu(s_r), s_r = sqrt(xi^2 + eta^2 + phi^2 (a0^2 + b0^2) / 5) the
+  pressure-weighted RMS rigid slip (the law at the slip of full sliding, as Polach 2005 uses
+  the creepage);
+* ``sliding ratio``: the table at mu_0 times |T_fs(law)| / |T_fs(mu_0)|, T_fs the full-sliding
+  force with the rigid slip field (8 x 16 Gauss points over the ellipse), which carries the
+  spread of the slip over the patch that large spin makes;
+* ``dissipation``: the table at mu_eff = mu(s_eff), s_eff the traction-weighted mean slip of
+  the table's own Coulomb solution at mu_eff: the frictional power of steady rolling over V,
+  |Tx xi + Ty eta + Mz phi|, divided by mu_eff N (1 - stick area fraction) (the load on the
+  slip area, taken as its share of the area); six fixed-point steps, relaxed by 1/2 from the
+  second (seven table calls with the spin moment).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "fmu_src")]
+
+from railcontact import creep_force_3d  # noqa: E402
+from railcontact.creep3d import REFERENCE_CONTACT, load_exact_table  # noqa: E402
+from railcontact.errors import RollingConvergenceError  # noqa: E402
+from railcontact.exact_table import creepage_coordinate, exact_table_inverse  # noqa: E402
+from railcontact.friction import SmoothFriction  # noqa: E402
+
+KEYS = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+        "youngs_modulus", "poisson_ratio", "friction_coefficient")
+
+
+def cases(n, rng):
+    out = []
+    for _ in range(n):
+        g = math.exp(rng.uniform(math.log(0.2), math.log(5.0)))
+        nu = rng.uniform(0.0, 0.5)
+        tau = 0.0 if rng.random() < 0.3 else (
+            math.exp(rng.uniform(math.log(0.1), math.log(10.0))) * rng.choice([-1.0, 1.0]))
+        rho = math.exp(rng.uniform(math.log(0.05), math.log(10.0))) * math.hypot(1.0, tau)
+        if rng.random() < 0.1:
+            rho = 0.0
+        theta = rng.uniform(-math.pi, math.pi)
+        ph = exact_table_inverse(math.log(g), nu, float(creepage_coordinate(rho, tau)), theta,
+                                 tau, REFERENCE_CONTACT)
+        args = [float(ph[k]) for k in KEYS]
+        shear = args[6] / (2.0 * (1.0 + nu))
+        p0 = 1.5 * args[3] / (math.pi * args[4] * args[5])
+        m, kn = rng.uniform(0.3, 1.0), rng.uniform(0.0, 2.0)
+        law = SmoothFriction(args[8], m * args[8], kn / (args[8] * p0 / shear))
+        out.append((args, law, tau, m, kn))
+    return out
+
+
+# Gauss points over the unit disc (r: Gauss-Legendre on [0, 1], theta: midpoint rule)
+_R, _WR = np.polynomial.legendre.leggauss(8)
+_R, _WR = 0.5 * (_R + 1.0), 0.5 * _WR
+_TH = 2.0 * np.pi * (np.arange(16) + 0.5) / 16
+_RR, _TT = np.meshgrid(_R, _TH, indexing="ij")
+_W = (_WR[:, None] * (2.0 * np.pi / 16)) * _RR * np.sqrt(1.0 - _RR**2) * 1.5 / np.pi
+_CX, _SY = _RR * np.cos(_TT), _RR * np.sin(_TT)
+
+
+def sliding_ratio(args, law):
+    """|T_fs(law)| / |T_fs(mu_0)|: full sliding with the rigid slip field."""
+    xi, eta, phi, _, a0, b0 = args[:6]
+    wx = xi - phi * b0 * _SY
+    wy = eta + phi * a0 * _CX
+    wn = np.hypot(wx, wy)
+    wn = np.where(wn > 0.0, wn, 1e-300)
+    mu = law(wn)
+    fl = math.hypot(float(np.sum(mu * _W * wx / wn)), float(np.sum(mu * _W * wy / wn)))
+    fc = math.hypot(float(np.sum(_W * wx / wn)), float(np.sum(_W * wy / wn))) * law.mu_static
+    return fl / fc if fc > 0.0 else 1.0
+
+
+def candidate(name, table, args, law):
+    if name == "coulomb":
+        return table.creep_force_3d(*args)
+    if name == "mu(rigid)":
+        xi, eta, phi, _, a0, b0 = args[:6]
+        s_r = math.sqrt(xi * xi + eta * eta + phi * phi * (a0 * a0 + b0 * b0) / 5.0)
+        return table.creep_force_3d(*args[:8], float(law(s_r)))
+    if name == "dissipation":
+        xi, eta, phi, n_load = args[:4]
+        mu = law.mu_static
+        for it in range(6):
+            sol = table.creep_solution_3d(*args[:8], mu)
+            power = abs(sol.tx * xi + sol.ty * eta + sol.spin_moment * phi)
+            slip_load = n_load * min(max(1.0 - float(sol.stick_area_fraction), 1e-3), 1.0)
+            new = float(law(power / (mu * slip_load)))
+            mu = new if it == 0 else 0.5 * (mu + new)
+        return table.creep_force_3d(*args[:8], mu)
+    ratio = sliding_ratio(args, law)
+    f = table.creep_force_3d(*args)
+    return type(f)(f.tx * ratio, f.ty * ratio)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=200)
+    ap.add_argument("--seed", type=int, default=11)
+    opts = ap.parse_args(argv)
+    warnings.simplefilter("ignore", RuntimeWarning)
+    table = load_exact_table()
+    rng = np.random.default_rng(opts.seed)
+    data = cases(opts.n, rng)
+    ref, kept, failed, t0 = [], [], 0, time.perf_counter()
+    for args, law, tau, m, kn in data:
+        try:
+            f = creep_force_3d(*args[:8], law, method="exact")
+        except RollingConvergenceError:
+            failed += 1
+            continue
+        ref.append((f.tx, f.ty))
+        kept.append((args, law, tau, m, kn))
+    t_exact = (time.perf_counter() - t0) / max(len(data), 1)
+    print(f"{len(kept)} cases solved by method='exact' ({failed} did not converge), "
+          f"{t_exact * 1e3:.0f} ms per case")
+    tau = np.array([k[2] for k in kept])
+    m = np.array([k[3] for k in kept])
+    kn = np.array([k[4] for k in kept])
+    classes = (("no spin", tau == 0.0), ("|tau| <= 1", (tau != 0.0) & (np.abs(tau) <= 1.0)),
+               ("|tau| > 1", np.abs(tau) > 1.0), ("kappa_n > 1", kn > 1.0),
+               ("m < 0.5", m < 0.5))
+    print("error in % of mu_0 N, max / RMS; time per scalar call (least of 3 passes)")
+    for name in ("coulomb", "mu(rigid)", "sliding ratio", "dissipation"):
+        err = []
+        for (args, law, *_), (rx, ry) in zip(kept, ref):
+            f = candidate(name, table, args, law)
+            err.append(math.hypot(f.tx - rx, f.ty - ry) / (args[3] * args[8]) * 100.0)
+        err = np.array(err)
+        best = np.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            for args, law, *_ in kept:
+                candidate(name, table, args, law)
+            best = min(best, (time.perf_counter() - t0) / len(kept))
+        parts = "; ".join(f"{c} {err[s].max():.2f} / {math.sqrt(np.mean(err[s]**2)):.2f}"
+                          for c, s in classes if np.any(s))
+        print(f"  {name:14s} all {err.max():6.2f} / {math.sqrt(np.mean(err**2)):5.2f}  "
+              f"{best * 1e6:6.1f} us | {parts}")
+    best = np.inf
+    args = kept[0][0]
+    for _ in range(3):
+        t0 = time.perf_counter()
+        for _ in range(200):
+            table.creep_force_3d(*args)
+        best = min(best, (time.perf_counter() - t0) / 200)
+    print(f"  (the Coulomb table alone: {best * 1e6:.1f} us per scalar call in this run)")
+
+
+if __name__ == "__main__":
+    main()
