@@ -56,7 +56,6 @@ from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from ._files import package_directory
 from ._validation import check_range
@@ -159,6 +158,8 @@ def _asymptotes(g, nu):
 @lru_cache(maxsize=1)
 def _spline():
     """One vector-valued not-a-knot cubic spline of ln C[k, j] in s = ln(a0/b0)."""
+    from scipy.interpolate import CubicSpline  # noqa: PLC0415  (scipy: on first use)
+
     g, _, c = kalker_table()
     return CubicSpline(np.log(g), np.log(np.moveaxis(c, -1, 0)), axis=0, bc_type="not-a-knot")
 

@@ -52,7 +52,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from scipy.interpolate import NdBSpline, make_interp_spline
 
 from ._validation import check_range
 
@@ -178,6 +177,8 @@ def fit_tensor_bspline(values, nodes, knots, periodic=()):
     ndarray
         Coefficients, same shape as ``values`` (two more along each periodic axis).
     """
+    from scipy.interpolate import make_interp_spline  # noqa: PLC0415  (fitting: tablegen)
+
     c = np.asarray(values, dtype=float)
     lead = c.ndim - len(nodes)
     periodic = tuple(periodic) + (False,) * (len(nodes) - len(periodic))
@@ -782,6 +783,8 @@ class Table:
         if len(axes) == 1:
             # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
             # evaluated per step as a piecewise polynomial) is read without numba
+            from scipy.interpolate import NdBSpline  # noqa: PLC0415
+
             got = NdBSpline(tuple(a["knots"] for a in axes),
                             np.moveaxis(table.coefficients, 0, -1), SPLINE_DEGREE)(pts)
         else:   # the compiled evaluator the table is read with (faster here than NdBSpline)
