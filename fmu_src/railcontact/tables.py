@@ -464,16 +464,21 @@ def _read_netcdf(path):
     attrs, variables = _read_netcdf_file(path)
 
     def store():
-        if cached is None:
+        from ._files import writable_cache_dir  # noqa: PLC0415
+
+        if cached is None or writable_cache_dir() is None:   # (not writable: warned once)
             return
-        try:
+        part = cached.with_suffix(f".{os.getpid()}.part")
+        try:   # written aside and renamed into place: a reader never sees half an entry
             cached.parent.mkdir(parents=True, exist_ok=True)
-            part = cached.with_suffix(f".{os.getpid()}.part")
             with open(part, "wb") as fh:
                 pickle.dump((attrs, variables), fh, protocol=pickle.HIGHEST_PROTOCOL)
             os.replace(part, cached)
-        except OSError:
-            pass
+        except OSError:    # (a full disk: the next process reads the file again)
+            try:
+                part.unlink(missing_ok=True)
+            except OSError:
+                pass
 
     return attrs, variables, store
 
