@@ -41,7 +41,7 @@ class BuildPyWithKernels(build_py):
                 from railcontact import _compiled
             finally:
                 sys.path.pop(0)
-            message = _compiled.build_aot(target)
+            message = _compiled.build_aot(target, batches=True)
         print(f"railcontact: {message}", file=sys.stderr)
 
 

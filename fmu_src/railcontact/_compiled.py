@@ -49,7 +49,7 @@ EXPORTS = (
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
 )
 
-# --- kernels compiled ahead of time for a wheel (also in the FMU): the serial batches -------
+# --- kernels compiled ahead of time for a wheel: the serial batches -----------------------
 #: The batch kernels compiled ahead of time beside :data:`EXPORTS` (same format): the serial
 #: copies of :mod:`railcontact._exact_kernels`' batch loops. ``numba.pycc`` cannot compile
 #: ``parallel=True`` (numba issue #3336: prange runs as range), so where these load the reader
@@ -249,11 +249,13 @@ def superposed_response(fbuf, ibuf, harm):
                         -1.0, np.zeros(4))
 
 
-def build_aot(directory):
-    """Compile :data:`EXPORTS` and :data:`BATCH_EXPORTS` ahead of time into ``directory`` as
-    the extension module ``_aot_kernels`` (``numba.pycc``: needs a C compiler and the Python
-    headers; generic code for the architecture, e.g. x86-64, so the module runs on any CPU of
-    it). Used by the FMU build and by the wheel's (``setup.py``).
+def build_aot(directory, batches=False):
+    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS`) ahead of time into
+    ``directory`` as the extension module ``_aot_kernels`` (``numba.pycc``: needs a C
+    compiler and the Python headers; generic code for the architecture, e.g. x86-64, so the
+    module runs on any CPU of it). Used by the FMU build (the per-step kernels only: the FMU
+    makes no batch calls, and each export adds to its build time) and by the wheel's
+    (``setup.py``, with the batches).
 
     Returns
     -------
@@ -274,7 +276,7 @@ def build_aot(directory):
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False
-            for name, module, signature in _all_exports():
+            for name, module, signature in (_all_exports() if batches else EXPORTS):
                 cc.export(name, signature)(getattr(modules[module], name).py_func)
             cc.compile()
     except Exception as exc:  # noqa: BLE001  (no compiler, no headers, a numba without pycc)
