@@ -375,8 +375,9 @@ def _package_directory():
 
 
 def tables_directory():
-    """The shipped ``tables/`` directory of an editable checkout (may not exist); inside an FMU
-    the current instance's (:func:`_package_directory`)."""
+    """The shipped tables: ``railcontact/tables/`` inside an installed wheel (package data)
+    or an FMU (the current instance's, :func:`_package_directory`), else the ``tables/``
+    directory of the checkout (an editable install; may not exist)."""
     here = _package_directory()
     for candidate in (here / "tables", here.parent.parent / "tables"):
         if candidate.is_dir():
@@ -389,7 +390,8 @@ def default_table_path(name, directory=None):
 
     Searched in order: ``directory`` (if given), the directory named by the environment
     variable ``RAILCONTACT_TABLES_DIR``, ``railcontact/tables/`` inside the installed package
-    (e.g. bundled in an FMU), and the ``tables/`` directory of the source checkout.
+    (a wheel carries the shipped tables there as package data; an FMU bundles them there),
+    and the ``tables/`` directory of the source checkout (an editable install).
 
     Parameters
     ----------
