@@ -20,6 +20,7 @@ nor compiles (docs/performance.md).
 from __future__ import annotations
 
 import warnings
+from functools import lru_cache
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -66,6 +67,7 @@ BATCH_EXPORTS = (
 )
 
 
+@lru_cache(maxsize=None)
 def _split_args(signature):
     """The argument types of a numba signature string such as ``"b1(f8[::1], f8)"``, split at
     the top-level commas, and the return type."""
@@ -83,7 +85,7 @@ def _split_args(signature):
             current = ""
         else:
             current += ch
-    return parts + ([current.strip()] if current.strip() else []), signature[:open_]
+    return tuple(parts + ([current.strip()] if current.strip() else [])), signature[:open_]
 
 
 def _coefficient_type():
@@ -92,6 +94,7 @@ def _coefficient_type():
     return _split_args(sig)[0][1]
 
 
+@lru_cache(maxsize=1)
 def _all_exports():
     """:data:`EXPORTS` and :data:`BATCH_EXPORTS`, the latter's ``{coef}`` filled in."""
     coef = _coefficient_type()
@@ -102,25 +105,38 @@ def _all_exports():
 _DTYPES = {"f8": np.float64, "f4": np.float32, "i8": np.int64, "b1": np.bool_}
 
 
+@lru_cache(maxsize=None)
+def _argument_specs(signature):
+    """Per argument of ``signature``: None for a scalar, else (dtype, ndim, C-contiguous)."""
+    specs = []
+    for t in _split_args(signature)[0]:
+        if "[" not in t:
+            specs.append(None)
+        else:
+            code, dims = t.split("[", 1)
+            specs.append((np.dtype(_DTYPES[code.strip()]), dims.count(",") + 1, "::1" in dims))
+    return tuple(specs)
+
+
 def matches(signature, args):
     """Whether ``args`` have exactly the types of the numba ``signature`` string: arrays of
     its dtype, dimension and (``::1``) C layout, no array where it takes a scalar. Exported
     ahead-of-time functions check nothing themselves (numba's pycc documentation), so a
     caller checks arrays before it calls one."""
-    types, _ = _split_args(signature)
-    if len(types) != len(args):
+    specs = _argument_specs(signature)
+    if len(specs) != len(args):
         return False
-    for t, a in zip(types, args):
-        if "[" not in t:
+    for spec, a in zip(specs, args):
+        if spec is None:
             if isinstance(a, np.ndarray):
                 return False
-            continue
-        code, dims = t.split("[", 1)
-        if not isinstance(a, np.ndarray) or a.dtype != _DTYPES.get(code.strip()) \
-                or a.ndim != dims.count(",") + 1 \
-                or ("::1" in dims and not a.flags.c_contiguous):
+        elif not isinstance(a, np.ndarray) or a.dtype != spec[0] or a.ndim != spec[1] \
+                or (spec[2] and not a.flags.c_contiguous):
             return False
     return True
+
+
+_BATCH_SIGNATURES = {}
 
 
 def aot_batch(name, args):
@@ -130,8 +146,9 @@ def aot_batch(name, args):
     kernel = getattr(aot, name, None) if aot is not None else None
     if kernel is None:
         return None
-    signature = next(s for n, _, s in _all_exports() if n == name)
-    return kernel if matches(signature, args) else None
+    if not _BATCH_SIGNATURES:
+        _BATCH_SIGNATURES.update((n, sig) for n, _, sig in _all_exports())
+    return kernel if matches(_BATCH_SIGNATURES[name], args) else None
 
 
 _AOT = []      # [module or None] once looked up
