@@ -59,6 +59,7 @@ def test_the_wheel_holds_every_shipped_table_as_package_data(wheel):
     for name in SHIPPED_TABLES:     # whole files, not pointers or stubs
         assert sizes[name] == (ROOT / "tables" / name).stat().st_size, name
     assert "railcontact/tables.py" in names          # the reader beside its data
+    assert "railcontact/data/kalker_spline.npz" in names   # Kalker's spline, fitted
     for package in ("effects", "roughness", "reference", "data"):
         assert any(n.startswith(f"railcontact/{package}/") for n in names), package
 
