@@ -114,8 +114,8 @@ def _lazy_module(name):
     (:class:`importlib.util.LazyLoader`): ``from railcontact import *`` binds every public
     submodule without importing scipy or numba for the ones a session never uses."""
     full = f"{__name__}.{name}"
-    if full in _sys.modules:
-        return _sys.modules[full]
+    if full in _sys.modules:     # (imported already, or blocked: None raises as import does)
+        return _importlib.import_module(full)
     spec = _importlib_util.find_spec(full)
     loader = _importlib_util.LazyLoader(spec.loader)
     spec.loader = loader
