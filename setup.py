@@ -29,9 +29,11 @@ class BuildPyWithKernels(build_py):
 
     def run(self):
         super().run()
+        target = Path(self.build_lib) / "railcontact"
+        for stale in target.glob("_aot_kernels.*"):   # (an earlier build's, left in build/)
+            stale.unlink()
         if not AOT or getattr(self, "editable_mode", False):
             return
-        target = Path(self.build_lib) / "railcontact"
         with tempfile.TemporaryDirectory(prefix="railcontact-aot-") as cache:
             # numba compiles the kernels' callees on the way: keep its cache out of the
             # builder's user cache
