@@ -27,8 +27,8 @@ from types import SimpleNamespace
 import numpy as np
 
 __all__ = ["EXPORTS", "BATCH_EXPORTS", "matches", "aot_batch", "AOT_MODULE", "aot_module",
-           "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force", "creep_table_point", "superposed_response",
-           "exact_kernels", "build_aot"]
+           "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force",
+           "creep_table_point", "superposed_response", "exact_kernels", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
