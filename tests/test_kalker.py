@@ -138,3 +138,53 @@ def test_extreme_axis_ratios_finite_or_clear_error():
         kalker_coefficients(1e300, nu)
     with pytest.raises(ValueError, match=r"a0_over_b0 must be in \(0, 1e\+100\]"):
         kalker_asymptotes(1e300, nu)
+
+
+def test_the_shipped_spline_is_scipys_fit_of_the_shipped_table():
+    """data/kalker_spline.npz (read at run time without scipy) holds exactly what scipy's
+    CubicSpline fits to kalker_coefficients.csv now (else: kalker.write_spline_data())."""
+    import hashlib
+
+    import numpy as np
+
+    from railcontact import kalker
+    from railcontact._files import package_directory
+
+    x, c = kalker.fit_spline()
+    with np.load(package_directory() / "data" / kalker.SPLINE_DATA) as data:
+        np.testing.assert_array_equal(data["x"], x)
+        np.testing.assert_array_equal(data["c"], c)
+        csv = package_directory() / "data" / "kalker_coefficients.csv"
+        assert str(data["table_sha256"]) == hashlib.sha256(csv.read_bytes()).hexdigest()
+
+
+def test_the_spline_evaluates_as_scipys_with_its_derivatives():
+    import numpy as np
+    from scipy.interpolate import CubicSpline
+
+    from railcontact import kalker
+
+    g, _, c = kalker_table()
+    ref = CubicSpline(np.log(g), np.log(np.moveaxis(c, -1, 0)), axis=0, bc_type="not-a-knot")
+    ours = kalker._spline()
+    s = np.r_[np.log(g), np.random.default_rng(3).uniform(np.log(0.05), np.log(20.0), 200)]
+    for nu in (0, 1, 2):
+        want = ref(s, nu)
+        np.testing.assert_allclose(ours(s, nu), want, rtol=1e-13,
+                                   atol=1e-13 * np.abs(want).max())
+    assert ours(0.3).shape == (3, 3)
+
+
+def test_the_creep_paths_need_no_scipy():
+    """Kalker's coefficients (and so the creep theories and the exact table's contact) come
+    from the shipped spline: a fresh interpreter evaluates them without importing scipy."""
+    import subprocess
+    import sys
+
+    code = ("import sys, railcontact as rc; rc.kalker_coefficients(0.7, 0.28); "
+            "rc.creep_force_3d(1e-3, 0.0, 0.0, normal_load=1e5, a0=6e-3, b0=4e-3, "
+            "youngs_modulus=2.1e11, poisson_ratio=0.28, friction_coefficient=0.3); "
+            "print('scipy' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                         text=True).stdout.strip()
+    assert out == "False"

@@ -15,10 +15,23 @@ def test_every_name_in_all_resolves_and_is_unique():
 
 
 def test_all_lists_every_public_function_and_class_of_the_top_level():
-    public = {n for n, v in vars(rc).items()
-              if not n.startswith("_") and not isinstance(v, types.ModuleType)
-              and callable(v) and n != "check_range"}
+    public = {n for n in dir(rc) if not n.startswith("_") and n != "check_range"
+              and not isinstance(getattr(rc, n), types.ModuleType) and callable(getattr(rc, n))}
     assert public <= set(rc.__all__), sorted(public - set(rc.__all__))
+
+
+def test_all_is_the_documented_api():
+    """The submodules the docs and examples use are public; the FMU's and the tests' tools
+    are importable but not in ``__all__``."""
+    documented = {"polynomial", "corrugation", "wear", "evolution", "filters", "friction",
+                  "roughness", "nonsteady", "kalker", "creep3d", "fastsim", "polach", "tables",
+                  "strip_table", "exact_table"}
+    internal = {"run", "fmu_build", "fmu_parameters", "scene", "effects", "reference",
+                "creep_common", "check_range"}
+    assert documented <= set(rc.__all__), sorted(documented - set(rc.__all__))
+    assert not internal & set(rc.__all__), sorted(internal & set(rc.__all__))
+    for name in internal - {"check_range"}:        # still there for those who need them
+        assert isinstance(getattr(rc, name), types.ModuleType), name
 
 
 def test_submodules_in_all_are_the_package_modules():
@@ -34,6 +47,38 @@ def test_help_gives_a_map_naming_every_public_name():
     doc = rc.__doc__
     missing = [n for n in rc.__all__ if not re.search(rf"\b{n}\b", doc)]
     assert not missing, missing
+
+
+HEAVY = ("scipy", "numba", "llvmlite", "netCDF4", "xarray", "matplotlib", "dask", "fmpy",
+         "pythonfmu")
+
+
+def _modules_after(code):
+    """The top-level packages a fresh interpreter holds after running ``code``."""
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [sys.executable, "-c", code + "\nimport sys; print(' '.join(sorted({m.split('.')[0] "
+         "for m in sys.modules})))"], check=True, capture_output=True, text=True).stdout
+    return set(out.split())
+
+
+def test_import_railcontact_loads_no_heavy_dependency():
+    """``import railcontact`` imports nothing but the package (not even numpy): its names and
+    submodules load on first use."""
+    loaded = _modules_after("import railcontact")
+    assert not loaded & set(HEAVY + ("numpy",)), sorted(loaded & set(HEAVY + ("numpy",)))
+
+
+def test_star_import_loads_neither_scipy_nor_numba():
+    """``from railcontact import *`` binds every public name: the functions' modules load
+    (numpy), the submodules are bound lazily and run on their first attribute access."""
+    loaded = _modules_after("from railcontact import *")
+    assert "numpy" in loaded
+    assert not loaded & set(HEAVY), sorted(loaded & set(HEAVY))
+    loaded = _modules_after("from railcontact import *\nwear.DEFAULT_WEAR_MODEL")
+    assert "numba" in loaded      # (the lazy submodule ran: wear's kernels are numba's)
 
 
 def _package_import_graph(package_dir):

@@ -136,8 +136,8 @@ def test_an_unwritable_cache_loads_into_memory_with_one_warning(tmp_path, monkey
     monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(blocker / "cache"))
     monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE, raising=False)
     monkeypatch.setattr(_table_store, "MAPPED_MIN_BYTES", 0)
-    with pytest.warns(_table_store.TableCacheWarning, match=r"cannot be written .* loaded into "
-                                                            r"this process's memory"):
+    with pytest.warns(RuntimeWarning, match=r"cache directory .* cannot be written.*decompressed "
+                                            r"tables are kept for this process only"):
         first = tables.Table.from_file(tables.default_table_path(SMALL))
     with warnings.catch_warnings():
         warnings.simplefilter("error")           # one warning per process, not per table

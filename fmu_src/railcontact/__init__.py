@@ -26,9 +26,13 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
     roughness     ch. 6: one asperity, two patches, rough rail
     nonsteady     ch. 7: non-steady 2-D rolling, relaxation
     kalker        Kalker's coefficient table and asymptotes
+    creep3d       the 3-D creep theories behind creep_force_3d (METHODS, load_exact_table)
+    fastsim       Kalker's FASTSIM (simplified theory), for comparison
+    polach        Polach's creep force model, for comparison
     tables        the C2 spline tables: fitting, evaluation, files (Table, default_table_path)
     strip_table   the modified strip theory's table (CreepTable)
     exact_table   Kalker's exact theory's table (ExactCreepTable; creep3d.load_exact_table)
+Not in ``__all__`` (importable, but tools rather than the modelling API):
     reference     independent discretised half-space solvers (halfspace2d, rolling3d) and the
                   brute-force wear checks (wear_direct); used by tests and the accuracy
                   report, never by the FMU
@@ -36,8 +40,9 @@ Submodules, one per model family (``railcontact.<name>``; each lists its own ``_
                   ``python -m railcontact.run SCENE`` (the scene through the FMU with fmpy)
     fmu_parameters   the FMU's parameters and the scene keys they set
     fmu_build     builds WheelRailContact.fmu from a checkout (``python build_fmu.py``)
-Submodules other than polynomial, friction and nonsteady are imported on first
-attribute access (``railcontact.wear``) or with ``import railcontact.wear``.
+Everything is imported on first use: ``import railcontact`` loads numpy only, a name such as
+``railcontact.hertz_3d`` its module on first access, and a submodule (``railcontact.wear``,
+also through ``from railcontact import *``) runs when its first attribute is read.
 
 Conventions (one set, used by every function, table and the FMU)
 -----------------------------------------------------------------
@@ -59,29 +64,35 @@ More: README.md (recipes) and docs/conventions.md (nomenclature: symbol -> API n
 """
 
 import importlib as _importlib
-
-from ._validation import check_range  # noqa: F401  (used by the FMU slave; not public API)
-from .hertz import (Hertz2D, Hertz3D, hertz_2d, hertz_3d,
-                    curvature_ratio_from_axis_ratio, axis_ratio_from_curvature_ratio)
-from .carter import (carter_creep_force, carter_critical_creepage,
-                     carter_stick_ratio, carter_traction, carter_slip)
-from .kalker import KalkerCoefficients, kalker_coefficients
-from .creep3d import (CreepForce3D, CreepSolution3D, creep_force_3d,
-                      creep_solution_3d, spin_coefficient, saturation_creepage_3d,
-                      normalised_creepage_3d, strip_force_function)
-from .creep3d import ExactCreepSolution3D
-from .errors import RollingConvergenceError
-from . import polynomial
-from . import friction, nonsteady
+import importlib.util as _importlib_util
+import sys as _sys
 
 __version__ = "0.1.0"
 
-#: Submodules imported on first access (kept out of ``import railcontact``, which the FMU
-#: pays for at load time).
-_LAZY_SUBMODULES = ("corrugation", "wear", "roughness", "evolution", "filters", "kalker",
-                    "tables", "strip_table", "exact_table", "creep_common",
-                    "reference", "scene", "effects", "run", "fmu_parameters",
-                    "fmu_build")
+#: The top-level names and the submodule that defines each (imported on first access:
+#: ``import railcontact`` costs numpy only, which the FMU and a first call pay for).
+_NAMES = {
+    "hertz": ("Hertz2D", "Hertz3D", "hertz_2d", "hertz_3d", "curvature_ratio_from_axis_ratio",
+              "axis_ratio_from_curvature_ratio"),
+    "carter": ("carter_creep_force", "carter_critical_creepage", "carter_stick_ratio",
+               "carter_traction", "carter_slip"),
+    "kalker": ("KalkerCoefficients", "kalker_coefficients"),
+    "creep3d": ("CreepForce3D", "CreepSolution3D", "creep_force_3d", "creep_solution_3d",
+                "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
+                "strip_force_function", "ExactCreepSolution3D"),
+    "errors": ("RollingConvergenceError",),
+    "_validation": ("check_range",),     # used by the FMU slave; not public API
+}
+_WHERE = {name: module for module, names in _NAMES.items() for name in names}
+
+#: The public submodules (``__all__``; each lists its own).
+_PUBLIC_SUBMODULES = ("polynomial", "corrugation", "wear", "evolution", "filters", "friction",
+                      "roughness", "nonsteady", "kalker", "creep3d", "fastsim", "polach",
+                      "tables", "strip_table", "exact_table")
+#: Submodules that are importable as attributes but not public API.
+_OTHER_SUBMODULES = ("creep_common", "reference", "scene", "effects", "run", "fmu_parameters",
+                     "fmu_build")
+_LAZY_SUBMODULES = _PUBLIC_SUBMODULES + _OTHER_SUBMODULES
 
 __all__ = [
     # chapter 2: Hertz, Carter, Kalker, 3-D creep
@@ -94,19 +105,61 @@ __all__ = [
     "spin_coefficient", "saturation_creepage_3d", "normalised_creepage_3d",
     "strip_force_function", "ExactCreepSolution3D", "RollingConvergenceError",
     # submodules
-    "polynomial", "corrugation", "wear", "evolution", "filters", "friction", "roughness",
-    "nonsteady", "kalker", "tables", "reference", "scene", "effects", "run", "fmu_parameters",
-    "fmu_build",
+    *_PUBLIC_SUBMODULES,
 ]
 
 
+class _CurrentPathLoader:
+    """Loader of a lazily bound submodule that finds its file when it runs, on the package's
+    ``__path__`` *then*: inside an FMU the slave points that path at each new extraction and an
+    importer may delete the one the submodule was bound from (fmpy does)."""
+
+    def __init__(self, fullname):
+        self.fullname = fullname
+
+    def create_module(self, spec):
+        return None
+
+    def exec_module(self, module):
+        from importlib.machinery import PathFinder  # noqa: PLC0415
+
+        spec = PathFinder.find_spec(self.fullname, _sys.modules[__name__].__path__)
+        if spec is None:
+            raise ModuleNotFoundError(f"No module named {self.fullname!r}", name=self.fullname)
+        module.__spec__, module.__loader__ = spec, spec.loader
+        module.__file__, module.__cached__ = spec.origin, spec.cached
+        spec.loader.exec_module(module)
+
+
+def _lazy_module(name):
+    """The submodule ``railcontact.<name>``, executed on its first attribute access
+    (:class:`importlib.util.LazyLoader`, from the package's path at that moment): ``from
+    railcontact import *`` binds every public submodule without importing scipy or numba for
+    the ones a session never uses."""
+    full = f"{__name__}.{name}"
+    if full in _sys.modules:     # (imported already, or blocked: None raises as import does)
+        return _importlib.import_module(full)
+    spec = _importlib_util.find_spec(full)
+    if spec is None:
+        raise ModuleNotFoundError(f"No module named {full!r}", name=full)
+    loader = _importlib_util.LazyLoader(_CurrentPathLoader(full))
+    spec.loader = loader
+    module = _importlib_util.module_from_spec(spec)
+    _sys.modules[full] = module
+    loader.exec_module(module)
+    return module
+
+
 def __getattr__(name):
-    if name in _LAZY_SUBMODULES:
-        module = _importlib.import_module(f"{__name__}.{name}")
-        globals()[name] = module
-        return module
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    if name in _WHERE:
+        value = getattr(_importlib.import_module(f"{__name__}.{_WHERE[name]}"), name)
+    elif name in _LAZY_SUBMODULES:
+        value = _lazy_module(name)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY_SUBMODULES))
+    return sorted(set(globals()) | set(_WHERE) | set(_LAZY_SUBMODULES))

@@ -1,5 +1,5 @@
-"""The compiled kernels a table evaluation calls: ahead of time where an FMU build made them,
-else numba's just-in-time copies of the same source.
+"""The compiled kernels a table evaluation calls: ahead of time where a wheel's or an FMU's
+build made them, else numba's just-in-time copies of the same source.
 
 The kernels have one source, the numba functions of :mod:`railcontact._spline_kernels` (the
 tables' tensor-product spline) and :mod:`railcontact._exact_kernels` (the exact-theory creep
@@ -11,21 +11,25 @@ ahead of time (``numba.pycc``, from the same Python functions, :data:`EXPORTS`) 
 extension module ``_aot_kernels`` inside the bundled package, and the functions here return
 those where they load. Where that module is missing (a checkout or an installed package, a
 build machine without a C compiler) or does not load (another Python version), they return
-the numba kernels: the same source and, as the tests check, the same results.
+the numba kernels: the same source and, as the tests check, the same results. A wheel's
+build (``setup.py``) compiles the same module into the installed package, with the serial
+batch kernels of :data:`BATCH_EXPORTS` too, so that a user's first call neither imports numba
+nor compiles (docs/performance.md).
 """
 
 from __future__ import annotations
 
 import warnings
+from functools import lru_cache
 from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 
-__all__ = ["EXPORTS", "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
-           "creep_contact", "creep_contact_force", "creep_table_point", "creep_table_force",
-           "superposed_response",
-           "exact_kernels", "build_aot"]
+__all__ = ["EXPORTS", "BATCH_EXPORTS", "matches", "aot_batch", "AOT_MODULE", "aot_module",
+           "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force",
+           "creep_table_point", "creep_table_force", "superposed_response", "exact_kernels",
+           "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -47,28 +51,132 @@ EXPORTS = (
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
 )
 
+# --- kernels compiled ahead of time for a wheel: the serial batches -----------------------
+#: The batch kernels compiled ahead of time beside :data:`EXPORTS` (same format): the serial
+#: copies of :mod:`railcontact._exact_kernels`' batch loops. ``numba.pycc`` cannot compile
+#: ``parallel=True`` (numba issue #3336: prange runs as range), so where these load the reader
+#: runs its batches on them, serially, and imports no numba; the threaded ``<name>_parallel``
+#: kernels remain the just-in-time path. The coefficients' type is creep_table_point's
+#: (:data:`EXPORTS`), so that the two lists cannot disagree.
+BATCH_EXPORTS = (
+    ("creep_table_batch", "_exact_kernels",
+     "void(f8[::1], {coef}, f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
+     "f8[::1], f8[::1], b1, i8, f8[:, ::1], b1[::1])"),
+    ("creep_contact_batch", "_exact_kernels",
+     "void(f8[::1], f8[::1], f8[::1], f8[::1], f8, f8, f8, f8, f8, b1, f8[:, ::1], b1[::1])"),
+    ("creep_batch", "_exact_kernels",
+     "void({coef}, f8[:, :, :, ::1], b1, f8[::1], i8[::1], f8[:, :, ::1], f8, f8[::1], "
+     "f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
+     "f8[::1], f8[::1], b1, f8[:, ::1], b1[::1])"),
+)
+
+
+@lru_cache(maxsize=None)
+def _split_args(signature):
+    """The argument types of a numba signature string such as ``"b1(f8[::1], f8)"``, split at
+    the top-level commas, and the return type."""
+    close = signature.rindex(")")
+    depth = 0
+    for open_ in range(close, -1, -1):
+        depth += {")": 1, "(": -1}.get(signature[open_], 0)
+        if depth == 0:
+            break
+    parts, depth, current = [], 0, ""
+    for ch in signature[open_ + 1:close]:
+        depth += {"[": 1, "(": 1, "]": -1, ")": -1}.get(ch, 0)
+        if ch == "," and depth == 0:
+            parts.append(current.strip())
+            current = ""
+        else:
+            current += ch
+    return tuple(parts + ([current.strip()] if current.strip() else [])), signature[:open_]
+
+
+def _coefficient_type():
+    """The exact table's coefficient array type, from creep_table_point's entry of EXPORTS."""
+    sig = next(s for name, _, s in EXPORTS if name == "creep_table_point")
+    return _split_args(sig)[0][1]
+
+
+@lru_cache(maxsize=1)
+def _all_exports():
+    """:data:`EXPORTS` and :data:`BATCH_EXPORTS`, the latter's ``{coef}`` filled in."""
+    coef = _coefficient_type()
+    return EXPORTS + tuple((name, module, sig.format(coef=coef))
+                           for name, module, sig in BATCH_EXPORTS)
+
+
+_DTYPES = {"f8": np.float64, "f4": np.float32, "i8": np.int64, "b1": np.bool_}
+
+
+@lru_cache(maxsize=None)
+def _argument_specs(signature):
+    """Per argument of ``signature``: None for a scalar, else (dtype, ndim, C-contiguous)."""
+    specs = []
+    for t in _split_args(signature)[0]:
+        if "[" not in t:
+            specs.append(None)
+        else:
+            code, dims = t.split("[", 1)
+            specs.append((np.dtype(_DTYPES[code.strip()]), dims.count(",") + 1, "::1" in dims))
+    return tuple(specs)
+
+
+def matches(signature, args):
+    """Whether ``args`` have exactly the types of the numba ``signature`` string: arrays of
+    its dtype, dimension and (``::1``) C layout, no array where it takes a scalar. Exported
+    ahead-of-time functions check nothing themselves (numba's pycc documentation), so a
+    caller checks arrays before it calls one."""
+    specs = _argument_specs(signature)
+    if len(specs) != len(args):
+        return False
+    for spec, a in zip(specs, args):
+        if spec is None:
+            if isinstance(a, np.ndarray):
+                return False
+        elif not isinstance(a, np.ndarray) or a.dtype != spec[0] or a.ndim != spec[1] \
+                or (spec[2] and not a.flags.c_contiguous):
+            return False
+    return True
+
+
+_BATCH_SIGNATURES = {}
+
+
+def aot_batch(name, args):
+    """The ahead-of-time serial batch kernel ``name`` (:data:`BATCH_EXPORTS`) if there is one
+    and ``args`` match its signature, else None (then the numba kernels)."""
+    aot = aot_module()
+    kernel = getattr(aot, name, None) if aot is not None else None
+    if kernel is None:
+        return None
+    if not _BATCH_SIGNATURES:
+        _BATCH_SIGNATURES.update((n, sig) for n, _, sig in _all_exports())
+    return kernel if matches(_BATCH_SIGNATURES[name], args) else None
+
+
 _AOT = []      # [module or None] once looked up
 
 
 def aot_module():
     """The ahead-of-time compiled kernels (the extension module ``_aot_kernels`` beside this
-    file), or None where there is none or it does not load."""
+    file: made by a wheel's or an FMU's build), or None where there is none, it does not load,
+    or it lacks one of :data:`EXPORTS` (an older build: the numba kernels then). Its
+    attributes are the exported kernels (of :data:`BATCH_EXPORTS` those it has)."""
     if not _AOT:
-        try:   # made by the FMU build only
-            from ._aot_kernels import (  # noqa: PLC0415
-                creep_contact, creep_contact_force, creep_table_force, creep_table_point,
-                cubic_basis, find_span, superposed_response, tensor_eval)
-        except ImportError:
+        import importlib  # noqa: PLC0415
+
+        try:
+            module = importlib.import_module(f"{__package__}.{AOT_MODULE}")
+            kernels = {name: getattr(module, name) for name, _, _ in EXPORTS}
+        except (ImportError, AttributeError):
             _AOT.append(None)
         else:
-            _AOT.append(SimpleNamespace(creep_contact=creep_contact,
-                                        creep_contact_force=creep_contact_force,
-                                        creep_table_point=creep_table_point,
-                                        creep_table_force=creep_table_force,
-                                        cubic_basis=cubic_basis,
-                                        find_span=find_span, tensor_eval=tensor_eval,
-                                        superposed_response=superposed_response))
+            kernels.update({name: getattr(module, name) for name, _, _ in BATCH_EXPORTS
+                            if hasattr(module, name)})
+            _AOT.append(SimpleNamespace(**kernels))
     return _AOT[0]
+# --- end of the wheel's kernels --------------------------------------------------------------
 
 
 def _spline_kernels():
@@ -141,10 +249,11 @@ def creep_table_point(tbuf, coef):
     point of numba's signature for the table buffer ``tbuf`` and coefficients ``coef`` (see
     :func:`creep_contact`): the file's or those summed over nu (both float32)."""
     aot = aot_module()
-    if aot is not None:
+    args = (tbuf, coef, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.25, 1.0, False)
+    if aot is not None and matches(dict((n, s) for n, _, s in EXPORTS)["creep_table_point"],
+                                   args):    # (the coefficients' dtype and layout)
         return aot.creep_table_point
-    return _entry_point(exact_kernels().creep_table_point, tbuf, coef, 0.0, 0.0, 0.0, 1.0,
-                        1.0, 1.0, 1.0, 0.25, 1.0, False)
+    return _entry_point(exact_kernels().creep_table_point, *args)
 
 
 def creep_table_force(tbuf, coef):
@@ -172,9 +281,13 @@ def superposed_response(fbuf, ibuf, harm):
                         -1.0, np.zeros(4))
 
 
-def build_aot(directory):
-    """Compile :data:`EXPORTS` ahead of time into ``directory`` as the extension module
-    ``_aot_kernels`` (``numba.pycc``: needs a C compiler and the Python headers).
+def build_aot(directory, batches=False):
+    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS`) ahead of time into
+    ``directory`` as the extension module ``_aot_kernels`` (``numba.pycc``: needs a C
+    compiler and the Python headers; generic code for the architecture, e.g. x86-64, so the
+    module runs on any CPU of it). Used by the FMU build (the per-step kernels only: the FMU
+    makes no batch calls, and each export adds to its build time) and by the wheel's
+    (``setup.py``, with the batches).
 
     Returns
     -------
@@ -195,7 +308,7 @@ def build_aot(directory):
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False
-            for name, module, signature in EXPORTS:
+            for name, module, signature in (_all_exports() if batches else EXPORTS):
                 cc.export(name, signature)(getattr(modules[module], name).py_func)
             cc.compile()
     except Exception as exc:  # noqa: BLE001  (no compiler, no headers, a numba without pycc)

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import os
 import sys
+import threading
 from pathlib import Path
 
-__all__ = ["package_directory", "user_cache_dir"]
+__all__ = ["package_directory", "user_cache_dir", "writable_cache_dir", "numba_cache_root"]
 
 
 def user_cache_dir() -> Path:
@@ -35,3 +36,54 @@ def package_directory():
     package = sys.modules.get(__package__)
     paths = list(getattr(package, "__path__", None) or ())
     return Path(paths[0]) if paths else Path(__file__).resolve().parent
+
+
+_LOCK = threading.Lock()
+_WRITABLE = {}        # user cache directory -> whether it could be written (once per process)
+_TEMPORARY = []       # [the per-process numba cache, made when the user cache is not writable]
+
+
+def writable_cache_dir():
+    """:func:`user_cache_dir` if this process can write to it (created if missing), else None,
+    after ONE ``RuntimeWarning`` per process saying what is lost: compiled kernels and
+    decompressed tables are then not kept for the next process. Nothing fails because of it
+    (a read-only home, a full disk, a cache directory owned by another user)."""
+    path = user_cache_dir()
+    with _LOCK:
+        if path not in _WRITABLE:
+            try:
+                path.mkdir(parents=True, exist_ok=True)
+                probe = path / f".write-test-{os.getpid()}-{threading.get_ident()}"
+                probe.write_bytes(b"")
+                probe.unlink()
+            except OSError as exc:
+                _WRITABLE[path] = False
+                import warnings  # noqa: PLC0415
+
+                warnings.warn(
+                    f"railcontact: the user cache directory {str(path)!r} cannot be written "
+                    f"({type(exc).__name__}: {exc.strerror or exc}); compiled kernels and "
+                    "decompressed tables are kept for this process only (set "
+                    "RAILCONTACT_CACHE_DIR to a writable directory to keep them)",
+                    RuntimeWarning, stacklevel=3)
+            else:
+                _WRITABLE[path] = True
+        return path if _WRITABLE[path] else None
+
+
+def numba_cache_root():
+    """Where numba keeps this package's compiled kernels: ``<user cache>/numba``, or, where
+    the user cache cannot be written (:func:`writable_cache_dir` warned), a temporary
+    directory of this process, removed at its exit."""
+    base = writable_cache_dir()
+    if base is not None:
+        return base / "numba"
+    with _LOCK:
+        if not _TEMPORARY:
+            import atexit  # noqa: PLC0415
+            import shutil  # noqa: PLC0415
+            import tempfile  # noqa: PLC0415
+
+            _TEMPORARY.append(Path(tempfile.mkdtemp(prefix="railcontact-numba-")))
+            atexit.register(shutil.rmtree, _TEMPORARY[0], True)
+        return _TEMPORARY[0]

@@ -16,8 +16,13 @@ one folder per module import name and source content (the first 16 hex digits of
 SHA-256), so the
 cache survives re-extraction and two versions of the package do not overwrite each other's
 entries. numba still checks the source stamp (a content hash in numba >= 0.61) and the
-target machine before it loads an entry. A user's ``NUMBA_CACHE_DIR`` keeps precedence; if the
-directory cannot be written, numba falls back to its own locators.
+target machine before it loads an entry. A user's ``NUMBA_CACHE_DIR`` keeps precedence. If the
+directory cannot be written, one warning says so and the kernels are cached in a temporary
+directory of the process (numba's own fallbacks, the package's ``__pycache__`` or its user-wide
+cache, may be unwritable too, and with no writable place numba refuses to import the module).
+numba writes each entry to a temporary file and renames it into place, so processes that start
+together on an empty cache each compile and the last rename wins; none reads a half-written
+entry (tests/test_numba_cache.py).
 
 Import this module before any ``@njit(cache=True)`` of the package is decorated.
 """
@@ -29,13 +34,15 @@ from pathlib import Path
 
 from numba.core import caching
 
-from ._files import user_cache_dir
+from ._files import numba_cache_root, user_cache_dir  # noqa: F401  (user_cache_dir: tests)
 
 _PACKAGE_DIR = Path(__file__).resolve().parent
 
 
 class RailcontactCacheLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
-    """numba cache locator: this package's modules cache in :func:`user_cache_dir`."""
+    """numba cache locator: this package's modules cache in the user cache directory (a
+    temporary one of the process where that cannot be written:
+    :func:`railcontact._files.numba_cache_root`)."""
 
     def __init__(self, py_func, py_file):
         self._py_file = py_file
@@ -45,7 +52,7 @@ class RailcontactCacheLocator(caching._SourceFileBackedLocatorMixin, caching._Ca
         # keyed by the module's import name too: the FMU bundles the same file under another
         # package name, and numba's cached environment re-imports the module by that name
         module = getattr(py_func, "__module__", None) or Path(py_file).stem
-        self._cache_path = str(user_cache_dir() / "numba" / f"{module}-{digest}")
+        self._cache_path = str(numba_cache_root() / f"{module}-{digest}")
 
     def get_cache_path(self):
         return self._cache_path

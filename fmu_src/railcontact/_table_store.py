@@ -28,7 +28,8 @@ shape and type against the metadata, and the CRC-32 of the coefficient bytes (re
 memory; about 0.07 s for the 165 MB of ``creep_exact``). An entry that fails the check is
 never read as numbers: the table file is read again and the entry rewritten. Where the cache
 directory cannot be written, the table is loaded into memory instead (in its file
-precision), with one warning per process.
+precision), with one warning per process (:func:`railcontact._files.writable_cache_dir`'s, or
+:class:`TableCacheWarning` where a write fails in a writable directory, e.g. a full disk).
 """
 
 from __future__ import annotations
@@ -211,6 +212,10 @@ def _write_entry(key, content, source):
     """Write the cache entry of ``content`` and return it re-opened (mapped), or None where
     the cache cannot be written (one warning per process; the caller keeps ``content`` in
     memory)."""
+    from ._files import writable_cache_dir  # noqa: PLC0415
+
+    if writable_cache_dir() is None:     # (it warned, once per process: kept in memory)
+        return None
     folder, data_path, meta_path = _entry_paths(key)
     coefficients = np.ascontiguousarray(content["coefficients"])
     tag = f".{os.getpid()}.{threading.get_ident()}.part"

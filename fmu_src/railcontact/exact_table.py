@@ -99,7 +99,13 @@ NU_SLAB_AFTER_POINTS = 20000
 def _batch(name, n, *args):
     """Run the batch kernel ``name`` of :mod:`railcontact._exact_kernels` on ``n`` points:
     its threaded copy ``<name>_parallel`` (under the lock) for at least two tasks of
-    ``PARALLEL_CHUNK`` points, else the serial one (same values, bit for bit)."""
+    ``PARALLEL_CHUNK`` points, else the serial one (same values, bit for bit). Where the
+    serial kernel was compiled ahead of time (a wheel) that copy runs every batch: no
+    numba import and no compilation on a first call (:mod:`railcontact._compiled`)."""
+    aot = _compiled.aot_batch(name, args)
+    if aot is not None:
+        aot(*args)
+        return
     kernels = _compiled.exact_kernels()
     if n < 2 * kernels.PARALLEL_CHUNK:
         getattr(kernels, name)(*args)

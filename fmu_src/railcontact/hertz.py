@@ -37,7 +37,6 @@ from __future__ import annotations
 from collections import namedtuple
 
 import numpy as np
-from scipy.special import elliprd
 
 from ._floats import finite_or_scaled as _finite_or_scaled
 from ._floats import overflow_error as _overflow_error
@@ -120,6 +119,8 @@ def hertz_2d(normal_load, radius, youngs_modulus, poisson_ratio):
 def _ratio_across_over_along(k):
     """f(k) = C_minor/C_major = R_D(0,1,k^2)/R_D(0,k^2,1), k = c_min/c_max in (0, 1]."""
     k2 = k * k
+    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
+
     return elliprd(0.0, 1.0, k2) / elliprd(0.0, k2, 1.0)
 
 
@@ -241,6 +242,8 @@ def hertz_3d(normal_load, curvature_longitudinal, curvature_lateral, youngs_modu
     # c_major = p0 c_min (K - E) / (E* c_max^2 m), p0 = 3N/(2 pi c_max c_min),
     # (K - E)/m = R_D(0, k^2, 1)/3  ->  c_max^3 = N R_D(0, k^2, 1) / (2 pi E* C_major)
     # cbrt of each factor: cbrt(N * ...) underflows for N below ~1e-297 N although a0 ~ N^(1/3)
+    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
+
     rd = elliprd(0.0, k * k, 1.0)
     with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
         c_max = np.cbrt(n_load) * np.cbrt(rd / (2.0 * np.pi * e_star * c_major))

@@ -56,7 +56,6 @@ from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from ._files import package_directory
 from ._validation import check_range
@@ -156,11 +155,74 @@ def _asymptotes(g, nu):
             np.where(low, c23_l, c23_h))
 
 
+#: The spline of :func:`_spline` as scipy's ``CubicSpline`` fits it, kept beside the table
+#: (``data/kalker_spline.npz``: breakpoints ``x``, coefficients ``c`` and the SHA-256 of the
+#: table it was fitted to), so that evaluating Kalker's coefficients needs no scipy at run
+#: time (0.4 s of a first call's import). Rewritten with :func:`write_spline_data` when
+#: ``kalker_coefficients.csv`` changes; a test checks it is scipy's fit of the current table.
+SPLINE_DATA = "kalker_spline.npz"
+
+
+def _table_digest():
+    import hashlib  # noqa: PLC0415
+
+    path = package_directory() / "data" / "kalker_coefficients.csv"
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def fit_spline():
+    """``(x, c)`` of the not-a-knot cubic spline of ln C[k, j] in s = ln(a0/b0) (scipy's
+    ``CubicSpline``: breakpoints, and coefficients (4, m - 1, 3, 3) highest power first)."""
+    from scipy.interpolate import CubicSpline  # noqa: PLC0415  (the fit: once, see SPLINE_DATA)
+
+    g, _, c = kalker_table()
+    spline = CubicSpline(np.log(g), np.log(np.moveaxis(c, -1, 0)), axis=0,
+                         bc_type="not-a-knot")
+    return np.array(spline.x, dtype=float), np.array(spline.c, dtype=float)
+
+
+def write_spline_data(path=None):
+    """Write :data:`SPLINE_DATA` (default: into the package's ``data/``) from
+    :func:`fit_spline`."""
+    x, c = fit_spline()
+    path = package_directory() / "data" / SPLINE_DATA if path is None else path
+    with open(path, "wb") as fh:
+        np.savez(fh, x=x, c=c, table_sha256=np.array(_table_digest()))
+
+
+class _PiecewiseCubic:
+    """A piecewise cubic polynomial from breakpoints ``x`` and coefficients ``c`` (4, m - 1,
+    ...), highest power first, evaluated as scipy's ``PPoly`` does (the interval with
+    ``x[i] <= s < x[i+1]``, the end intervals continued), with derivatives up to 2."""
+
+    def __init__(self, x, c):
+        self.x, self.c = x, c
+
+    def __call__(self, s, nu=0):
+        s = np.asarray(s, dtype=float)
+        i = np.clip(np.searchsorted(self.x, s, side="right") - 1, 0, self.x.size - 2)
+        d = (s - self.x[i]).reshape(s.shape + (1,) * (self.c.ndim - 2))
+        c3, c2, c1, c0 = self.c[:, i]
+        if nu == 0:
+            return ((c3 * d + c2) * d + c1) * d + c0
+        if nu == 1:
+            return (3.0 * c3 * d + 2.0 * c2) * d + c1
+        return 6.0 * c3 * d + 2.0 * c2
+
+
 @lru_cache(maxsize=1)
 def _spline():
-    """One vector-valued not-a-knot cubic spline of ln C[k, j] in s = ln(a0/b0)."""
-    g, _, c = kalker_table()
-    return CubicSpline(np.log(g), np.log(np.moveaxis(c, -1, 0)), axis=0, bc_type="not-a-knot")
+    """One vector-valued not-a-knot cubic spline of ln C[k, j] in s = ln(a0/b0): the fit of
+    :data:`SPLINE_DATA`, or scipy's (:func:`fit_spline`) where that file is missing or was
+    fitted to another table."""
+    try:
+        with np.load(package_directory() / "data" / SPLINE_DATA) as data:
+            x, c, digest = data["x"], data["c"], str(data["table_sha256"])
+        if digest != _table_digest():
+            raise ValueError("fitted to another table")
+    except (OSError, KeyError, ValueError):
+        x, c = fit_spline()
+    return _PiecewiseCubic(x, c)
 
 
 def kalker_interpolant():

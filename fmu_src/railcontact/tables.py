@@ -51,7 +51,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from scipy.interpolate import NdBSpline, make_interp_spline
 
 from ._validation import check_range
 
@@ -199,6 +198,8 @@ def fit_tensor_bspline(values, nodes, knots, periodic=()):
     ndarray
         Coefficients, same shape as ``values`` (two more along each periodic axis).
     """
+    from scipy.interpolate import make_interp_spline  # noqa: PLC0415  (fitting: tablegen)
+
     c = np.asarray(values, dtype=float)
     lead = c.ndim - len(nodes)
     periodic = tuple(periodic) + (False,) * (len(nodes) - len(periodic))
@@ -395,8 +396,9 @@ def _package_directory():
 
 
 def tables_directory():
-    """The shipped ``tables/`` directory of an editable checkout (may not exist); inside an FMU
-    the current instance's (:func:`_package_directory`)."""
+    """The shipped tables: ``railcontact/tables/`` inside an installed wheel (package data)
+    or an FMU (the current instance's, :func:`_package_directory`), else the ``tables/``
+    directory of the checkout (an editable install; may not exist)."""
     here = _package_directory()
     for candidate in (here / "tables", here.parent.parent / "tables"):
         if candidate.is_dir():
@@ -409,7 +411,8 @@ def default_table_path(name, directory=None):
 
     Searched in order: ``directory`` (if given), the directory named by the environment
     variable ``RAILCONTACT_TABLES_DIR``, ``railcontact/tables/`` inside the installed package
-    (e.g. bundled in an FMU), and the ``tables/`` directory of the source checkout.
+    (a wheel carries the shipped tables there as package data; an FMU bundles them there),
+    and the ``tables/`` directory of the source checkout (an editable install).
 
     Parameters
     ----------

@@ -1,0 +1,106 @@
+"""What a user waits for: whole processes (interpreter start and imports included), with an
+empty and with a warm user cache.
+
+Each figure is the wall time of a fresh ``python -c ...`` process, measured from outside
+(``time.perf_counter`` around ``subprocess.run``), the median of ``--runs`` processes (min and
+max printed too). "cold" gives every process a new empty ``RAILCONTACT_CACHE_DIR`` (a new
+machine, user, CI runner or container: numba's kernels and the decompressed tables are not
+there yet); "warm" runs them on one cache that a first, untimed process filled. The
+interpreter's own start (``python -c pass``) is printed for reference.
+
+Usage (the figures of docs/performance.md: a wheel built from a fresh clone, installed in a
+fresh virtual environment, run from another directory)::
+
+    python -m pip wheel --no-deps -w dist .
+    python -m venv /tmp/fresh && /tmp/fresh/bin/pip install dist/railcontact-*.whl
+    cd /tmp && /tmp/fresh/bin/python /path/to/benchmarks/bench_first_call.py --runs 5
+
+``--python`` times another interpreter than the one running this script (default: this
+one). With an editable install (a checkout) the table kernels are numba's, compiled on first
+use, so "cold" then includes their compilation: minutes (``--skip-cold`` leaves it out).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+CONTACT = ("kw = dict(normal_load=100e3, a0=6e-3, b0=4e-3, youngs_modulus=210e9, "
+           "poisson_ratio=0.28, friction_coefficient=0.3)\n")
+
+#: (label, code) of each timed process.
+CASES = (
+    ("python -c pass (interpreter start)", "pass"),
+    ("import railcontact", "import railcontact"),
+    ("from railcontact import *", "from railcontact import *"),
+    ("import + exact table: scalar", "import railcontact as rc\n" + CONTACT
+     + "rc.creep_force_3d(1e-3, 0.0, 0.0, method='exact_table', **kw)"),
+    ("import + exact table: scalar, 10 and 10,001 points",
+     "import numpy as np, railcontact as rc\n" + CONTACT
+     + "rc.creep_force_3d(1e-3, 0.0, 0.0, method='exact_table', **kw)\n"
+       "rc.creep_force_3d(np.linspace(-2e-3, 2e-3, 10), 0.0, 0.0, method='exact_table', **kw)\n"
+       "rc.creep_force_3d(np.linspace(-2e-3, 2e-3, 10_001), 0.0, 0.0, method='exact_table', "
+       "**kw)"),
+    ("import + modified strip (default method): 10 points",
+     "import numpy as np, railcontact as rc\n" + CONTACT
+     + "rc.creep_force_3d(np.linspace(-2e-3, 2e-3, 10), 0.0, 0.0, **kw)"),
+    ("import + first method='exact' call", "import railcontact as rc\n" + CONTACT
+     + "rc.creep_solution_3d(1e-3, 0.0, 0.0, method='exact', **kw)"),
+)
+
+
+def _run(python, code, cache, timeout):
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",)}
+    env["RAILCONTACT_CACHE_DIR"] = cache
+    env.setdefault("OPENBLAS_NUM_THREADS", "1")
+    t0 = time.perf_counter()
+    subprocess.run([python, "-c", code], env=env, check=True, stdout=subprocess.DEVNULL,
+                   timeout=timeout)
+    return time.perf_counter() - t0
+
+
+def _row(label, times):
+    return (f"{label:<52s} {statistics.median(times):8.2f} s  (min {min(times):.2f}, "
+            f"max {max(times):.2f}, {len(times)} runs)")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--python", default=sys.executable,
+                        help="interpreter to time (default: this one)")
+    parser.add_argument("--runs", type=int, default=5, help="processes per figure")
+    parser.add_argument("--cold-runs", type=int, default=None,
+                        help="processes per cold figure (default: --runs)")
+    parser.add_argument("--skip-cold", action="store_true",
+                        help="warm cache only (cold: minutes without the compiled kernels)")
+    parser.add_argument("--timeout", type=float, default=900.0, help="per process [s]")
+    args = parser.parse_args(argv)
+    where = subprocess.run([args.python, "-c", "import railcontact, railcontact._compiled as c;"
+                            "print(railcontact.__file__, c.aot_module() is not None)"],
+                           check=True, capture_output=True, text=True).stdout.split()
+    print(f"python {args.python}\nrailcontact {where[0]}\ncompiled kernels (wheel) "
+          f"{where[1]}\n")
+    with tempfile.TemporaryDirectory(prefix="railcontact-bench-") as tmp:
+        if not args.skip_cold:
+            print("cold: a new empty user cache for every process")
+            for label, code in CASES:
+                times = []
+                for k in range(args.cold_runs or args.runs):
+                    cache = os.path.join(tmp, f"cold-{len(label)}-{k}")
+                    times.append(_run(args.python, code, cache, args.timeout))
+                print(_row(label, times), flush=True)
+        print("warm: one user cache, filled by an untimed first process")
+        warm = os.path.join(tmp, "warm")
+        for label, code in CASES:
+            _run(args.python, code, warm, args.timeout)
+            times = [_run(args.python, code, warm, args.timeout) for _ in range(args.runs)]
+            print(_row(label, times), flush=True)
+
+
+if __name__ == "__main__":
+    main()
