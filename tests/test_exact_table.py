@@ -900,11 +900,10 @@ def test_jacobian_at_the_origin_is_cartesian():
 def test_a_material_summed_over_nu_gives_the_files_values(monkeypatch):
     """Contacts whose ellipse and load change at every call, one material: once the table is
     summed over Poisson's ratio at its nu (ExactCreepTable.prepare, 4 x 64 products per
-    variable instead of 16 x 64, stored in float32), the scalar calls, the forces-only call
-    and the batch of varying contacts give the file's values within the sum's float32
-    rounding (2^-24 of a coefficient; bound used: 1e-6 of mu N for forces, moment and stick
-    area, 1e-5 of the largest Jacobian entry), on random contacts at nu = 0.28 over a0/b0
-    0.1-10; the forces-only kernel gives the full kernel's forces bit for bit."""
+    variable instead of 16 x 64), the scalar calls, the forces-only call and the batch of
+    varying contacts give the file's values to round-off (forces relative to mu N, the
+    Jacobian to its largest entry), on random contacts at nu = 0.28 over a0/b0 0.1-10; the
+    forces-only kernel gives the full kernel's forces bit for bit."""
     import railcontact.exact_table as et
 
     monkeypatch.setattr(et, "NU_SLAB_AFTER_POINTS", 10**9)
@@ -925,12 +924,12 @@ def test_a_material_summed_over_nu_gives_the_files_values(monkeypatch):
         answered += 1
         mu_n = c[3] * c[8]
         scale = max(abs(v) for v in b[5:])
-        assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-6 * mu_n
-        assert abs(a[2] - b[2]) < 1e-6 * mu_n * math.sqrt(c[4] * c[5])
-        assert abs(a[3] - b[3]) < 1e-6
-        assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-5 * scale
+        assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-13 * mu_n
+        assert abs(a[2] - b[2]) < 1e-13 * mu_n * math.sqrt(c[4] * c[5])
+        assert abs(a[3] - b[3]) < 1e-13
+        assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-11 * scale
         fb = tuple(table.creep_force_3d(*c))
-        assert max(abs(x - y) for x, y in zip(fa, fb)) < 1e-6 * mu_n
+        assert max(abs(x - y) for x, y in zip(fa, fb)) < 1e-13 * mu_n
         assert fb == tuple(b[:2])          # forces-only kernel = full kernel, bit for bit
     assert answered > 100
     # the batch of varying contacts (one kernel call, every point its own contact)
@@ -939,10 +938,9 @@ def test_a_material_summed_over_nu_gives_the_files_values(monkeypatch):
     for k, (c, b) in enumerate(zip(contacts, file_values)):
         if b is not None:
             assert (vec.tx[k], vec.ty[k]) == pytest.approx(b[:2], rel=0,
-                                                           abs=1e-6 * c[3] * c[8])
+                                                           abs=1e-13 * c[3] * c[8])
             assert vec.spin_moment[k] == pytest.approx(
-                b[2], rel=0, abs=1e-6 * c[3] * c[8] * math.sqrt(c[4] * c[5]))
-    assert table._nu_slabs[0.28][0].dtype == np.float32
+                b[2], rel=0, abs=1e-13 * c[3] * c[8] * math.sqrt(c[4] * c[5]))
 
 
 @needs_table

@@ -47,6 +47,13 @@ EXPORTS = (
      "UniTuple(f8, 2)(f8[::1], f8, f8, f8, f8, f8, f8, f8, f8)"),
     ("creep_table_point", "_exact_kernels",
      "b1(f8[::1], f4[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
+    ("creep_table_force", "_exact_kernels",
+     "UniTuple(f8, 2)(f8[::1], f4[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8)"),
+    # the same two kernels on the table summed over nu (float64: ExactCreepTable.prepare)
+    ("creep_table_point_nu", "_exact_kernels",
+     "b1(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8, b1)"),
+    ("creep_table_force_nu", "_exact_kernels",
+     "UniTuple(f8, 2)(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8)"),
     ("superposed_response", "_response_kernels",
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
 )
@@ -62,6 +69,9 @@ BATCH_EXPORTS = (
     ("creep_table_batch", "_exact_kernels",
      "void(f8[::1], {coef}, f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
      "f8[::1], f8[::1], b1, i8, f8[:, ::1], b1[::1])"),
+    ("creep_table_batch_nu", "_exact_kernels",
+     "void(f8[::1], f8[:, :, :, :, :, ::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
+     "f8[::1], f8[::1], f8[::1], f8[::1], b1, i8, f8[:, ::1], b1[::1])"),
     ("creep_contact_batch", "_exact_kernels",
      "void(f8[::1], f8[::1], f8[::1], f8[::1], f8, f8, f8, f8, f8, b1, f8[:, ::1], b1[::1])"),
     ("creep_batch", "_exact_kernels",
@@ -243,28 +253,33 @@ def creep_contact_force(buf):
                         1.0, 1.0)
 
 
+def _table_kernel(name, args):
+    """The kernel ``name`` of the exact table for any contact, or its copy ``<name>_nu`` for
+    the coefficients summed over nu (float64), as a plain callable: the ahead-of-time copy
+    where it loads and ``args`` match its signature, else numba's entry point for ``args``."""
+    if args[1].dtype != np.float32:
+        name += "_nu"
+    aot = aot_module()
+    if aot is not None and matches(dict((n, s) for n, _, s in EXPORTS)[name], args):
+        return getattr(aot, name)
+    return _entry_point(getattr(exact_kernels(), name), *args)
+
+
 def creep_table_point(tbuf, coef):
     """The exact table's scalar kernel for any contact (``_exact_kernels.creep_table_point``:
-    the five-dimensional spline) as a plain callable: the ahead-of-time copy, or the entry
-    point of numba's signature for the table buffer ``tbuf`` and coefficients ``coef`` (see
-    :func:`creep_contact`): the file's or those summed over nu (both float32)."""
-    aot = aot_module()
-    args = (tbuf, coef, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.25, 1.0, False)
-    if aot is not None and matches(dict((n, s) for n, _, s in EXPORTS)["creep_table_point"],
-                                   args):    # (the coefficients' dtype and layout)
-        return aot.creep_table_point
-    return _entry_point(exact_kernels().creep_table_point, *args)
+    the five-dimensional spline) as a plain callable (:func:`_table_kernel`), for the table
+    buffer ``tbuf`` and the coefficients ``coef``: the file's (float32) or those summed over
+    nu (float64, n1 = 1)."""
+    return _table_kernel("creep_table_point",
+                         (tbuf, coef, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.25, 1.0, False))
 
 
 def creep_table_force(tbuf, coef):
     """The exact table's forces-only scalar kernel for any contact
     (``_exact_kernels.creep_table_force``: returns ``(tx, ty)``, raises ArithmeticError for
     the array path) as a plain callable (see :func:`creep_table_point`)."""
-    aot = aot_module()
-    if aot is not None:
-        return aot.creep_table_force
-    return _entry_point(exact_kernels().creep_table_force, tbuf, coef, 0.0, 0.0, 0.0, 1.0,
-                        1.0, 1.0, 1.0, 0.25, 1.0)
+    return _table_kernel("creep_table_force",
+                         (tbuf, coef, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.25, 1.0))
 
 
 def superposed_response(fbuf, ibuf, harm):

@@ -573,7 +573,7 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     ``coef`` (n0, .., n4, 4) at one point, with Kalker's coefficients of a0/b0 and nu from
     their interpolant (:func:`_kalker_table_coefficients`); everything else the table needs
     is in ``tbuf`` (:data:`TABLE_HEAD`). ``coef`` may also be the coefficients summed over nu
-    at ``poisson_ratio`` (float32 too, n1 = 1:
+    at ``poisson_ratio`` (float64, n1 = 1:
     :meth:`railcontact.exact_table.ExactCreepTable.prepare`), a quarter of the products. Writes ``res`` inside ``tbuf`` (as :func:`creep_contact`);
     False where the caller takes the array path (also a0/b0 beyond the table's axis, nu
     outside [0, 0.5])."""
@@ -681,6 +681,16 @@ def creep_table_batch_parallel(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0,
         _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                       poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok,
                       c * PARALLEL_CHUNK, min(n, (c + 1) * PARALLEL_CHUNK), np.empty(336))
+
+
+#: The kernels of any contact on the table summed over nu (float64:
+#: :meth:`railcontact.exact_table.ExactCreepTable.prepare`): the same functions, under the
+#: names their ahead-of-time copies for that coefficient type have
+#: (:data:`railcontact._compiled.EXPORTS`).
+creep_table_point_nu = creep_table_point
+creep_table_force_nu = creep_table_force
+creep_table_batch_nu = creep_table_batch
+creep_table_batch_nu_parallel = creep_table_batch_parallel
 
 
 @njit(cache=True, inline="always")

@@ -96,6 +96,12 @@ SLAB_AFTER_POINTS = 4096
 NU_SLAB_AFTER_POINTS = 20000
 
 
+def _table_batch(coef):
+    """The batch kernel of any contact for ``coef``: the file's coefficients (float32) or
+    those summed over nu (float64, its own ahead-of-time copy)."""
+    return "creep_table_batch" if coef.dtype == np.float32 else "creep_table_batch_nu"
+
+
 def _batch(name, n, *args):
     """Run the batch kernel ``name`` of :mod:`railcontact._exact_kernels` on ``n`` points:
     its threaded copy ``<name>_parallel`` (under the lock) for at least two tasks of
@@ -507,13 +513,11 @@ class ExactCreepTable:
         instead of 16 x 64 coefficients per variable (:meth:`step_values`, the public scalar
         call and the arrays of changing contacts).
 
-        The sum is held in float32, as the file's coefficients are: rounding it adds at most
-        2^-24 of a coefficient (about 1e-7 of mu N to a force), four orders of magnitude
-        below the table's own quantisation (2^-11) and error (0.5 %). Costs about 0.1-0.3 s
-        and 33 MB (the two most recent Poisson's ratios are kept); the pages of the mapped
-        file it reads are given back to the operating system as it goes. Made by the reader
-        itself once a Poisson's ratio has been asked for :data:`NU_SLAB_AFTER_POINTS` points
-        of changing contacts.
+        The values are the file's to round-off (the sum is held in float64). Costs about
+        0.1-0.3 s and 66 MB (the two most recent Poisson's ratios are kept); the pages of the
+        mapped file it reads are given back to the operating system as it goes. Made by the
+        reader itself once a Poisson's ratio has been asked for :data:`NU_SLAB_AFTER_POINTS`
+        points of changing contacts.
 
         Parameters
         ----------
@@ -532,13 +536,13 @@ class ExactCreepTable:
         w, dw = np.empty(4), np.empty(4)
         _compiled.cubic_basis()(t, i, nu, w, dw, np.empty(12))
         coef = self._coef
-        out = np.empty((coef.shape[0], 1) + coef.shape[2:], dtype=np.float32)
+        out = np.empty((coef.shape[0], 1) + coef.shape[2:])
         for p in range(coef.shape[0]):     # one a0/b0 plane at a time (9 MB of the file)
             block = coef[p, i - 3:i + 1]
-            plane = w[0] * block[0]        # (summed in float64, stored in float32)
+            plane = out[p, 0]
+            np.multiply(block[0], w[0], out=plane)
             for q in range(1, 4):
                 plane += w[q] * block[q]
-            out[p, 0] = plane
             release_pages(block)
         if self._tbuf is None:
             self._make_table_buffer()
@@ -631,7 +635,7 @@ class ExactCreepTable:
             coef = coef if nu_slab is None else nu_slab[0]
         r = np.empty((k, 14))
         ok = np.zeros(k, dtype=bool)
-        _batch("creep_table_batch", k, self._tbuf, coef, *args, e_mod, nu, mu,
+        _batch(_table_batch(coef), k, self._tbuf, coef, *args, e_mod, nu, mu,
                bool(jacobian), 4, r, ok)
         if not ok.all():      # beyond the table (or an overflow): the checked array path
             f = np.nonzero(~ok)[0]
@@ -713,7 +717,7 @@ class ExactCreepTable:
                     nu_slab = self._nu_coefficients(float(nu[idx[0]]), idx.size)
                     coef = coef if nu_slab is None else nu_slab[0]
                 with np.errstate(all="ignore"):
-                    _batch("creep_table_batch", idx.size, self._tbuf, coef, xi_x[idx],
+                    _batch(_table_batch(coef), idx.size, self._tbuf, coef, xi_x[idx],
                            xi_y[idx], phi[idx], n_load[idx], a0[idx], b0[idx], e_mod[idx],
                            nu[idx], mu[idx], jacobian, 2 if forces_only else 4, r, o)
             o &= np.isfinite(r[:, :3]).all(axis=1)
