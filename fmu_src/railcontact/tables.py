@@ -669,6 +669,8 @@ def _read_table_content(path):
     if len(axes) == 1:
         # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
         # evaluated per step as a piecewise polynomial) is read without numba
+        from scipy.interpolate import NdBSpline  # noqa: PLC0415
+
         got = NdBSpline(tuple(a["knots"] for a in axes), np.asarray(coefs, float),
                         SPLINE_DEGREE)(pts)
     else:   # the compiled evaluator the table is read with (faster here than NdBSpline)
