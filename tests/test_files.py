@@ -14,7 +14,7 @@ from railcontact import _files
 
 ROOT = Path(__file__).resolve().parents[1]
 
-# A table of more than DECOMPRESSED_CACHE_MIN_BYTES (kept decompressed in the cache) whose load
+# A table of more than _table_store.MAPPED_MIN_BYTES (kept decompressed in the cache) whose load
 # checks its spline with numba's tensor_eval kernel (compiled into the cache): both caches.
 USE_BOTH_CACHES = """
 import sys, warnings
@@ -27,7 +27,9 @@ again = tables.Table.from_file(path)
 point = [[np.mean(a["nodes"][[0, -1]]) for a in table.axes]]
 value = table.spline.evaluate(np.array(point), check=False)
 stats = _spline_kernels.tensor_eval.stats
-print(repr(float(value.ravel()[0])), tables._read_netcdf(path)[2] is None,
+mapped = isinstance(np.asarray(table.coefficients).base, np.memmap) or isinstance(
+    getattr(table.coefficients, "base", None), np.memmap)
+print(repr(float(value.ravel()[0])), mapped,
       sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))
 """
 

@@ -55,7 +55,9 @@ Hertz3D.__doc__ = ("3-D Hertz contact: semi-axes ``a0`` (rolling direction x) an
 
 # Axis-ratio range in which the 3-D solver is guaranteed (brief: 0.05..20); the bisection
 # brackets k = c_min/c_max in [K_MIN, 1], far wider than that.
-_K_MIN = 1e-6
+#: Smallest axis ratio k = min(a0, b0)/max(a0, b0) the Hertz ellipse solver considers. [-]
+AXIS_RATIO_MIN = 1e-6
+_K_MIN = AXIS_RATIO_MIN
 _BISECTION_STEPS = 64
 
 

@@ -101,9 +101,27 @@ def simulate_scene(scene_path, fmu_path=None, messages=None):
     sim = scene.simulation
     result = fmpy.simulate_fmu(
         str(fmu), start_time=sim["start_time"], stop_time=sim["stop_time"],
-        output_interval=sim["step_size"], input=inputs,
+        output_interval=sim["step_size"], input=_with_geometry_inputs(inputs, scene_path),
         start_values={"scene_file": str(scene_path)}, debug_logging=True, logger=logger)
     return scene, result, inputs
+
+
+def _with_geometry_inputs(inputs, scene_path):
+    """``inputs`` with the FMU's geometry and friction inputs added as constant columns at the
+    scene's own values (the FMU's start values: nothing changes), so that fmpy, which warns of
+    every input variable its signal lacks, has them all."""
+    import tomllib  # noqa: PLC0415
+
+    from .fmu_parameters import RUNTIME_INPUTS, scene_to_parameters  # noqa: PLC0415
+
+    with open(scene_path, "rb") as fh:
+        start = scene_to_parameters(tomllib.load(fh))
+    out = np.zeros(inputs.shape, dtype=inputs.dtype.descr + [(n, float) for n in RUNTIME_INPUTS])
+    for name in inputs.dtype.names:
+        out[name] = inputs[name]
+    for name in RUNTIME_INPUTS:
+        out[name] = float(start[name])
+    return out
 
 
 def write_results(path, result, inputs):

@@ -36,11 +36,13 @@ def _inverse_grid():
     (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of u(log f) as
     c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope du/dlog f
     linear between the nodes' s0, s1."""
+    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
+
     if not _INVERSE_GRID:
-        u = np.linspace(math.log(hertz._K_MIN), 0.0, 4001)
+        u = np.linspace(math.log(hertz.AXIS_RATIO_MIN), 0.0, 4001)
         k2 = np.exp(2.0 * u)
         z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
-        f = hertz.elliprd(0.0, 1.0, z) / hertz.elliprd(0.0, z, 1.0)
+        f = elliprd(0.0, 1.0, z) / elliprd(0.0, z, 1.0)
         nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
             np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
         nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
@@ -84,6 +86,8 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
         Semi-axes [m] and maximum pressure [Pa] at N = 1 N (a0 = a1 N^(1/3), b0 = b1 N^(1/3),
         p0 = p1 N^(1/3)).
     """
+    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
+
     c_x = np.asarray(curvature_longitudinal, dtype=float)
     c_y = np.asarray(curvature_lateral, dtype=float)
     e_star = youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
@@ -110,10 +114,10 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
     t = (log_ratio - c[:, 0]) * c[:, 1]
     u = c[:, 2] + t * (c[:, 3] + t * (c[:, 4] + t * c[:, 5]))
     k2 = np.exp(2.0 * u)
-    u = u - (np.log(hertz.elliprd(0.0, 1.0, k2) / hertz.elliprd(0.0, k2, 1.0)) - log_ratio) * (
+    u = u - (np.log(elliprd(0.0, 1.0, k2) / elliprd(0.0, k2, 1.0)) - log_ratio) * (
         c[:, 6] + t * c[:, 7])
     k = np.exp(u)
-    rd = hertz.elliprd(0.0, k * k, 1.0)
+    rd = elliprd(0.0, k * k, 1.0)
     c_max = np.cbrt(rd / (2.0 * np.pi * e_star * c_major))     # hertz_3d's formula at N = 1
     c_min = k * c_max
     x_major = c_y >= c_x
