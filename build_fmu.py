@@ -16,7 +16,7 @@ if _PACKAGE_PARENT not in sys.path:     # the checkout's package, also when not 
     sys.path.insert(0, _PACKAGE_PARENT)
 
 from railcontact.fmu_build import (MAX_CONTACTS, MODEL_NAME, ROOT,  # noqa: E402,F401
-                                   build, bundle_names, check_contacts, fmu_digest,
+                                   build, bundle_names, cached_build, check_contacts, fmu_digest,
                                    fmu_file_name, main, source_hash)
 
 if __name__ == "__main__":

@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import argparse
 import gc
-import hashlib
 import json
 import math
 import os
@@ -109,24 +108,9 @@ def signals(n, contacts, h=1e-3):
 # --------------------------------------------------------------------------------------------
 def cached_fmu(contacts):
     """The WheelRailContact FMU for the current sources, built once per source state."""
-    from importlib.metadata import version
-
     import build_fmu
 
-    env_key = hashlib.sha256(f"{sys.prefix}|{sys.version}|{version('pythonfmu')}".encode())
-    dest = Path(tempfile.gettempdir()) / (
-        f"railcontact-test-fmu-{build_fmu.source_hash(contacts)}-{env_key.hexdigest()[:8]}")
-    path = dest / build_fmu.fmu_file_name(contacts)
-    if not path.is_file():
-        work = Path(tempfile.mkdtemp(prefix="railcontact-test-fmu-build-"))
-        print(f"building {path.name} ...", flush=True)
-        subprocess.run([sys.executable, str(ROOT / "build_fmu.py"), "--dest", str(work),
-                        "--contacts", str(contacts)], check=True, capture_output=True)
-        try:
-            os.rename(work, dest)
-        except OSError:
-            pass
-    return path
+    return build_fmu.cached_build(contacts, verbose=True)
 
 
 def trivial_fmu(contacts, work):

@@ -28,8 +28,6 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 
 import gc  # noqa: E402
-import hashlib  # noqa: E402
-import subprocess  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
@@ -54,35 +52,13 @@ if os.environ.get("HYPOTHESIS_MAX_EXAMPLES"):   # e.g. a shorter "long" run: 10^
     settings.load_profile("_override")
 
 
-def _cached_fmu():
-    """Path of WheelRailContact.fmu for the current sources, built once per source state.
-
-    Built by ``build_fmu.py --dest`` into ``$TMPDIR/railcontact-test-fmu-<source hash>-<env>``
-    and reused while the sources and the environment are unchanged, so that the forked test
-    processes (below) do not rebuild it."""
-    import tempfile  # noqa: PLC0415
-
+def _cached_fmu(contacts=1):
+    """Path of the FMU for the current sources, built once per source state and environment
+    (:func:`railcontact.fmu_build.cached_build`), so that the forked test processes (below)
+    do not rebuild it."""
     import build_fmu  # noqa: PLC0415
 
-    # keyed by the sources and by the environment that builds and loads it: an FMU built with
-    # another pythonfmu carries that release's native library, which crashes (a segmentation
-    # fault in fmi2ExitInitializationMode) when it calls this environment's pythonfmu
-    from importlib.metadata import version  # noqa: PLC0415
-
-    env_key = hashlib.sha256(f"{sys.prefix}|{sys.version}|{version('pythonfmu')}".encode())
-    dest = Path(tempfile.gettempdir()) / (
-        f"railcontact-test-fmu-{build_fmu.source_hash()}-{env_key.hexdigest()[:8]}")
-    path = dest / "WheelRailContact.fmu"
-    if not path.is_file():
-        work = Path(tempfile.mkdtemp(prefix="railcontact-test-fmu-build-"))
-        subprocess.run([sys.executable, str(ROOT / "build_fmu.py"), "--dest", str(work)],
-                       check=True, capture_output=True, text=True)
-        try:
-            os.rename(work, dest)
-        except OSError:  # another process finished the same build first
-            pass
-    assert path.is_file()
-    return path
+    return build_fmu.cached_build(contacts)
 
 
 @pytest.fixture(scope="session")

@@ -486,6 +486,17 @@ def _random_contacts(rng, n):
     return out
 
 
+def _assert_same_point(a, b, c):
+    """Two step_values lists of contact ``c`` agree to round-off: forces and moment relative to
+    mu N (and sqrt(a0 b0)), stick area absolutely, the Jacobian to its largest entry."""
+    mu_n = c[3] * c[8]
+    scale = max(abs(v) for v in b[5:])
+    assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-13 * mu_n
+    assert abs(a[2] - b[2]) < 1e-13 * mu_n * math.sqrt(c[4] * c[5])
+    assert abs(a[3] - b[3]) < 1e-13
+    assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-11 * scale
+
+
 def test_kernels_kalker_interpolant_is_kalker_coefficients():
     """The scalar kernel of any contact evaluates Kalker's coefficients itself, from the data
     of railcontact.kalker's interpolant: the same values as kalker_coefficients (random and
@@ -531,12 +542,8 @@ def test_a_new_contact_gets_the_tables_values_without_its_buffer(monkeypatch):
         if a is None:
             continue
         answered += 1
-        mu_n = c[3] * c[8]
-        scale = max(abs(v) for v in b[5:])
-        assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-13 * mu_n
-        assert abs(a[2] - b[2]) < 1e-13 * mu_n * math.sqrt(c[4] * c[5])
-        assert abs(a[3] - b[3]) < 1e-13 and a[4] == pytest.approx(b[4], rel=1e-14)
-        assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-11 * scale
+        _assert_same_point(a, b, c)
+        assert a[4] == pytest.approx(b[4], rel=1e-14)
     assert answered > 160 and len(forces) == answered
     for c, f in zip((c for c, a in zip(contacts, first) if a is not None), forces):
         assert (f.tx, f.ty) == pytest.approx(buffered.step_values(*c)[:2], rel=1e-12,
@@ -922,12 +929,8 @@ def test_a_material_summed_over_nu_gives_the_files_values(monkeypatch):
         if a is None:
             continue
         answered += 1
+        _assert_same_point(a, b, c)
         mu_n = c[3] * c[8]
-        scale = max(abs(v) for v in b[5:])
-        assert max(abs(x - y) for x, y in zip(a[:2], b[:2])) < 1e-13 * mu_n
-        assert abs(a[2] - b[2]) < 1e-13 * mu_n * math.sqrt(c[4] * c[5])
-        assert abs(a[3] - b[3]) < 1e-13
-        assert max(abs(x - y) for x, y in zip(a[5:], b[5:])) < 1e-11 * scale
         fb = tuple(table.creep_force_3d(*c))
         assert max(abs(x - y) for x, y in zip(fa, fb)) < 1e-13 * mu_n
         assert fb == tuple(b[:2])          # forces-only kernel = full kernel, bit for bit

@@ -8,12 +8,9 @@ user reads). References are the public API: :func:`railcontact.hertz.hertz_3d` a
 single-contact instance with the same inputs.
 """
 
-import hashlib
 import os
 import subprocess
 import sys
-import tempfile
-from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
@@ -88,23 +85,9 @@ def test_a_freed_slave_drops_its_contacts_and_effects(contacts, monkeypatch):
 # helpers
 # --------------------------------------------------------------------------------------------
 def _vehicle_fmu(contacts):
-    """The vehicle FMU for the current sources, built once per source state (like conftest's
-    single-contact FMU)."""
-    env_key = hashlib.sha256(f"{sys.prefix}|{sys.version}|{version('pythonfmu')}".encode())
-    dest = Path(tempfile.gettempdir()) / (
-        f"railcontact-test-fmu-{build_fmu.source_hash(contacts)}-{env_key.hexdigest()[:8]}")
-    path = dest / build_fmu.fmu_file_name(contacts)
-    if not path.is_file():
-        work = Path(tempfile.mkdtemp(prefix="railcontact-test-fmu-build-"))
-        subprocess.run([sys.executable, str(ROOT / "build_fmu.py"), "--dest", str(work),
-                        "--contacts", str(contacts)], check=True, capture_output=True,
-                       text=True)
-        try:
-            os.rename(work, dest)
-        except OSError:
-            pass
-    assert path.is_file()
-    return path
+    """The vehicle FMU for the current sources, built once per source state (conftest's
+    cache)."""
+    return build_fmu.cached_build(contacts)
 
 
 @pytest.fixture(scope="session")

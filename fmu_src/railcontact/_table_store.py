@@ -219,9 +219,10 @@ def _write_entry(key, content, source):
     folder, data_path, meta_path = _entry_paths(key)
     coefficients = np.ascontiguousarray(content["coefficients"])
     tag = f".{os.getpid()}.{threading.get_ident()}.part"
+    part = data_path.with_name(data_path.name + tag)
+    meta_part = meta_path.with_name(meta_path.name + tag)
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        part = data_path.with_name(data_path.name + tag)
         with open(part, "wb") as fh:
             np.lib.format.write_array(fh, coefficients, allow_pickle=False)
         with open(part, "rb") as fh:
@@ -229,7 +230,6 @@ def _write_entry(key, content, source):
         meta = dict(content={k: v for k, v in content.items() if k != "coefficients"},
                     shape=coefficients.shape, dtype=coefficients.dtype.str,
                     file_bytes=part.stat().st_size, crc32=crc)
-        meta_part = meta_path.with_name(meta_path.name + tag)
         with open(meta_part, "wb") as fh:
             pickle.dump(meta, fh, protocol=pickle.HIGHEST_PROTOCOL)
         os.replace(part, data_path)       # (the data first: a meta file names only data
@@ -242,10 +242,9 @@ def _write_entry(key, content, source):
                           f"{Path(source).name} is loaded into this process's memory instead "
                           "(set RAILCONTACT_CACHE_DIR to a writable directory to share it "
                           "between processes)", TableCacheWarning, stacklevel=4)
-        for leftover in (locals().get("part"), locals().get("meta_part")):
+        for leftover in (part, meta_part):
             try:
-                if leftover is not None:
-                    leftover.unlink()
+                leftover.unlink(missing_ok=True)
             except OSError:
                 pass
         return None

@@ -59,7 +59,7 @@ import tempfile
 from pathlib import Path
 
 __all__ = ["build", "source_hash", "bundle_names", "fmu_digest", "main", "MODEL_NAME", "ROOT",
-           "MAX_CONTACTS", "check_contacts", "fmu_file_name", "up_to_date_fmu"]
+           "MAX_CONTACTS", "check_contacts", "fmu_file_name", "up_to_date_fmu", "cached_build"]
 
 #: The source checkout: the package lives in ``<ROOT>/fmu_src/railcontact``.
 ROOT = Path(__file__).resolve().parents[2]
@@ -312,6 +312,37 @@ def up_to_date_fmu(contacts=1, dest=ROOT, verbose=True):
             print(f"building {target.name} (sources changed or FMU missing) ...", flush=True)
         build(dest, contacts=contacts)
     return target
+
+
+def cached_build(contacts=1, verbose=False):
+    """Path of the FMU for ``contacts`` contacts built from the current sources, built once per
+    source state and environment (the tests' and benchmarks' cache).
+
+    Built by ``build_fmu.py --dest`` into ``$TMPDIR/railcontact-test-fmu-<source hash>-<env>``
+    and reused while the sources and the environment are unchanged. Keyed by the environment
+    too: an FMU built with another pythonfmu carries that release's native library, which
+    crashes (a segmentation fault in fmi2ExitInitializationMode) when it calls this
+    environment's pythonfmu. Several processes may build at once: the first to finish wins."""
+    from importlib.metadata import version  # noqa: PLC0415
+
+    env_key = hashlib.sha256(f"{sys.prefix}|{sys.version}|{version('pythonfmu')}".encode())
+    dest = Path(tempfile.gettempdir()) / (
+        f"railcontact-test-fmu-{source_hash(contacts)}-{env_key.hexdigest()[:8]}")
+    path = dest / fmu_file_name(contacts)
+    if not path.is_file():
+        work = Path(tempfile.mkdtemp(prefix="railcontact-test-fmu-build-"))
+        if verbose:
+            print(f"building {path.name} ...", flush=True)
+        subprocess.run([sys.executable, str(ROOT / "build_fmu.py"), "--dest", str(work),
+                        "--contacts", str(contacts)], check=True, capture_output=True,
+                       text=True)
+        try:
+            os.rename(work, dest)
+        except OSError:  # another process finished the same build first
+            pass
+    if not path.is_file():
+        raise FileNotFoundError(f"the FMU build left no {path}")
+    return path
 
 
 def fmu_digest(path):
