@@ -292,17 +292,52 @@ def reference_grids(g):
     return 60, 40, 80
 
 
-def class_table(table, n, rng):
+#: the class table's converged references, computed once per case (the reference costs
+#: seconds to a minute per case; the table and the default are re-measured every run)
+CLASS_REFERENCE_FILE = ROOT / "benchmarks" / "data" / "exact_class_reference.csv"
+_CLASS_FIELDS = ("log_aspect_ratio", "poisson_ratio", "creepage_coordinate", "creepage_angle",
+                 "spin_coordinate", "tx", "ty", "lateral_correction_percent")
+
+
+def _read_class_reference(path):
+    """{case coordinates (repr of 5 floats): (tx, ty, lateral correction)} from
+    :data:`CLASS_REFERENCE_FILE` (empty when there is none)."""
+    if not Path(path).exists():
+        return {}
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(row for row in f if not row.startswith("#")))
+    return {tuple(float(r[k]) for k in _CLASS_FIELDS[:5]):
+            tuple(float(r[k]) for k in _CLASS_FIELDS[5:]) for r in rows}
+
+
+def _append_class_reference(path, pt, values):
+    new = not Path(path).exists()
+    with open(path, "a", newline="") as f:
+        if new:
+            f.write("# converged exact theory at the class table's cases "
+                    "(benchmarks/exact_table_accuracy.py --classes; reference_grids: Richardson "
+                    "in x on two moved grids and one step in the lateral element size); tx, ty "
+                    "[N] on the reference contact railcontact.creep3d.REFERENCE_CONTACT, "
+                    "lateral_correction_percent = |R - F(my_fine)| / (mu N) [%]\n")
+        w = csv.writer(f)
+        if new:
+            w.writerow(_CLASS_FIELDS)
+        w.writerow([repr(float(x)) for x in pt] + [repr(float(x)) for x in values])
+
+
+def class_table(table, n, rng, reference_file=CLASS_REFERENCE_FILE, table_only=False):
     """Error by a/b class x spin class against a converged reference (:func:`reference_grids`,
     Richardson in both directions): the solver's public default (``creep_force_3d(...,
     method="exact")``: :func:`railcontact.creep3d.exact_default_grid`), the previous default
     (30 x 20 everywhere) and the table, max / RMS in % of mu N, and the default's time per
     case (set-ups cached). The reference's own error is estimated by the size of its lateral
-    Richardson correction, ``|R - F(my_fine)|``."""
+    Richardson correction, ``|R - F(my_fine)|``. References are kept in ``reference_file``
+    (computed for cases not yet there); ``table_only`` skips the two solver columns."""
     from railcontact.creep3d import exact_default_grid  # noqa: PLC0415
 
     keys = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
             "youngs_modulus", "poisson_ratio", "friction_coefficient")
+    cached = _read_class_reference(reference_file)
     print(f"\n== class table: {n} random cases per a/b x spin class against the converged "
           "exact theory (Richardson in x and y), % of mu N ==")
     print(f"  {'class':32s} {'default max / RMS':>18s} {'(ms)':>6s} {'30x20 max / RMS':>16s} "
@@ -315,28 +350,40 @@ def class_table(table, n, rng):
                 phys = exact_table_inverse(*pt, contact=REFERENCE_CONTACT)
                 args = [float(phys[k]) for k in keys]
                 mu_n = args[3] * args[8]
-                mx, my_c, my_f = reference_grids(math.exp(pt[0]))
-                f_c = creep_force_3d(*args, method="exact", grid=(mx, my_c), tolerance=1e-4)
-                f_f = creep_force_3d(*args, method="exact", grid=(mx, my_f), tolerance=1e-4)
-                rx = (4.0 * f_f.tx - f_c.tx) / 3.0
-                ry = (4.0 * f_f.ty - f_c.ty) / 3.0
+                key = tuple(float(x) for x in pt)
+                if key not in cached:
+                    mx, my_c, my_f = reference_grids(math.exp(pt[0]))
+                    f_c = creep_force_3d(*args, method="exact", grid=(mx, my_c),
+                                         tolerance=1e-4)
+                    f_f = creep_force_3d(*args, method="exact", grid=(mx, my_f),
+                                         tolerance=1e-4)
+                    rx = (4.0 * f_f.tx - f_c.tx) / 3.0
+                    ry = (4.0 * f_f.ty - f_c.ty) / 3.0
+                    cached[key] = (rx, ry, math.hypot(f_f.tx - rx, f_f.ty - ry) / mu_n * 100)
+                    _append_class_reference(reference_file, key, cached[key])
+                rx, ry, c = cached[key]
+                corr.append(c)
+                tab = table.creep_force_3d(*args)
+                e_tab.append(math.hypot(tab.tx - rx, tab.ty - ry) / mu_n * 100)
+                if table_only:
+                    continue
                 creep_force_3d(*args, method="exact")           # set-up cached
                 t0 = time.perf_counter()
                 new = creep_force_3d(*args, method="exact")
                 t_new.append(time.perf_counter() - t0)
                 old = creep_force_3d(*args, method="exact", grid=(30, 20))
-                tab = table.creep_force_3d(*args)
                 mys.add(exact_default_grid(args[4], args[5], pt[4])[1])
-                for store, f in ((e_new, new), (e_old, old), (e_tab, tab)):
+                for store, f in ((e_new, new), (e_old, old)):
                     store.append(math.hypot(f.tx - rx, f.ty - ry) / mu_n * 100)
-                corr.append(math.hypot(f_f.tx - rx, f_f.ty - ry) / mu_n * 100)
 
             def mr(e):
                 e = np.asarray(e)
-                return f"{e.max():.2f} / {math.sqrt(np.mean(e**2)):.2f}"
+                return f"{e.max():.2f} / {math.sqrt(np.mean(e**2)):.2f}" if e.size else "-"
+            t_ms = f"{np.mean(t_new) * 1e3:6.0f}" if t_new else "     -"
+            my_used = f"{min(mys)}-{max(mys)}" if mys else "-"
             print(f"  {a_name + ', ' + spin_class:32s} {mr(e_new):>18s} "
-                  f"{np.mean(t_new) * 1e3:6.0f} {mr(e_old):>16s} {mr(e_tab):>16s} "
-                  f"{max(corr):10.3f}  {min(mys)}-{max(mys)}", flush=True)
+                  f"{t_ms} {mr(e_old):>16s} {mr(e_tab):>16s} "
+                  f"{max(corr):10.3f}  {my_used}", flush=True)
 
 
 def main(argv=None):
@@ -356,11 +403,17 @@ def main(argv=None):
                          "and the known kinks (N = 100: about 3 min)")
     ap.add_argument("--classes", type=int, default=0, metavar="N",
                     help="only the class table: N random cases per a/b x spin class against "
-                         "the converged exact theory (N = 6: about 6 min)")
+                         "the converged exact theory (N = 6: about 6 min; references kept in "
+                         "benchmarks/data/exact_class_reference.csv)")
+    ap.add_argument("--table-only", action="store_true",
+                    help="with --classes: the table's column only (the solver columns skipped)")
+    ap.add_argument("--table", default=None, metavar="FILE",
+                    help="an exact table file to measure instead of the shipped one")
     opts = ap.parse_args(argv)
-    table = load_exact_table()
+    table = load_exact_table(opts.table) if opts.table else load_exact_table()
     if opts.classes:
-        class_table(table, opts.classes, np.random.default_rng(opts.seed + 4))
+        class_table(table, opts.classes, np.random.default_rng(opts.seed + 4),
+                    table_only=opts.table_only)
         return
     print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
 

@@ -15,7 +15,9 @@ from railcontact.creep_common import CREEPAGE_COORDINATE_FORM
 from railcontact.creep_common import (
     EXACT_TABLE_LATERAL_ELEMENTS_NARROW as EXACT_LATERAL_ELEMENTS_NARROW,
     EXACT_TABLE_NARROW_ASPECT_MAX as EXACT_NARROW_ASPECT_MAX,
-    EXACT_TABLE_NARROW_SPIN_MIN as EXACT_NARROW_SPIN_MIN)
+    EXACT_TABLE_NARROW_SPIN_MIN as EXACT_NARROW_SPIN_MIN,
+    EXACT_TABLE_LATERAL_ELEMENTS_VERY_NARROW as EXACT_LATERAL_ELEMENTS_VERY_NARROW,
+    EXACT_TABLE_VERY_NARROW_ASPECT_MAX as EXACT_VERY_NARROW_ASPECT_MAX)
 
 from .spec import Axis, TableSpec, Variable
 
@@ -172,16 +174,23 @@ EXACT_GRID_SHIFTS = (-0.25, 0.25)
 
 
 def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=None,
-                                  spin_min=None):
-    """Lateral elements ``my`` of the table's solver at table points: 36 where a0/b0 <
-    ``aspect_max`` and |tau| > ``spin_min`` (default :data:`EXACT_NARROW_ASPECT_MAX` = 0.87,
-    :data:`EXACT_NARROW_SPIN_MIN` = 2.75; :data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20.
-    [-]"""
+                                  spin_min=None, very_narrow_max=None):
+    """Lateral elements ``my`` of the table's solver at table points: 48 where a0/b0 <
+    ``very_narrow_max`` and 36 where a0/b0 < ``aspect_max``, both where |tau| > ``spin_min``
+    (defaults :data:`EXACT_VERY_NARROW_ASPECT_MAX` = 0.2, :data:`EXACT_NARROW_ASPECT_MAX` =
+    0.87, :data:`EXACT_NARROW_SPIN_MIN` = 2.75; :data:`EXACT_LATERAL_ELEMENTS_VERY_NARROW`,
+    :data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20. ``very_narrow_max = 0``: no 48 tier
+    (the rules before 2026-11-28). [-]"""
     aspect_max = EXACT_NARROW_ASPECT_MAX if aspect_max is None else aspect_max
     spin_min = EXACT_NARROW_SPIN_MIN if spin_min is None else spin_min
-    narrow = ((np.asarray(log_aspect_ratio) < np.log(aspect_max))
-              & (np.abs(np.asarray(spin_coordinate)) > spin_min))
-    return np.where(narrow, EXACT_LATERAL_ELEMENTS_NARROW, EXACT_SOLVER["my"])
+    very_narrow_max = (EXACT_VERY_NARROW_ASPECT_MAX if very_narrow_max is None
+                       else very_narrow_max)
+    log_g = np.asarray(log_aspect_ratio)
+    spin = np.abs(np.asarray(spin_coordinate)) > spin_min
+    very = spin & (log_g < (np.log(very_narrow_max) if very_narrow_max > 0.0 else -np.inf))
+    narrow = spin & (log_g < np.log(aspect_max))
+    return np.where(very, EXACT_LATERAL_ELEMENTS_VERY_NARROW,
+                    np.where(narrow, EXACT_LATERAL_ELEMENTS_NARROW, EXACT_SOLVER["my"]))
 
 _EXACT_COUNTS = {  # nodes: ln(a0/b0), nu, rho (incl. 0 and inf), theta in [-pi/2, pi/2], tau
     "coarse": (4, 4, 7, 5, 5),
@@ -826,12 +835,17 @@ _EXACT_METHOD_MY20 = (
     "default), on a0 b0 = 36 mm^2, N = 100 kN, E = 210 GPa, mu = 0.3; forces and "
     "moment anchored near zero creepage and spin to Kalker's linear theory "
     "(tablegen.specs.exact_linear_limit_correction, width R0 = 0.1)")
-def _exact_method(aspect_max, spin_min):
+
+
+def _exact_method(aspect_max, spin_min, very_narrow_max=None):
     """The exact spec's method string with the narrow-contact rule (a0/b0 < aspect_max,
-    |tau| > spin_min: 36 lateral elements)."""
+    |tau| > spin_min: 36 lateral elements; a0/b0 < very_narrow_max too: 48; None: the
+    strings of the rules before 2026-11-28, which had no 48 tier)."""
+    rule = (f"36 where a0/b0 < {aspect_max:g} and |tau| > {spin_min:g}" if very_narrow_max is None
+            else f"48 where a0/b0 < {very_narrow_max:g} and 36 where a0/b0 < {aspect_max:g}, "
+                 f"both where |tau| > {spin_min:g}")
     return (
-        "railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20 (36 "
-        f"where a0/b0 < {aspect_max:g} and |tau| > {spin_min:g}: "
+        f"railcontact.reference.rolling3d.solve_rolling_3d at mx = 30 and 60, my = 20 ({rule}: "
         "tablegen.specs.exact_solver_lateral_elements), scale 1.08, tolerance 1e-4, "
         "extrapolated 2 F(60 x my) - F(30 x my) on the grids moved -1/4 and +1/4 of an element "
         "and averaged (creep_force_3d(method='exact')'s default but for my), on a0 b0 = 36 "
@@ -840,12 +854,15 @@ def _exact_method(aspect_max, spin_min):
         "exact_linear_limit_correction, width R0 = 0.1)")
 
 
-_EXACT_METHOD = _exact_method(EXACT_NARROW_ASPECT_MAX, EXACT_NARROW_SPIN_MIN)
+_EXACT_METHOD = _exact_method(EXACT_NARROW_ASPECT_MAX, EXACT_NARROW_SPIN_MIN,
+                              EXACT_VERY_NARROW_ASPECT_MAX)
 #: Earlier methods of the exact table and their narrow-contact rule ((a0/b0 max, |tau| min)
-#: of the 36 lateral elements; None: 20 everywhere), for --reuse-nodes across a change.
+#: of the 36 lateral elements, no 48 tier; None: 20 everywhere), for --reuse-nodes across a
+#: change.
 _EXACT_EARLIER_METHODS = {_EXACT_METHOD_MY20: None,
                           _exact_method(0.45, 2.75): (0.45, 2.75),   # 2026-11-27, 70ae614
-                          _exact_method(0.75, 2.75): (0.75, 2.75)}   # 2026-11-27, 4b9f815
+                          _exact_method(0.75, 2.75): (0.75, 2.75),   # 2026-11-27, 4b9f815
+                          _exact_method(0.87, 2.75): (0.87, 2.75)}   # 2026-11-27 - 11-28
 
 
 def _exact_reusable_points(attrs, points):
@@ -857,7 +874,8 @@ def _exact_reusable_points(attrs, points):
     points = np.asarray(points, dtype=float)
     now = exact_solver_lateral_elements(points[:, 0], points[:, 4])
     then = (np.full(len(points), EXACT_SOLVER["my"]) if rule is None
-            else exact_solver_lateral_elements(points[:, 0], points[:, 4], *rule))
+            else exact_solver_lateral_elements(points[:, 0], points[:, 4], *rule,
+                                               very_narrow_max=0.0))
     return now == then
 
 
@@ -922,8 +940,9 @@ register(TableSpec(
     build_attributes=_exact_provenance,
     attributes={
         "solver_grid": "30 x my and 60 x my elements over [-1.08 a0, 1.08 a0] x [-1.08 b0, "
-                       f"1.08 b0], my = 20 (36 where a0/b0 < {EXACT_NARROW_ASPECT_MAX:g} and "
-                       f"|tau| > {EXACT_NARROW_SPIN_MIN:g}), one "
+                       f"1.08 b0], my = 20 (48 where a0/b0 < {EXACT_VERY_NARROW_ASPECT_MAX:g} and 36 "
+                       f"where a0/b0 < {EXACT_NARROW_ASPECT_MAX:g}, both where |tau| > "
+                       f"{EXACT_NARROW_SPIN_MIN:g}), one "
                        "Richardson step, on the grids moved -1/4 and +1/4 of an element, "
                        "averaged",
         "spin_coordinate_max": EXACT_TAU_MAX,

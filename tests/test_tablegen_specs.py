@@ -327,13 +327,14 @@ def test_anchored_point_function_has_kalkers_slope_and_a_small_fading_correction
     assert far.any() and np.all(d[far] == 0.0)
 
 
-def test_narrow_contacts_with_large_spin_need_more_lateral_elements(monkeypatch):
-    """Why the exact table's solver uses 36 lateral elements at a0/b0 < 0.87, |tau| > 2.75
-    (grid convergence, independent of the table): along a creepage scan at a0/b0 = 0.18,
-    nu = 0.5, theta = -30 deg, tau = 20, the 30 (60) x 20 solution is off the 30 (60) x 80
-    one by more than 1 % of mu N (measured 1.51 % over 12 points; the spin pole crosses
-    element rows), the 30 (60) x 36 one by less than 0.25 % (measured 0.17 %); the rule
-    marks exactly that corner, and a file of the old method is reused elsewhere."""
+def test_narrow_contacts_with_large_spin_need_more_lateral_elements():
+    """Why the exact table's solver uses 36 lateral elements at a0/b0 < 0.87, |tau| > 2.75,
+    and 48 below a0/b0 = 0.2 (grid convergence, independent of the table): along a creepage
+    scan at a0/b0 = 0.18, nu = 0.5, theta = -30 deg, tau = 20, the 30 (60) x 20 solution is
+    off the 30 (60) x 80 one by more than 1 % of mu N (measured 1.51 % over 12 points; the
+    spin pole crosses element rows), the 30 (60) x 36 one by less than 0.25 % (measured
+    0.17 %) and the 30 (60) x 48 one by less still; the rule marks exactly those corners,
+    and a file of an earlier rule is reused elsewhere."""
     import tablegen.specs as sp
     from railcontact.exact_table import creepage_coordinate
 
@@ -342,11 +343,11 @@ def test_narrow_contacts_with_large_spin_need_more_lateral_elements(monkeypatch)
     pts = np.column_stack([np.full_like(r, g), np.full_like(r, nu),
                            creepage_coordinate(r * np.hypot(1.0, tau), tau),
                            np.full_like(r, theta), np.full_like(r, tau)])
-    np.testing.assert_array_equal(sp.exact_solver_lateral_elements(pts[:, 0], pts[:, 4]), 36)
+    np.testing.assert_array_equal(sp.exact_solver_lateral_elements(pts[:, 0], pts[:, 4]), 48)
     lateral = sp.exact_solver_lateral_elements(
-        np.log([0.1, 0.316, 0.562, 0.562, 0.75, 1.0, 0.316, 0.316]),
-        [3.0, 20.0, -3.0, 20.0, 20.0, 20.0, 2.5, 0.0])
-    np.testing.assert_array_equal(lateral, [36, 36, 36, 36, 36, 20, 20, 20])
+        np.log([0.1, 0.316, 0.562, 0.562, 0.75, 1.0, 0.316, 0.316, 0.1]),
+        [3.0, 20.0, -3.0, 20.0, 20.0, 20.0, 2.5, 0.0, 2.5])
+    np.testing.assert_array_equal(lateral, [48, 36, 36, 36, 36, 20, 20, 20, 20])
     # a file of an earlier rule is reused exactly where its lateral elements are today's
     grid = np.column_stack([np.log([0.1, 0.562, 0.1, 1.0, 0.75]), [0.0] * 5, [0.5] * 5,
                             [0.0] * 5, [3.0, 3.0, 2.5, 3.0, 3.0]])
@@ -355,16 +356,22 @@ def test_narrow_contacts_with_large_spin_need_more_lateral_elements(monkeypatch)
         [False, False, True, True, False])
     np.testing.assert_array_equal(
         sp._exact_reusable_points({"method": sp._exact_method(0.45, 2.75)}, grid),
-        [True, False, True, True, False])
+        [False, False, True, True, False])
     np.testing.assert_array_equal(   # the node 0.75 came with the threshold 0.87
         sp._exact_reusable_points({"method": sp._exact_method(0.75, 2.75)}, grid),
-        [True, True, True, True, False])
+        [False, True, True, True, False])
+    np.testing.assert_array_equal(   # 48 lateral elements below a0/b0 = 0.2 since 2026-11-28
+        sp._exact_reusable_points({"method": sp._exact_method(0.87, 2.75)}, grid),
+        [False, True, True, True, True])
+    np.testing.assert_array_equal(sp.exact_solver_lateral_elements(grid[:, 0], grid[:, 4]),
+                                  [48, 36, 20, 20, 36])
     assert sp._exact_reusable_points({"method": "something else"}, grid) is None
-    values = {}
-    for my in (20, 36, 80):
-        monkeypatch.setattr(sp, "EXACT_LATERAL_ELEMENTS_NARROW", my)
-        values[my] = sp.exact_creep_function(pts)[:, :2]
-    err = {my: 100 * np.hypot(*(values[my] - values[80]).T).max() for my in (20, 36)}
+    values = {my: sp.exact_creep_function(pts, lateral_elements=my)[:, :2]
+              for my in (20, 36, 48, 80)}
+    err = {my: 100 * np.hypot(*(values[my] - values[80]).T).max() for my in (20, 36, 48)}
+    print(err)
     assert err[20] > 1.0
     assert err[36] < 0.25
+    assert err[48] < err[36]
+    np.testing.assert_array_equal(sp.exact_creep_function(pts)[:, :2], values[48])
 

@@ -90,7 +90,8 @@ from .creep_common import weighted_creepage_scaled as _weighted_scaled
 from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
                            spin_coefficient)
 from .creep_common import (EXACT_TABLE_LATERAL_ELEMENTS_NARROW,
-                           EXACT_TABLE_NARROW_ASPECT_MAX)
+                           EXACT_TABLE_LATERAL_ELEMENTS_VERY_NARROW,
+                           EXACT_TABLE_NARROW_ASPECT_MAX, EXACT_TABLE_VERY_NARROW_ASPECT_MAX)
 from .errors import RollingConvergenceError
 from .kalker import kalker_coefficients
 
@@ -1076,7 +1077,7 @@ def load_exact_table(path=None, directory=None):
     and process (each FMU extraction's copy of the file gets the same table), its
     coefficients mapped from the user cache (:mod:`railcontact._table_store`). Beyond its a0/b0 range or spin axis it answers with
     ``creep_solution_3d(..., method="exact", tolerance=1e-4)`` (30x20 -> 60x20 on two shifted
-    grids; 30x36 -> 60x36 where a0/b0 < 0.87), the setting the table was built with, so
+    grids; 30x36 -> 60x36 where a0/b0 < 0.87, 30x48 -> 60x48 where a0/b0 < 0.2), the setting the table was built with, so
     every finite input gets the exact theory.
 
     Parameters
@@ -1113,16 +1114,18 @@ def load_exact_table(path=None, directory=None):
 
 
 def _exact_table_solver(*args, sensitivities=False):
-    """The exact solver at the table's setting (the table's answer beyond its axes): 36
-    lateral elements where a0/b0 < 0.87 (``EXACT_TABLE_*`` of :mod:`railcontact.creep_common`;
-    beyond the table such a contact has a0/b0 < 0.1 or |tau| > 20, which the table's rule
-    gives 36 too), else 20. Returns the fields the table reads (tx, ty, spin_moment,
+    """The exact solver at the table's setting (the table's answer beyond its axes): 48
+    lateral elements where a0/b0 < 0.2, 36 where a0/b0 < 0.87 (``EXACT_TABLE_*`` of
+    :mod:`railcontact.creep_common`; beyond the table such a contact has a0/b0 < 0.1 or
+    |tau| > 20, which the table's rule gives the same), else 20. Returns the fields the table reads (tx, ty, spin_moment,
     stick_area_fraction, normalised_creepage, sensitivity)."""
     args = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args))
     narrow = args[4] < EXACT_TABLE_NARROW_ASPECT_MAX * args[5]
+    very = args[4] < EXACT_TABLE_VERY_NARROW_ASPECT_MAX * args[5]
     out = None
     for mask, my in ((~narrow, EXACT_DEFAULT_GRID[1]),
-                     (narrow, EXACT_TABLE_LATERAL_ELEMENTS_NARROW)):
+                     (narrow & ~very, EXACT_TABLE_LATERAL_ELEMENTS_NARROW),
+                     (very, EXACT_TABLE_LATERAL_ELEMENTS_VERY_NARROW)):
         if not np.any(mask):
             continue
         sol = creep_solution_3d(*(a[mask] for a in args), method="exact", grid=(30, my),
