@@ -260,6 +260,10 @@ def creepage_scans(table, n, rng):
 #: a/b classes and spin classes of the class table (--classes), as in issue 40
 ASPECT_CLASSES = (("a/b < 0.2", 0.1, 0.2), ("0.2 <= a/b <= 5", 0.2, 5.0), ("a/b > 5", 5.0, 10.0))
 SPIN_CLASSES = ("none", "moderate", "large", "pure")
+#: an extra spin class (``--classes N --near-saturation``, its own random cases): large spin
+#: near saturation, |tau| in [3, 20] and rho / w log-uniform in [0.5, 2] sqrt(1 + tau^2),
+#: where the force turns from the spin's direction to the creepage's
+NEAR_SATURATION = "large, near saturation"
 
 
 def _class_case(rng, g_lo, g_hi, spin_class):
@@ -271,10 +275,14 @@ def _class_case(rng, g_lo, g_hi, spin_class):
     tau = {"none": 0.0,
            "moderate": math.exp(rng.uniform(math.log(0.3), math.log(3.0))),
            "large": math.exp(rng.uniform(math.log(3.0), math.log(20.0))),
-           "pure": math.exp(rng.uniform(math.log(0.5), math.log(20.0)))}[spin_class]
+           "pure": math.exp(rng.uniform(math.log(0.5), math.log(20.0))),
+           NEAR_SATURATION: None}[spin_class]        # (every class draws the same numbers)
+    if spin_class == NEAR_SATURATION:
+        tau = math.exp(rng.uniform(math.log(3.0), math.log(20.0)))
     tau *= rng.choice([-1.0, 1.0])
+    lo, hi = (0.5, 2.0) if spin_class == NEAR_SATURATION else (0.05, 3.0)
     rho = 0.0 if spin_class == "pure" else (
-        math.exp(rng.uniform(math.log(0.05), math.log(3.0))) * math.hypot(1.0, tau))
+        math.exp(rng.uniform(math.log(lo), math.log(hi))) * math.hypot(1.0, tau))
     return (math.log(g), rng.uniform(0.0, 0.5), float(creepage_coordinate(rho, tau)),
             rng.uniform(-math.pi, math.pi), tau)
 
@@ -325,14 +333,17 @@ def _append_class_reference(path, pt, values):
         w.writerow([repr(float(x)) for x in pt] + [repr(float(x)) for x in values])
 
 
-def class_table(table, n, rng, reference_file=CLASS_REFERENCE_FILE, table_only=False):
+def class_table(table, n, rng, reference_file=CLASS_REFERENCE_FILE, table_only=False,
+                near_saturation=False):
     """Error by a/b class x spin class against a converged reference (:func:`reference_grids`,
     Richardson in both directions): the solver's public default (``creep_force_3d(...,
     method="exact")``: :func:`railcontact.creep3d.exact_default_grid`), the previous default
     (30 x 20 everywhere) and the table, max / RMS in % of mu N, and the default's time per
     case (set-ups cached). The reference's own error is estimated by the size of its lateral
     Richardson correction, ``|R - F(my_fine)|``. References are kept in ``reference_file``
-    (computed for cases not yet there); ``table_only`` skips the two solver columns."""
+    (computed for cases not yet there); ``table_only`` skips the two solver columns;
+    ``near_saturation`` adds :data:`NEAR_SATURATION` per a/b class (drawn after the others,
+    so the other classes keep their cases)."""
     from railcontact.creep3d import exact_default_grid  # noqa: PLC0415
 
     keys = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
@@ -340,50 +351,75 @@ def class_table(table, n, rng, reference_file=CLASS_REFERENCE_FILE, table_only=F
     cached = _read_class_reference(reference_file)
     print(f"\n== class table: {n} random cases per a/b x spin class against the converged "
           "exact theory (Richardson in x and y), % of mu N ==")
-    print(f"  {'class':32s} {'default max / RMS':>18s} {'(ms)':>6s} {'30x20 max / RMS':>16s} "
+    print(f"  {'class':40s} {'default max / RMS':>18s} {'(ms)':>6s} {'30x20 max / RMS':>16s} "
           f"{'table max / RMS':>16s} {'ref. corr.':>10s}  my")
-    for a_name, g_lo, g_hi in ASPECT_CLASSES:
-        for spin_class in SPIN_CLASSES:
-            e_new, e_old, e_tab, corr, t_new, mys = [], [], [], [], [], set()
-            for _ in range(n):
-                pt = _class_case(rng, g_lo, g_hi, spin_class)
-                phys = exact_table_inverse(*pt, contact=REFERENCE_CONTACT)
-                args = [float(phys[k]) for k in keys]
-                mu_n = args[3] * args[8]
-                key = tuple(float(x) for x in pt)
-                if key not in cached:
-                    mx, my_c, my_f = reference_grids(math.exp(pt[0]))
-                    f_c = creep_force_3d(*args, method="exact", grid=(mx, my_c),
-                                         tolerance=1e-4)
-                    f_f = creep_force_3d(*args, method="exact", grid=(mx, my_f),
-                                         tolerance=1e-4)
-                    rx = (4.0 * f_f.tx - f_c.tx) / 3.0
-                    ry = (4.0 * f_f.ty - f_c.ty) / 3.0
-                    cached[key] = (rx, ry, math.hypot(f_f.tx - rx, f_f.ty - ry) / mu_n * 100)
-                    _append_class_reference(reference_file, key, cached[key])
-                rx, ry, c = cached[key]
-                corr.append(c)
-                tab = table.creep_force_3d(*args)
-                e_tab.append(math.hypot(tab.tx - rx, tab.ty - ry) / mu_n * 100)
-                if table_only:
-                    continue
-                creep_force_3d(*args, method="exact")           # set-up cached
-                t0 = time.perf_counter()
-                new = creep_force_3d(*args, method="exact")
-                t_new.append(time.perf_counter() - t0)
-                old = creep_force_3d(*args, method="exact", grid=(30, 20))
-                mys.add(exact_default_grid(args[4], args[5], pt[4])[1])
-                for store, f in ((e_new, new), (e_old, old)):
-                    store.append(math.hypot(f.tx - rx, f.ty - ry) / mu_n * 100)
+    result = []
+    rows = [(a, s) for a in ASPECT_CLASSES for s in SPIN_CLASSES]
+    rows += [(a, NEAR_SATURATION) for a in ASPECT_CLASSES] if near_saturation else []
+    for (a_name, g_lo, g_hi), spin_class in rows:
+        e_new, e_old, e_tab, corr, t_new, mys = [], [], [], [], [], set()
+        for _ in range(n):
+            pt = _class_case(rng, g_lo, g_hi, spin_class)
+            phys = exact_table_inverse(*pt, contact=REFERENCE_CONTACT)
+            args = [float(phys[k]) for k in keys]
+            mu_n = args[3] * args[8]
+            key = tuple(float(x) for x in pt)
+            if key not in cached:
+                mx, my_c, my_f = reference_grids(math.exp(pt[0]))
+                f_c = creep_force_3d(*args, method="exact", grid=(mx, my_c),
+                                     tolerance=1e-4)
+                f_f = creep_force_3d(*args, method="exact", grid=(mx, my_f),
+                                     tolerance=1e-4)
+                rx = (4.0 * f_f.tx - f_c.tx) / 3.0
+                ry = (4.0 * f_f.ty - f_c.ty) / 3.0
+                cached[key] = (rx, ry, math.hypot(f_f.tx - rx, f_f.ty - ry) / mu_n * 100)
+                _append_class_reference(reference_file, key, cached[key])
+            rx, ry, c = cached[key]
+            corr.append(c)
+            tab = table.creep_force_3d(*args)
+            e_tab.append(math.hypot(tab.tx - rx, tab.ty - ry) / mu_n * 100)
+            if table_only:
+                continue
+            creep_force_3d(*args, method="exact")           # set-up cached
+            t0 = time.perf_counter()
+            new = creep_force_3d(*args, method="exact")
+            t_new.append(time.perf_counter() - t0)
+            old = creep_force_3d(*args, method="exact", grid=(30, 20))
+            mys.add(exact_default_grid(args[4], args[5], pt[4])[1])
+            for store, f in ((e_new, new), (e_old, old)):
+                store.append(math.hypot(f.tx - rx, f.ty - ry) / mu_n * 100)
 
-            def mr(e):
-                e = np.asarray(e)
-                return f"{e.max():.2f} / {math.sqrt(np.mean(e**2)):.2f}" if e.size else "-"
-            t_ms = f"{np.mean(t_new) * 1e3:6.0f}" if t_new else "     -"
-            my_used = f"{min(mys)}-{max(mys)}" if mys else "-"
-            print(f"  {a_name + ', ' + spin_class:32s} {mr(e_new):>18s} "
-                  f"{t_ms} {mr(e_old):>16s} {mr(e_tab):>16s} "
-                  f"{max(corr):10.3f}  {my_used}", flush=True)
+        def mr(e):
+            e = np.asarray(e)
+            return f"{e.max():.2f} / {math.sqrt(np.mean(e**2)):.2f}" if e.size else "-"
+        t_ms = f"{np.mean(t_new) * 1e3:6.0f}" if t_new else "     -"
+        my_used = f"{min(mys)}-{max(mys)}" if mys else "-"
+        print(f"  {a_name + ', ' + spin_class:40s} {mr(e_new):>18s} "
+              f"{t_ms} {mr(e_old):>16s} {mr(e_tab):>16s} "
+              f"{max(corr):10.3f}  {my_used}", flush=True)
+        result.append((f"{a_name}, {spin_class}", n, mr(e_tab), max(corr)))
+    return result
+
+
+def record_class_table(path, result, n, seed):
+    """Write the class table's table column into the file's ``accuracy_by_class`` attribute
+    (and a ``history`` line): the edge figures a reader of the file sees."""
+    import datetime  # noqa: PLC0415
+
+    import netCDF4  # noqa: PLC0415
+
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    text = ("max / RMS of |T - T_ref| in % of mu N against the exact theory converged in both "
+            "element sizes (Richardson in x on two moved grids and one step in the lateral "
+            f"element size; its lateral correction at most {max(r[3] for r in result):.3f} %), "
+            f"{n} random cases per a/b class x spin class (benchmarks/exact_table_accuracy.py "
+            f"--classes {n} --near-saturation --seed {seed}): "
+            + "; ".join(f"{name} {mr}" for name, _, mr, _ in result))
+    with netCDF4.Dataset(str(path), "a") as nc:
+        nc.setncattr("accuracy_by_class", text)
+        nc.setncattr("history", f"{nc.getncattr('history')}\n{now} accuracy_by_class "
+                                f"recorded by benchmarks/exact_table_accuracy.py --classes {n}")
+    print(f"recorded in {path}: accuracy_by_class")
 
 
 def main(argv=None):
@@ -405,6 +441,11 @@ def main(argv=None):
                     help="only the class table: N random cases per a/b x spin class against "
                          "the converged exact theory (N = 6: about 6 min; references kept in "
                          "benchmarks/data/exact_class_reference.csv)")
+    ap.add_argument("--near-saturation", action="store_true",
+                    help="with --classes: add large spin near saturation per a/b class")
+    ap.add_argument("--record", action="store_true",
+                    help="with --classes: write the table's column into the file's "
+                         "accuracy_by_class attribute (the file of --table)")
     ap.add_argument("--table-only", action="store_true",
                     help="with --classes: the table's column only (the solver columns skipped)")
     ap.add_argument("--table", default=None, metavar="FILE",
@@ -412,8 +453,10 @@ def main(argv=None):
     opts = ap.parse_args(argv)
     table = load_exact_table(opts.table) if opts.table else load_exact_table()
     if opts.classes:
-        class_table(table, opts.classes, np.random.default_rng(opts.seed + 4),
-                    table_only=opts.table_only)
+        result = class_table(table, opts.classes, np.random.default_rng(opts.seed + 4),
+                             table_only=opts.table_only, near_saturation=opts.near_saturation)
+        if opts.record:
+            record_class_table(opts.table or table.path, result, opts.classes, opts.seed)
         return
     print(f"table {table.path} ({table.table.attrs.get('source', '?')})")
 

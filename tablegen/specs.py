@@ -177,7 +177,8 @@ def exact_solver_lateral_elements(log_aspect_ratio, spin_coordinate, aspect_max=
                                   spin_min=None, very_narrow_max=None):
     """Lateral elements ``my`` of the table's solver at table points: 48 where a0/b0 <
     ``very_narrow_max`` and 36 where a0/b0 < ``aspect_max``, both where |tau| > ``spin_min``
-    (defaults :data:`EXACT_VERY_NARROW_ASPECT_MAX` = 0.2, :data:`EXACT_NARROW_ASPECT_MAX` =
+    (defaults :data:`EXACT_VERY_NARROW_ASPECT_MAX` = 0.115 (the node 0.1; 0.2 once the
+    nodes 0.133 and 0.178 are rebuilt), :data:`EXACT_NARROW_ASPECT_MAX` =
     0.87, :data:`EXACT_NARROW_SPIN_MIN` = 2.75; :data:`EXACT_LATERAL_ELEMENTS_VERY_NARROW`,
     :data:`EXACT_LATERAL_ELEMENTS_NARROW`), else 20. ``very_narrow_max = 0``: no 48 tier
     (the rules before 2026-11-28). [-]"""

@@ -1077,7 +1077,7 @@ def load_exact_table(path=None, directory=None):
     and process (each FMU extraction's copy of the file gets the same table), its
     coefficients mapped from the user cache (:mod:`railcontact._table_store`). Beyond its a0/b0 range or spin axis it answers with
     ``creep_solution_3d(..., method="exact", tolerance=1e-4)`` (30x20 -> 60x20 on two shifted
-    grids; 30x36 -> 60x36 where a0/b0 < 0.87, 30x48 -> 60x48 where a0/b0 < 0.2), the setting the table was built with, so
+    grids; 30x36 -> 60x36 where a0/b0 < 0.87, 30x48 -> 60x48 where a0/b0 < 0.115), the setting the table was built with, so
     every finite input gets the exact theory.
 
     Parameters
@@ -1115,7 +1115,7 @@ def load_exact_table(path=None, directory=None):
 
 def _exact_table_solver(*args, sensitivities=False):
     """The exact solver at the table's setting (the table's answer beyond its axes): 48
-    lateral elements where a0/b0 < 0.2, 36 where a0/b0 < 0.87 (``EXACT_TABLE_*`` of
+    lateral elements where a0/b0 < 0.115, 36 where a0/b0 < 0.87 (``EXACT_TABLE_*`` of
     :mod:`railcontact.creep_common`; beyond the table such a contact has a0/b0 < 0.1 or
     |tau| > 20, which the table's rule gives the same), else 20. Returns the fields the table reads (tx, ty, spin_moment,
     stick_area_fraction, normalised_creepage, sensitivity)."""

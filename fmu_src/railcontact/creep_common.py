@@ -44,13 +44,14 @@ EXACT_TABLE_LATERAL_ELEMENTS_NARROW = 36
 EXACT_TABLE_NARROW_ASPECT_MAX = 0.87
 EXACT_TABLE_NARROW_SPIN_MIN = 2.75
 #: ... and EXACT_TABLE_LATERAL_ELEMENTS_VERY_NARROW where a0/b0 <
-#: EXACT_TABLE_VERY_NARROW_ASPECT_MAX (between the table's nodes 0.178 and 0.316) and |tau| >
-#: EXACT_TABLE_NARROW_SPIN_MIN (since 2026-11-28, issue 40: with 36 lateral elements the
-#: table's nodes a0/b0 0.1-0.178 with large spin erred by up to 0.57 % of mu N against the
-#: exact theory converged in both element sizes; the public default's rule,
-#: railcontact.creep3d.exact_default_grid, gives 48 there too). [-]
+#: EXACT_TABLE_VERY_NARROW_ASPECT_MAX and |tau| > EXACT_TABLE_NARROW_SPIN_MIN (since
+#: 2026-11-28, issue 40: narrow contacts with large spin, where the public default,
+#: railcontact.creep3d.exact_default_grid, uses 48 too). Rebuilt in steps with --reuse-nodes:
+#: 0.115, between the table's nodes 0.1 and 0.133, takes the node 0.1 (28,980 solver points of
+#: the computed quarter); 0.2, between 0.178 and 0.316, the nodes 0.133 and 0.178 next
+#: (57,960 more). [-]
 EXACT_TABLE_LATERAL_ELEMENTS_VERY_NARROW = 48
-EXACT_TABLE_VERY_NARROW_ASPECT_MAX = 0.2
+EXACT_TABLE_VERY_NARROW_ASPECT_MAX = 0.115
 
 CreepForce3D = namedtuple("CreepForce3D", ["tx", "ty"])
 CreepForce3D.__doc__ = "Tangential creep force on the wheel, components tx, ty. [N]"
