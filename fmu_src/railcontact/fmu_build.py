@@ -174,7 +174,9 @@ def _stage(stage, digest, aot=True, log=None, contacts=1):
         # source (railcontact._compiled): the scene then imports no numba
         from . import _compiled  # noqa: PLC0415
 
-        message = _compiled.build_aot(stage / package_name)
+        # (a vehicle FMU's step is one batch call on the table summed over nu: that kernel too)
+        message = _compiled.build_aot(stage / package_name, batches=(
+            ("creep_table_batch_nu",) if contacts > 1 else ()))
         if log is not None:
             log(message)
     # tables inside the package copy: railcontact.tables.default_table_path looks there

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .. import hertz
+from .. import _compiled, hertz
 from .._validation import check_range
 from ..scene import DEFAULT_SCENE
 from .base import Effect
@@ -58,7 +58,7 @@ def _inverse_grid():
 
 def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
     r"""Hertz ellipses at N = 1 N for many curvature pairs: what
-    :func:`railcontact.hertz.hertz_3d` gives, at the cost of a few ufunc calls.
+    :func:`railcontact.hertz.hertz_3d` gives, in one compiled loop.
 
     ``hertz_3d`` finds the eccentricity k = c_min/c_max of ``f(k) = B'/A'`` (or its inverse)
     by 64 bisection steps (about 0.5 ms a call); a contact whose curvatures change at every
@@ -69,7 +69,10 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
     grid of 4001 values of u (slopes by complex step; error ~1e-13) and takes one Newton step
     (error: round-off). The semi-axes and the pressure then follow by ``hertz_3d``'s own
     formulas. Same values as ``hertz_3d`` to a few ulp (tests/test_fmu_vehicle.py: 4e-15
-    relative on 10^3 random pairs); about 40 us for 1-8 pairs.
+    relative on 10^3 random pairs). One compiled loop over the pairs
+    (:func:`railcontact._hertz_kernels.unit_ellipses_kernel`, Carlson's R_D in it; its
+    ahead-of-time copy in an FMU): a few microseconds for 1-8 pairs, against about 40 with
+    numpy and ``scipy.special.elliprd``.
 
     Parameters
     ----------
@@ -86,44 +89,17 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
         Semi-axes [m] and maximum pressure [Pa] at N = 1 N (a0 = a1 N^(1/3), b0 = b1 N^(1/3),
         p0 = p1 N^(1/3)).
     """
-    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
-
-    c_x = np.asarray(curvature_longitudinal, dtype=float)
-    c_y = np.asarray(curvature_lateral, dtype=float)
+    c_x = np.ascontiguousarray(curvature_longitudinal, dtype=float)
+    c_y = np.ascontiguousarray(curvature_lateral, dtype=float)
+    out = np.empty((c_x.size, 3))
     e_star = youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
-    c_major = np.minimum(c_x, c_y)        # the smaller curvature: the major axis along it
-    c_minor = np.maximum(c_x, c_y)
-    log_ratio = np.log(c_minor / c_major)
     nodes, coefficients = _inverse_grid()
-    if not log_ratio.max(initial=0.0) <= nodes[-1]:    # beyond a0/b0 = 1e6: hertz_3d's
-        inside = log_ratio <= nodes[-1]                  # clipped answer there
-        out = [np.empty(c_x.shape) for _ in range(3)]
-        for k in np.flatnonzero(~inside):
-            for o, v in zip(out, hertz.hertz_3d(1.0, c_x[k], c_y[k], youngs_modulus,
-                                                poisson_ratio)):
-                o[k] = v
-        if np.any(inside):
-            for o, v in zip(out, unit_ellipses(c_x[inside], c_y[inside], youngs_modulus,
-                                               poisson_ratio)):
-                o[inside] = v
-        return tuple(out)
-    # cubic Hermite interpolation of u(log f), then one Newton step with its slope (a circle,
-    # log_ratio = 0, gives u = 0 and k = 1 exactly)
-    c = coefficients[np.minimum(np.searchsorted(nodes, log_ratio, "right") - 1,
-                                nodes.size - 2)]
-    t = (log_ratio - c[:, 0]) * c[:, 1]
-    u = c[:, 2] + t * (c[:, 3] + t * (c[:, 4] + t * c[:, 5]))
-    k2 = np.exp(2.0 * u)
-    u = u - (np.log(elliprd(0.0, 1.0, k2) / elliprd(0.0, k2, 1.0)) - log_ratio) * (
-        c[:, 6] + t * c[:, 7])
-    k = np.exp(u)
-    rd = elliprd(0.0, k * k, 1.0)
-    c_max = np.cbrt(rd / (2.0 * np.pi * e_star * c_major))     # hertz_3d's formula at N = 1
-    c_min = k * c_max
-    x_major = c_y >= c_x
-    a1 = np.where(x_major, c_max, c_min)
-    b1 = np.where(x_major, c_min, c_max)
-    return a1, b1, 1.5 * (1.0 / (np.pi * a1 * b1))
+    if _compiled.unit_ellipses_kernel()(c_x, c_y, float(e_star), nodes, coefficients, out):
+        # beyond a0/b0 = 1e6 either way: hertz_3d's clipped answer there
+        for k in np.flatnonzero(np.isnan(out[:, 0])):
+            out[k] = [float(v) for v in hertz.hertz_3d(1.0, c_x[k], c_y[k], youngs_modulus,
+                                                       poisson_ratio)]
+    return out[:, 0], out[:, 1], out[:, 2]
 
 
 def check_geometry_input(name, value, unit):
