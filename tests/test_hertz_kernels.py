@@ -43,3 +43,15 @@ def test_unit_ellipses_kernel_counts_pairs_beyond_its_grid():
     np.testing.assert_allclose(a1, ref.a0, rtol=4e-15)
     np.testing.assert_allclose(b1, ref.b0, rtol=4e-15)
     np.testing.assert_allclose(p1, ref.p0, rtol=1e-14)
+
+
+def test_the_shipped_inverse_grid_is_the_computed_one():
+    """data/hertz_inverse_grid.npz (read at run time: a vehicle FMU imports no scipy) holds
+    exactly what make_inverse_grid computes now (else: normal.write_inverse_grid())."""
+    from railcontact._files import package_directory
+    from railcontact.effects import normal
+
+    nodes, coefficients = normal.make_inverse_grid()
+    with np.load(package_directory() / "data" / normal.INVERSE_GRID_DATA) as data:
+        np.testing.assert_array_equal(data["nodes"], nodes)
+        np.testing.assert_array_equal(data["coefficients"], coefficients)

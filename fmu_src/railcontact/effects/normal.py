@@ -31,28 +31,60 @@ _INVERSE_GRID = []
 _COMPLEX_STEP = 1e-30
 
 
-def _inverse_grid():
-    """``(nodes, coefficients)``: the nodes of log f (increasing from 0) and, per interval,
-    (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of u(log f) as
-    c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope du/dlog f
-    linear between the nodes' s0, s1."""
-    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
+def make_inverse_grid():
+    """``(nodes, coefficients)`` of :func:`_inverse_grid`, computed (scipy's ``elliprd`` with a
+    complex argument: the slopes by complex step)."""
+    from scipy.special import elliprd  # noqa: PLC0415  (the grid's data: see INVERSE_GRID_DATA)
 
+    u = np.linspace(math.log(hertz.AXIS_RATIO_MIN), 0.0, 4001)
+    k2 = np.exp(2.0 * u)
+    z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
+    f = elliprd(0.0, 1.0, z) / elliprd(0.0, z, 1.0)
+    nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
+        np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
+    nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
+    h = np.diff(nodes)
+    m0, m1 = slope[:-1] * h, slope[1:] * h
+    y0, y1 = y[:-1], y[1:]
+    coefficients = np.column_stack([
+        nodes[:-1], 1.0 / h, y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1,
+        2.0 * (y0 - y1) + m0 + m1, slope[:-1], slope[1:] - slope[:-1]])
+    return nodes, np.ascontiguousarray(coefficients)
+
+
+#: :func:`make_inverse_grid`'s result kept in the package (``data/hertz_inverse_grid.npz``),
+#: so that a vehicle FMU's initialisation imports no scipy (``scipy.special``: 0.3-0.6 s of
+#: a fresh process); rewritten with :func:`write_inverse_grid`, checked by a test.
+INVERSE_GRID_DATA = "hertz_inverse_grid.npz"
+
+
+def write_inverse_grid(path=None):
+    """Write :data:`INVERSE_GRID_DATA` (default: into the package's ``data/``)."""
+    from .._files import package_directory  # noqa: PLC0415
+
+    nodes, coefficients = make_inverse_grid()
+    path = package_directory() / "data" / INVERSE_GRID_DATA if path is None else path
+    with open(path, "wb") as fh:
+        np.savez(fh, nodes=nodes, coefficients=coefficients)
+
+
+def _inverse_grid():
+    """The inverse of log f(e^u) (f of :func:`railcontact.hertz.hertz_3d`, decreasing in
+    k = e^u): ``(nodes, coefficients)``, the nodes of log f (increasing from 0) and, per
+    interval, (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of
+    u(log f) as c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope
+    du/dlog f linear between the nodes' s0, s1. Read from :data:`INVERSE_GRID_DATA` (else
+    computed) on first use."""
     if not _INVERSE_GRID:
-        u = np.linspace(math.log(hertz.AXIS_RATIO_MIN), 0.0, 4001)
-        k2 = np.exp(2.0 * u)
-        z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
-        f = elliprd(0.0, 1.0, z) / elliprd(0.0, z, 1.0)
-        nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
-            np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
-        nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
-        h = np.diff(nodes)
-        m0, m1 = slope[:-1] * h, slope[1:] * h
-        y0, y1 = y[:-1], y[1:]
-        coefficients = np.column_stack([
-            nodes[:-1], 1.0 / h, y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1,
-            2.0 * (y0 - y1) + m0 + m1, slope[:-1], slope[1:] - slope[:-1]])
-        _INVERSE_GRID.append((nodes, coefficients))
+        from .._files import package_directory  # noqa: PLC0415
+
+        try:
+            with np.load(package_directory() / "data" / INVERSE_GRID_DATA) as data:
+                grid = (np.ascontiguousarray(data["nodes"], dtype=float),
+                        np.ascontiguousarray(data["coefficients"], dtype=float))
+        except (OSError, KeyError, ValueError):
+            grid = make_inverse_grid()
+        _INVERSE_GRID.append(grid)
     return _INVERSE_GRID[0]
 
 
@@ -126,13 +158,15 @@ class NormalContact(Effect):
     ``semi_axis_longitudinal``, ``semi_axis_lateral``): the contact's fields of those names,
     when not None, override the scene's. A changed pair of curvatures gives a new ellipse at
     1 N by :func:`unit_ellipses` (the same values as ``hertz_3d`` to a few ulp); unchanged
-    ones reuse the last (at the scene's own values, ``hertz_3d``'s own result). A value that
+    ones reuse the last (at the scene's own values, ``hertz_3d``'s own result, or ``unit``,
+    the scene's ellipse at 1 N (a1, b1, p1) when the caller made it: a vehicle, by
+    :func:`unit_ellipses`, without importing scipy). A value that
     is not in (0, inf) is a ValueError naming the input.
     """
 
     name = "normal"
 
-    def __init__(self, scene, mu_source=None, warn=None):
+    def __init__(self, scene, mu_source=None, warn=None, unit=None):
         super().__init__()
         self._warn = warn if warn is not None else (lambda key, msg: None)
         geo = scene.geometry
@@ -145,8 +179,8 @@ class NormalContact(Effect):
             self._fixed = False
         elif geo["kind"] == "curvatures":
             self._cx, self._cy = geo["curvature_longitudinal"], geo["curvature_lateral"]
-            a1, b1, p1 = hertz.hertz_3d(1.0, self._cx, self._cy, scene.youngs_modulus,
-                                        scene.poisson_ratio)
+            a1, b1, p1 = unit if unit is not None else hertz.hertz_3d(
+                1.0, self._cx, self._cy, scene.youngs_modulus, scene.poisson_ratio)
             self._a1, self._b1, self._p1 = float(a1), float(b1), float(p1)
             self._fixed = False
         else:

@@ -64,12 +64,20 @@ class Vehicle:
     def __init__(self, scene, contacts, tables_dir=None, warn=None):
         self.scene = scene
         self.contacts = list(contacts)
-        first = build_pipeline(scene, tables_dir=tables_dir, warn=warn)
+        unit = None
+        if scene.geometry["kind"] == "curvatures":
+            # the scene's ellipse at 1 N once, by the kernel of the changing curvatures (no
+            # scipy import; hertz_3d's values to a few ulp)
+            unit = tuple(float(v[0]) for v in unit_ellipses(
+                np.array([scene.geometry["curvature_longitudinal"]]),
+                np.array([scene.geometry["curvature_lateral"]]), scene.youngs_modulus,
+                scene.poisson_ratio))
+        first = build_pipeline(scene, tables_dir=tables_dir, warn=warn, normal_unit=unit)
         creep = first.effects.get("creep")
         table = getattr(creep, "_table", None)
         # one reader object for every contact (the loader gives it; the others reuse it)
         self.pipelines = [first] + [build_pipeline(scene, tables_dir=tables_dir, warn=warn,
-                                                   creep_table=table)
+                                                   creep_table=table, normal_unit=unit)
                                     for _ in self.contacts[1:]]
         names = list(first.effects)
         i = names.index("creep") if "creep" in names else len(names)
