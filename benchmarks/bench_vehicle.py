@@ -15,9 +15,20 @@ All figures from one run, on one machine, under the same load:
 2. **10 s of a vehicle at 1 ms** (10^4 steps), each in a fresh process, whole-process wall
    time (imports, FMU extraction, table load, the loop; what a user waits for) and the loop
    alone: the K-contact FMU in fmpy (``FMU2Slave`` loop, and ``fmpy.simulate_fmu`` with the
-   signals as its input array) and in libcosim (override manipulator + last-value observer),
-   against K single-contact instances in each, and the trivial slave in each (the host's own
-   cost). Targets: <= 2 s in fmpy, <= 3 s in libcosim.
+   signals as its input array) and in libcosim, against K single-contact instances in each,
+   and the trivial slave in each (the host's own cost). Targets: <= 2 s in fmpy, <= 3 s in
+   libcosim. libcosim two ways:
+
+   * ``libcosim``: the inputs set from Python before every step through the override
+     manipulator, the forces read through a last-value observer (the old recipe). libcosim
+     itself spends about 9 us per variable set this way (``cosim_manipulator_slave_set_real``,
+     measured without stepping: 1 variable 9 us, 88 variables 0.8 ms a call), and its
+     last-value observer reads every variable of every slave after every step: this is
+     the floor of that way, whatever the FMU does (the trivial slave's figure);
+   * ``libcosim connected``: the inputs come from a second FMU (:func:`driver_fmu`, a
+     PythonFMU playing the same signals: what the vehicle-dynamics model is in a real run),
+     connected to the contact FMU's inputs, the forces connected back to it and recorded by
+     a time-series observer, the run one ``step(n)`` call (``examples/vehicle_libcosim.py``).
 
 The FMUs are built for the current sources (``build_fmu.py [--contacts K]``) into a cache
 directory keyed by the source digest (as the tests do), so a second run builds nothing.
