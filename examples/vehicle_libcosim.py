@@ -64,9 +64,10 @@ class VehicleModel(Fmi2Slave):
                 self.register_variable(Real(f"{{name}}_{{k + 1}}", causality=Fmi2Causality.output,
                                             getter=lambda i={len(INPUTS)} * k + j: self.row[i]))
             for j, name in enumerate({FORCES!r}):
+                i = 3 * k + j
                 self.register_variable(Real(f"{{name}}_{{k + 1}}", causality=Fmi2Causality.input,
-                                            getter=lambda i=3 * k + j: self.forces[i],
-                                            setter=lambda v, i=3 * k + j: self.forces.__setitem__(i, v)))
+                                            getter=lambda i=i: self.forces[i],
+                                            setter=lambda v, i=i: self.forces.__setitem__(i, v)))
 
     def do_step(self, current_time, step_size):
         j = min(int(round((current_time + step_size) / self.h)), len(self.table) - 1)

@@ -11,7 +11,7 @@ from scipy.special import elliprd
 
 from railcontact import _compiled
 from railcontact._hertz_kernels import carlson_rd
-from railcontact.effects.normal import _inverse_grid, unit_ellipses
+from railcontact.effects.normal import inverse_grid, unit_ellipses
 from railcontact.hertz import hertz_3d
 
 E, NU = 210e9, 0.28
@@ -34,7 +34,7 @@ def test_unit_ellipses_kernel_counts_pairs_beyond_its_grid():
     c_x = np.array([1.0, 1e-14, 1.0])
     c_y = np.array([2.0, 1.0, 1e-14])
     out = np.zeros((3, 3))
-    nodes, coefficients = _inverse_grid()
+    nodes, coefficients = inverse_grid()
     e_star = E / (2.0 * (1.0 - NU**2))
     assert _compiled.unit_ellipses_kernel()(c_x, c_y, e_star, nodes, coefficients, out) == 2
     assert np.isnan(out[1:]).all() and np.isfinite(out[0]).all()

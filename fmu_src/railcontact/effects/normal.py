@@ -11,7 +11,8 @@ from .._validation import check_range
 from ..scene import DEFAULT_SCENE
 from .base import Effect
 
-__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipses"]
+__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipses", "inverse_grid",
+           "make_inverse_grid", "write_inverse_grid", "INVERSE_GRID_DATA"]
 
 _FLOAT_MAX = 1.7976931348623157e308
 
@@ -32,7 +33,7 @@ _COMPLEX_STEP = 1e-30
 
 
 def make_inverse_grid():
-    """``(nodes, coefficients)`` of :func:`_inverse_grid`, computed (scipy's ``elliprd`` with a
+    """``(nodes, coefficients)`` of :func:`inverse_grid`, computed (scipy's ``elliprd`` with a
     complex argument: the slopes by complex step)."""
     from scipy.special import elliprd  # noqa: PLC0415  (the grid's data: see INVERSE_GRID_DATA)
 
@@ -68,7 +69,7 @@ def write_inverse_grid(path=None):
         np.savez(fh, nodes=nodes, coefficients=coefficients)
 
 
-def _inverse_grid():
+def inverse_grid():
     """The inverse of log f(e^u) (f of :func:`railcontact.hertz.hertz_3d`, decreasing in
     k = e^u): ``(nodes, coefficients)``, the nodes of log f (increasing from 0) and, per
     interval, (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of
@@ -125,7 +126,7 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
     c_y = np.ascontiguousarray(curvature_lateral, dtype=float)
     out = np.empty((c_x.size, 3))
     e_star = youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
-    nodes, coefficients = _inverse_grid()
+    nodes, coefficients = inverse_grid()
     if _compiled.unit_ellipses_kernel()(c_x, c_y, float(e_star), nodes, coefficients, out):
         # beyond a0/b0 = 1e6 either way: hertz_3d's clipped answer there
         for k in np.flatnonzero(np.isnan(out[:, 0])):

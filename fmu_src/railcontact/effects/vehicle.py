@@ -39,7 +39,8 @@ import numpy as np
 from .. import _compiled
 from .._validation import check_range
 from ..scene import INPUTS
-from .normal import NO_NORMAL_FORCE_MESSAGE, _inverse_grid, check_geometry_input, unit_ellipses
+from .normal import (NO_NORMAL_FORCE_MESSAGE, check_geometry_input, inverse_grid,
+                     unit_ellipses)
 from .pipeline import build_pipeline, inputs_plausible
 
 __all__ = ["Vehicle", "MAX_CONTACTS"]
@@ -136,7 +137,7 @@ class Vehicle:
     def _fast_geometry(self, cxy):
         """New ellipses at 1 N for the contacts whose curvatures ``cxy`` (2, K; checked)
         changed: one compiled call."""
-        nodes, coefficients = _inverse_grid()
+        nodes, coefficients = inverse_grid()
         kernel = _compiled.unit_ellipses_kernel()
         changed = (cxy != self._cxy).any(axis=0)
         if changed.all():           # (a vehicle's contacts move together)
