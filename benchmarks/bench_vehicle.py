@@ -15,9 +15,20 @@ All figures from one run, on one machine, under the same load:
 2. **10 s of a vehicle at 1 ms** (10^4 steps), each in a fresh process, whole-process wall
    time (imports, FMU extraction, table load, the loop; what a user waits for) and the loop
    alone: the K-contact FMU in fmpy (``FMU2Slave`` loop, and ``fmpy.simulate_fmu`` with the
-   signals as its input array) and in libcosim (override manipulator + last-value observer),
-   against K single-contact instances in each, and the trivial slave in each (the host's own
-   cost). Targets: <= 2 s in fmpy, <= 3 s in libcosim.
+   signals as its input array) and in libcosim, against K single-contact instances in each,
+   and the trivial slave in each (the host's own cost). Targets: <= 2 s in fmpy, <= 3 s in
+   libcosim. libcosim two ways:
+
+   * ``libcosim``: the inputs set from Python before every step through the override
+     manipulator, the forces read through a last-value observer (the old recipe). libcosim
+     itself spends about 9 us per variable set this way (``cosim_manipulator_slave_set_real``,
+     measured without stepping: 1 variable 9 us, 88 variables 0.8 ms a call), and its
+     last-value observer reads every variable of every slave after every step: this is
+     the floor of that way, whatever the FMU does (the trivial slave's figure);
+   * ``libcosim connected``: the inputs come from a second FMU (:func:`driver_fmu`, a
+     PythonFMU playing the same signals: what the vehicle-dynamics model is in a real run),
+     connected to the contact FMU's inputs, the forces connected back to it and recorded by
+     a time-series observer, the run one ``step(n)`` call (``examples/vehicle_libcosim.py``).
 
 The FMUs are built for the current sources (``build_fmu.py [--contacts K]``) into a cache
 directory keyed by the source digest (as the tests do), so a second run builds nothing.
@@ -77,6 +88,55 @@ class TrivialVehicle(Fmi2Slave):
 '''
 
 
+DRIVER = '''
+from pathlib import Path
+
+import numpy as np
+from pythonfmu import Fmi2Causality, Fmi2Slave, Real
+
+CONTACTS = {contacts}
+INPUTS = {inputs!r}
+FORCES = {forces!r}
+
+
+class VehicleSignals(Fmi2Slave):
+    """The vehicle model's side of the vehicle FMU: its outputs are the contacts' inputs
+    (name_k), played from resources/signals.npy (row j at t = j ms), its inputs the forces."""
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self.table = (np.load(Path(self.resources) / "signals.npy") if self.resources
+                      else np.zeros((1, CONTACTS * len(INPUTS))))
+        self.row = self.table[0].tolist()
+        self.forces = [0.0] * (CONTACTS * len(FORCES))
+        self.index = {{}}
+        for k in range(CONTACTS):
+            for j, name in enumerate(INPUTS):
+                i = k * len(INPUTS) + j
+                var = Real(f"{{name}}_{{k + 1}}", causality=Fmi2Causality.output,
+                           getter=lambda i=i: self.row[i])
+                self.register_variable(var)
+                self.index[var.value_reference] = i
+            for j, name in enumerate(FORCES):
+                i = k * len(FORCES) + j
+                self.register_variable(Real(f"{{name}}_{{k + 1}}", causality=Fmi2Causality.input,
+                                            getter=lambda i=i: self.forces[i],
+                                            setter=lambda v, i=i: self.forces.__setitem__(i, v)))
+
+    def get_real(self, vrs):       # (a native model's cost: one list per call)
+        index, row = self.index, self.row
+        try:
+            return [row[index[vr]] for vr in vrs]
+        except KeyError:
+            return super().get_real(vrs)
+
+    def do_step(self, current_time, step_size):
+        j = min(int(round((current_time + step_size) * 1e3)), len(self.table) - 1)
+        self.row = self.table[j].tolist()
+        return True
+'''
+
+
 def _name(name, k, contacts):
     return name if contacts == 1 else f"{name}[{k}]"
 
@@ -119,6 +179,20 @@ def trivial_fmu(contacts, work):
     script = Path(work) / "trivialvehicle_bench.py"
     script.write_text(TRIVIAL.format(contacts=contacts, inputs=INPUTS, forces=FORCES))
     return Path(FmuBuilder.build_FMU(script, dest=Path(work) / "TrivialVehicle.fmu"))
+
+
+def driver_fmu(contacts, n, work):
+    """A PythonFMU playing :func:`signals` (``n`` rows) as outputs ``name_k`` and taking the
+    forces ``Fx_k``, ``Fy_k``, ``Mz_k`` as inputs: what a vehicle-dynamics FMU connected to
+    the contact FMU does (libcosim moves the values between them natively)."""
+    from pythonfmu.builder import FmuBuilder
+
+    work = Path(work)
+    script = work / "vehiclesignals.py"
+    script.write_text(DRIVER.format(contacts=contacts, inputs=INPUTS, forces=FORCES))
+    np.save(work / "signals.npy", signals(n, contacts).reshape(n, -1))
+    return Path(FmuBuilder.build_FMU(script, dest=work / "VehicleSignals.fmu",
+                                     project_files=[work / "signals.npy"]))
 
 
 # --------------------------------------------------------------------------------------------
@@ -186,7 +260,45 @@ def step_ratio(vehicle, trivial, contacts, scene, rounds, n=1000):
 # --------------------------------------------------------------------------------------------
 # 2. 10 s of a vehicle (a fresh process each)
 # --------------------------------------------------------------------------------------------
-def child(mode, fmu, contacts, seconds, scene):
+def _libcosim_connected(fmu, driver, contacts, n, scene):
+    """libcosim with the inputs connected from the driver FMU (:func:`driver_fmu`) and the
+    forces connected back to it and recorded by a time-series observer: one ``step(n)`` call,
+    no Python of the host per step. Returns the loop's wall time."""
+    from libcosimpy.CosimEnums import CosimVariableType
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.ERROR)
+    ex = CosimExecution.from_step_size(10**6)
+    s = ex.add_local_slave(CosimLocalSlave(fmu_path=str(fmu), instance_name="contacts"))
+    d = ex.add_local_slave(CosimLocalSlave(fmu_path=str(driver), instance_name="vehicle"))
+    r = {v.name.decode(): v.reference for v in ex.slave_variables(s)}
+    rd = {v.name.decode(): v.reference for v in ex.slave_variables(d)}
+    if "scene_file" in r:
+        ex.string_initial_value(s, r["scene_file"], scene)
+    for k in range(1, contacts + 1):
+        for nm in INPUTS:
+            if ex.connect_real_variables(d, rd[f"{nm}_{k}"], s, r[_name(nm, k, contacts)]):
+                raise SystemExit(f"libcosim: cannot connect {nm}_{k}")
+        for nm in FORCES:
+            if ex.connect_real_variables(s, r[_name(nm, k, contacts)], d, rd[f"{nm}_{k}"]):
+                raise SystemExit(f"libcosim: cannot connect {nm}[{k}]")
+    obs = CosimObserver.create_time_series(n + 10)
+    ex.add_observer(obs)
+    forces = [r[_name(nm, k, contacts)] for k in range(1, contacts + 1) for nm in FORCES]
+    for ref in forces:
+        obs.start_time_series(s, ref, CosimVariableType.REAL)
+    t1 = time.perf_counter()
+    if not ex.step(n):
+        raise SystemExit("libcosim: a step failed")
+    loop = time.perf_counter() - t1
+    obs.time_series_real_samples(s, forces[0], 1, n)   # (the record is there)
+    return loop
+
+
+def child(mode, fmu, contacts, seconds, scene, driver=None):
     """One run in this (fresh) process; prints a JSON line with the loop's wall time."""
     n = int(round(seconds / 1e-3))
     sig = signals(n, contacts)
@@ -213,7 +325,9 @@ def child(mode, fmu, contacts, seconds, scene):
         t1 = time.perf_counter()
         time_loop(instances, rows)
         loop = time.perf_counter() - t1
-    else:   # libcosim
+    elif mode.startswith("libcosim-connected"):
+        loop = _libcosim_connected(fmu, driver, contacts, n, scene)
+    else:   # libcosim, inputs through the override manipulator
         from libcosimpy.CosimExecution import CosimExecution
         from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
         from libcosimpy.CosimManipulator import CosimManipulator
@@ -254,11 +368,12 @@ def child(mode, fmu, contacts, seconds, scene):
     os._exit(0)     # (PythonFMU's exit handlers: docs/fmu_lifecycle.md; nothing left to do)
 
 
-def whole_process(mode, fmu, contacts, seconds, scene):
+def whole_process(mode, fmu, contacts, seconds, scene, driver=None):
     t0 = time.perf_counter()
+    extra = ["--driver", str(driver)] if driver is not None else []
     proc = subprocess.run([sys.executable, __file__, "--child", mode, "--fmu", str(fmu),
                            "--contacts", str(contacts), "--seconds", str(seconds),
-                           "--scene", scene], capture_output=True, text=True,
+                           "--scene", scene] + extra, capture_output=True, text=True,
                           env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
     wall = time.perf_counter() - t0
     lines = [ln for ln in proc.stdout.splitlines() if ln.startswith("{")]
@@ -277,19 +392,23 @@ def main(argv=None):
     p.add_argument("--skip-libcosim", action="store_true")
     p.add_argument("--child", help=argparse.SUPPRESS)
     p.add_argument("--fmu", help=argparse.SUPPRESS)
+    p.add_argument("--driver", help=argparse.SUPPRESS)
     args = p.parse_args(argv)
     if args.child:
-        return child(args.child, args.fmu, args.contacts, args.seconds, args.scene)
+        return child(args.child, args.fmu, args.contacts, args.seconds, args.scene,
+                     args.driver)
 
     vehicle, single = cached_fmu(args.contacts), cached_fmu(1)
     with tempfile.TemporaryDirectory(prefix="bench_vehicle_") as work:
         trivial = trivial_fmu(args.contacts, work)
+        driver = None if args.skip_libcosim else driver_fmu(
+            args.contacts, int(round(args.seconds / 1e-3)) + 1, work)
         t_v, t_t = step_ratio(vehicle, trivial, args.contacts, args.scene, args.rounds)
-        _report(args, vehicle, single, trivial, t_v, t_t)
+        _report(args, vehicle, single, trivial, t_v, t_t, driver)
     return 0
 
 
-def _report(args, vehicle, single, trivial, t_v, t_t):
+def _report(args, vehicle, single, trivial, t_v, t_t, driver=None):
     print(f"scene {args.scene}, {args.contacts} contacts, every input changing at every step")
     print(f"\n1. one step (fmi2SetReal of {args.contacts * len(INPUTS)} inputs + fmi2DoStep + "
           f"fmi2GetReal of {args.contacts * len(FORCES)} forces), best of {args.rounds} "
@@ -311,14 +430,20 @@ def _report(args, vehicle, single, trivial, t_v, t_t):
         modes += [("libcosim-trivial", trivial, args.contacts, "libcosim, trivial slave"),
                   ("libcosim-vehicle", vehicle, args.contacts, "libcosim, 1 vehicle FMU"),
                   ("libcosim-singles", single, args.contacts,
-                   f"libcosim, {args.contacts} single-contact instances")]
+                   f"libcosim, {args.contacts} single-contact instances"),
+                  ("libcosim-connected-trivial", trivial, args.contacts,
+                   "libcosim connected, driver + trivial slave"),
+                  ("libcosim-connected-vehicle", vehicle, args.contacts,
+                   "libcosim connected, driver + 1 vehicle FMU")]
     for mode, fmu, contacts, label in modes:
-        wall, loop, err = whole_process(mode, fmu, contacts, args.seconds, args.scene)
+        wall, loop, err = whole_process(mode, fmu, contacts, args.seconds, args.scene,
+                                        driver if "connected" in mode else None)
         if loop is None:
             print(f"   {label:45s} failed: {err.strip().splitlines()[-1] if err else '?'}")
             continue
         target = " (target <= 2 s)" if mode == "fmpy-vehicle" else (
-            " (target <= 3 s)" if mode == "libcosim-vehicle" else "")
+            " (target <= 3 s)" if mode.startswith("libcosim") and mode.endswith("-vehicle")
+            else "")
         print(f"   {label:45s} {wall:6.2f} s whole process, {loop:6.2f} s loop{target}")
 
 

@@ -236,6 +236,35 @@ def _described(description, unit):
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
          "corrugation_growth_rate", "Mz", "corrugation_series_error_estimate"}
 
+def _contact_names(pairs):
+    """``(names, expressions)`` for generated code over (contact, field) pairs: ``{"c0": contact,
+    ...}`` and ``["c0.Fx", ...]`` (the fields are ContactPoint slot names)."""
+    names, index, expressions = {}, {}, []
+    for c, field in pairs:
+        i = index.setdefault(id(c), len(index))
+        names[f"c{i}"] = c
+        expressions.append(f"c{i}.{field}")
+    return names, expressions
+
+
+def _assigner(pairs):
+    """``assign(values)`` setting the (contact, field) ``pairs`` to ``values`` (same length) in
+    one statement: a vehicle sets its K x 11 inputs at every step, and one unpacking
+    assignment of slots costs a tenth of a loop of setattr calls."""
+    names, targets = _contact_names(pairs)
+    namespace = dict(names)
+    exec(f"def assign(values):\n    {', '.join(targets)}, = values\n", namespace)  # noqa: S102
+    return namespace["assign"]
+
+
+def _reader(pairs):
+    """``read()``: the list of the (contact, field) ``pairs``' values (see :func:`_assigner`)."""
+    names, sources = _contact_names(pairs)
+    namespace = dict(names)
+    exec(f"def read():\n    return [{', '.join(sources)}]\n", namespace)  # noqa: S102
+    return namespace["read"]
+
+
 def _no_auxiliary(contact):
     """Before initialisation: no effect computes anything on demand."""
 
@@ -487,7 +516,8 @@ class WheelRailContact(Fmi2Slave):
             # (bound to the vehicle, not to self: no reference cycle through the slave)
             self._auxiliary_all = self._vehicle.auxiliary
             summary = self._vehicle.summary
-            self.__dict__.pop("do_step", None)
+            # the whole step without the slave's frames (as for one contact, below)
+            self.do_step = self._vehicle.fmu_step(self._do_step_full, self._log_step_failure)
         else:
             self._pipeline = _effects.build_pipeline(scene, tables_dir=tables_dir,
                                                      warn=self._warn_once)
@@ -590,19 +620,16 @@ class WheelRailContact(Fmi2Slave):
         if not self._initialised:
             return Fmi2Slave.set_real(self, vrs, values)
         key = tuple(vrs)
-        fields = self._real_setters.get(key)
-        if fields is None:
-            fields = self._real_setters[key] = self._real_fields(key, inputs=True)
-        if not fields:
+        assign = self._real_setters.get(key)
+        if assign is None:
+            fields = self._real_fields(key, inputs=True)
+            assign = self._real_setters[key] = (
+                _assigner(fields if CONTACTS > 1 else [(self._contact, f) for f in fields])
+                if fields else False)
+        if assign is False:
             self._refuse_fixed(vrs)
             return Fmi2Slave.set_real(self, vrs, values)
-        if CONTACTS == 1:
-            c = self._contact
-            for field, value in zip(fields, values):
-                setattr(c, field, value)
-        else:
-            for (c, field), value in zip(fields, values):
-                setattr(c, field, value)
+        assign(values)
 
     def set_integer(self, vrs, values):
         self._refuse_fixed(vrs)
@@ -655,10 +682,13 @@ class WheelRailContact(Fmi2Slave):
             lazy = any(f in _LAZY for _, f in fields)
             aux = self._auxiliary_all
 
-            def get(_fields=fields):
-                if lazy:
-                    aux(None)               # (every contact's, once)
-                return [getattr(c, f) for c, f in _fields]
+            read = _reader(fields)
+            if not lazy:
+                return read
+
+            def get():
+                aux(None)               # (every contact's, once)
+                return read()
             return get
         c, get = self._contact, operator.attrgetter(*fields)
         lazy = any(f in _LAZY for f in fields)

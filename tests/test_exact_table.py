@@ -987,3 +987,28 @@ def test_evaluate_contacts_gives_each_contact_what_a_single_call_gives(table, mo
                                    atol=1e-11 * max(abs(v) for v in want[5:]))
     far = table.creep_solution_3d(*contacts[-1])
     assert (res[-1, 0], res[-1, 1]) == pytest.approx((far.tx, far.ty), rel=1e-9)
+
+
+@needs_table
+def test_a_batch_of_changing_contacts_is_evaluated_in_any_order_alike():
+    """From SORT_AFTER_POINTS points the reader evaluates changing contacts in the order of
+    their a0/b0 (the table's outermost axis): the values are each point's own, bit for bit
+    those of the same points shuffled and of a batch too small to be sorted."""
+    import railcontact.exact_table as et
+
+    table = ExactCreepTable.from_file(TABLE)
+    rng = np.random.default_rng(57)
+    n = et.SORT_AFTER_POINTS + 45
+    xi, eta = rng.uniform(-4e-3, 4e-3, (2, n))
+    phi = rng.uniform(-3.0, 3.0, n)
+    a0 = rng.uniform(2e-3, 9e-3, n)
+    whole = table.creep_solution_3d(*_args(xi, eta, phi, a0=a0))
+    p = rng.permutation(n)
+    shuffled = table.creep_solution_3d(*_args(xi[p], eta[p], phi[p], a0=a0[p]))
+    for field in ("tx", "ty", "spin_moment", "stick_area_fraction", "sensitivity"):
+        np.testing.assert_array_equal(getattr(shuffled, field), getattr(whole, field)[p],
+                                      err_msg=field)
+    m = et.SORT_AFTER_POINTS - 1            # (fewer points: in the order given)
+    few = table.creep_solution_3d(*_args(xi[:m], eta[:m], phi[:m], a0=a0[:m]))
+    np.testing.assert_array_equal(few.tx, whole.tx[:m])
+    np.testing.assert_array_equal(few.sensitivity, whole.sensitivity[:m])

@@ -29,7 +29,7 @@ import numpy as np
 __all__ = ["EXPORTS", "BATCH_EXPORTS", "matches", "aot_batch", "AOT_MODULE", "aot_module",
            "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force",
            "creep_table_point", "creep_table_force", "superposed_response", "exact_kernels",
-           "build_aot"]
+           "unit_ellipses_kernel", "batch_kernel", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -56,6 +56,9 @@ EXPORTS = (
      "UniTuple(f8, 2)(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8)"),
     ("superposed_response", "_response_kernels",
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
+    # the Hertz ellipses of changing curvatures (railcontact.effects.normal.unit_ellipses)
+    ("unit_ellipses_kernel", "_hertz_kernels",
+     "i8(f8[::1], f8[::1], f8, f8[::1], f8[:, ::1], f8[:, ::1])"),
 )
 
 # --- kernels compiled ahead of time for a wheel: the serial batches -----------------------
@@ -296,13 +299,41 @@ def superposed_response(fbuf, ibuf, harm):
                         -1.0, np.zeros(4))
 
 
+@lru_cache(maxsize=1)
+def unit_ellipses_kernel():
+    """The Hertz ellipses of changing curvatures (``_hertz_kernels.unit_ellipses_kernel``) as a
+    plain callable: the ahead-of-time copy, or the entry point of numba's signature."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.unit_ellipses_kernel
+    from . import _hertz_kernels  # noqa: PLC0415  (numba: only when needed)
+
+    # (no pairs: the kernel returns at once)
+    return _entry_point(_hertz_kernels.unit_ellipses_kernel, np.zeros(0), np.zeros(0), 1.0,
+                        np.zeros(2), np.zeros((1, 8)), np.zeros((0, 3)))
+
+
+def batch_kernel(name, args):
+    """The serial batch kernel ``name`` of :mod:`railcontact._exact_kernels` as a plain callable
+    for arguments of the types of ``args``: the ahead-of-time copy where there is one
+    (:func:`aot_batch`), else numba's entry point for those types (compiled or loaded from
+    the cache by calling it once with ``args``, which it overwrites the outputs of). For a
+    caller that makes many small batch calls with arrays of fixed types (the vehicle FMU's
+    step): no type dispatch, no lock, no threads."""
+    aot = aot_batch(name, args)
+    if aot is not None:
+        return aot
+    return _entry_point(getattr(exact_kernels(), name), *args)
+
+
 def build_aot(directory, batches=False):
-    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS`) ahead of time into
+    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS`, or those of them
+    ``batches`` names) ahead of time into
     ``directory`` as the extension module ``_aot_kernels`` (``numba.pycc``: needs a C
     compiler and the Python headers; generic code for the architecture, e.g. x86-64, so the
-    module runs on any CPU of it). Used by the FMU build (the per-step kernels only: the FMU
-    makes no batch calls, and each export adds to its build time) and by the wheel's
-    (``setup.py``, with the batches).
+    module runs on any CPU of it). Used by the FMU build (the per-step kernels, and for a
+    vehicle FMU the one batch kernel its step calls: each export adds to the build time) and
+    by the wheel's (``setup.py``, with all the batches).
 
     Returns
     -------
@@ -316,14 +347,18 @@ def build_aot(directory, batches=False):
             warnings.simplefilter("ignore")         # numba.pycc: pending deprecation
             from numba.pycc import CC  # noqa: PLC0415
 
-            from . import _response_kernels  # noqa: PLC0415
+            from . import _hertz_kernels, _response_kernels  # noqa: PLC0415
 
             modules = {"_spline_kernels": _spline_kernels(), "_exact_kernels": exact_kernels(),
-                       "_response_kernels": _response_kernels}
+                       "_response_kernels": _response_kernels, "_hertz_kernels": _hertz_kernels}
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False
-            for name, module, signature in (_all_exports() if batches else EXPORTS):
+            if batches is True:
+                batches = [name for name, _, _ in BATCH_EXPORTS]
+            for name, module, signature in _all_exports():
+                if name in {n for n, _, _ in BATCH_EXPORTS} and name not in (batches or ()):
+                    continue
                 cc.export(name, signature)(getattr(modules[module], name).py_func)
             cc.compile()
     except Exception as exc:  # noqa: BLE001  (no compiler, no headers, a numba without pycc)

@@ -90,6 +90,11 @@ _new_tuple = tuple.__new__
 #: contact) pays no slab: until then every call made one, 14-17 ms a call.
 SLAB_AFTER_POINTS = 4096
 
+#: Points of changing contacts in one batch from which the reader evaluates them in the order
+#: of their a0/b0 (the table's outermost axis): 10-15 % less time per point on a batch of
+#: random contacts (2026-11-28), more than the sort costs from about this many points.
+SORT_AFTER_POINTS = 256
+
 #: Points asked at one Poisson's ratio (any contacts) before the reader sums the table over
 #: nu there (:meth:`ExactCreepTable.prepare`: 0.1-0.3 s, after which a point of a changing
 #: contact costs about a third).
@@ -716,6 +721,11 @@ class ExactCreepTable:
                 if np.all(nu[idx] == nu[idx[0]]):   # one material, many contacts
                     nu_slab = self._nu_coefficients(float(nu[idx[0]]), idx.size)
                     coef = coef if nu_slab is None else nu_slab[0]
+                if idx.size >= SORT_AFTER_POINTS:
+                    # in the order of a0/b0, the coefficients' outermost axis: neighbouring
+                    # points read neighbouring planes (each point's values are its own: the
+                    # same bits in any order)
+                    idx = idx[np.argsort(log_g[idx], kind="stable")]
                 with np.errstate(all="ignore"):
                     _batch(_table_batch(coef), idx.size, self._tbuf, coef, xi_x[idx],
                            xi_y[idx], phi[idx], n_load[idx], a0[idx], b0[idx], e_mod[idx],

@@ -6,12 +6,13 @@ import math
 
 import numpy as np
 
-from .. import hertz
+from .. import _compiled, hertz
 from .._validation import check_range
 from ..scene import DEFAULT_SCENE
 from .base import Effect
 
-__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipses"]
+__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipses", "inverse_grid",
+           "make_inverse_grid", "write_inverse_grid", "INVERSE_GRID_DATA"]
 
 _FLOAT_MAX = 1.7976931348623157e308
 
@@ -31,34 +32,66 @@ _INVERSE_GRID = []
 _COMPLEX_STEP = 1e-30
 
 
-def _inverse_grid():
-    """``(nodes, coefficients)``: the nodes of log f (increasing from 0) and, per interval,
-    (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of u(log f) as
-    c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope du/dlog f
-    linear between the nodes' s0, s1."""
-    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
+def make_inverse_grid():
+    """``(nodes, coefficients)`` of :func:`inverse_grid`, computed (scipy's ``elliprd`` with a
+    complex argument: the slopes by complex step)."""
+    from scipy.special import elliprd  # noqa: PLC0415  (the grid's data: see INVERSE_GRID_DATA)
 
+    u = np.linspace(math.log(hertz.AXIS_RATIO_MIN), 0.0, 4001)
+    k2 = np.exp(2.0 * u)
+    z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
+    f = elliprd(0.0, 1.0, z) / elliprd(0.0, z, 1.0)
+    nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
+        np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
+    nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
+    h = np.diff(nodes)
+    m0, m1 = slope[:-1] * h, slope[1:] * h
+    y0, y1 = y[:-1], y[1:]
+    coefficients = np.column_stack([
+        nodes[:-1], 1.0 / h, y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1,
+        2.0 * (y0 - y1) + m0 + m1, slope[:-1], slope[1:] - slope[:-1]])
+    return nodes, np.ascontiguousarray(coefficients)
+
+
+#: :func:`make_inverse_grid`'s result kept in the package (``data/hertz_inverse_grid.npz``),
+#: so that a vehicle FMU's initialisation imports no scipy (``scipy.special``: 0.3-0.6 s of
+#: a fresh process); rewritten with :func:`write_inverse_grid`, checked by a test.
+INVERSE_GRID_DATA = "hertz_inverse_grid.npz"
+
+
+def write_inverse_grid(path=None):
+    """Write :data:`INVERSE_GRID_DATA` (default: into the package's ``data/``)."""
+    from .._files import package_directory  # noqa: PLC0415
+
+    nodes, coefficients = make_inverse_grid()
+    path = package_directory() / "data" / INVERSE_GRID_DATA if path is None else path
+    with open(path, "wb") as fh:
+        np.savez(fh, nodes=nodes, coefficients=coefficients)
+
+
+def inverse_grid():
+    """The inverse of log f(e^u) (f of :func:`railcontact.hertz.hertz_3d`, decreasing in
+    k = e^u): ``(nodes, coefficients)``, the nodes of log f (increasing from 0) and, per
+    interval, (node, 1/width, c0, c1, c2, c3, s0, s1 - s0): the cubic Hermite interpolant of
+    u(log f) as c0 + t (c1 + t (c2 + t c3)), t in [0, 1] across the interval, and its slope
+    du/dlog f linear between the nodes' s0, s1. Read from :data:`INVERSE_GRID_DATA` (else
+    computed) on first use."""
     if not _INVERSE_GRID:
-        u = np.linspace(math.log(hertz.AXIS_RATIO_MIN), 0.0, 4001)
-        k2 = np.exp(2.0 * u)
-        z = k2 + 1j * (2.0 * _COMPLEX_STEP) * k2               # d(k^2)/du = 2 k^2
-        f = elliprd(0.0, 1.0, z) / elliprd(0.0, z, 1.0)
-        nodes, y, slope = (np.ascontiguousarray(v[::-1]) for v in (
-            np.log(f.real), u, f.real / (f.imag / _COMPLEX_STEP)))     # du / dlog f
-        nodes[0] = 0.0                  # (the circle, k = 1: exactly log 1)
-        h = np.diff(nodes)
-        m0, m1 = slope[:-1] * h, slope[1:] * h
-        y0, y1 = y[:-1], y[1:]
-        coefficients = np.column_stack([
-            nodes[:-1], 1.0 / h, y0, m0, 3.0 * (y1 - y0) - 2.0 * m0 - m1,
-            2.0 * (y0 - y1) + m0 + m1, slope[:-1], slope[1:] - slope[:-1]])
-        _INVERSE_GRID.append((nodes, coefficients))
+        from .._files import package_directory  # noqa: PLC0415
+
+        try:
+            with np.load(package_directory() / "data" / INVERSE_GRID_DATA) as data:
+                grid = (np.ascontiguousarray(data["nodes"], dtype=float),
+                        np.ascontiguousarray(data["coefficients"], dtype=float))
+        except (OSError, KeyError, ValueError):
+            grid = make_inverse_grid()
+        _INVERSE_GRID.append(grid)
     return _INVERSE_GRID[0]
 
 
 def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
     r"""Hertz ellipses at N = 1 N for many curvature pairs: what
-    :func:`railcontact.hertz.hertz_3d` gives, at the cost of a few ufunc calls.
+    :func:`railcontact.hertz.hertz_3d` gives, in one compiled loop.
 
     ``hertz_3d`` finds the eccentricity k = c_min/c_max of ``f(k) = B'/A'`` (or its inverse)
     by 64 bisection steps (about 0.5 ms a call); a contact whose curvatures change at every
@@ -69,7 +102,10 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
     grid of 4001 values of u (slopes by complex step; error ~1e-13) and takes one Newton step
     (error: round-off). The semi-axes and the pressure then follow by ``hertz_3d``'s own
     formulas. Same values as ``hertz_3d`` to a few ulp (tests/test_fmu_vehicle.py: 4e-15
-    relative on 10^3 random pairs); about 40 us for 1-8 pairs.
+    relative on 10^3 random pairs). One compiled loop over the pairs
+    (:func:`railcontact._hertz_kernels.unit_ellipses_kernel`, Carlson's R_D in it; its
+    ahead-of-time copy in an FMU): a few microseconds for 1-8 pairs, against about 40 with
+    numpy and ``scipy.special.elliprd``.
 
     Parameters
     ----------
@@ -86,44 +122,17 @@ def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poi
         Semi-axes [m] and maximum pressure [Pa] at N = 1 N (a0 = a1 N^(1/3), b0 = b1 N^(1/3),
         p0 = p1 N^(1/3)).
     """
-    from scipy.special import elliprd  # noqa: PLC0415  (scipy: on first use)
-
-    c_x = np.asarray(curvature_longitudinal, dtype=float)
-    c_y = np.asarray(curvature_lateral, dtype=float)
+    c_x = np.ascontiguousarray(curvature_longitudinal, dtype=float)
+    c_y = np.ascontiguousarray(curvature_lateral, dtype=float)
+    out = np.empty((c_x.size, 3))
     e_star = youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
-    c_major = np.minimum(c_x, c_y)        # the smaller curvature: the major axis along it
-    c_minor = np.maximum(c_x, c_y)
-    log_ratio = np.log(c_minor / c_major)
-    nodes, coefficients = _inverse_grid()
-    if not log_ratio.max(initial=0.0) <= nodes[-1]:    # beyond a0/b0 = 1e6: hertz_3d's
-        inside = log_ratio <= nodes[-1]                  # clipped answer there
-        out = [np.empty(c_x.shape) for _ in range(3)]
-        for k in np.flatnonzero(~inside):
-            for o, v in zip(out, hertz.hertz_3d(1.0, c_x[k], c_y[k], youngs_modulus,
-                                                poisson_ratio)):
-                o[k] = v
-        if np.any(inside):
-            for o, v in zip(out, unit_ellipses(c_x[inside], c_y[inside], youngs_modulus,
-                                               poisson_ratio)):
-                o[inside] = v
-        return tuple(out)
-    # cubic Hermite interpolation of u(log f), then one Newton step with its slope (a circle,
-    # log_ratio = 0, gives u = 0 and k = 1 exactly)
-    c = coefficients[np.minimum(np.searchsorted(nodes, log_ratio, "right") - 1,
-                                nodes.size - 2)]
-    t = (log_ratio - c[:, 0]) * c[:, 1]
-    u = c[:, 2] + t * (c[:, 3] + t * (c[:, 4] + t * c[:, 5]))
-    k2 = np.exp(2.0 * u)
-    u = u - (np.log(elliprd(0.0, 1.0, k2) / elliprd(0.0, k2, 1.0)) - log_ratio) * (
-        c[:, 6] + t * c[:, 7])
-    k = np.exp(u)
-    rd = elliprd(0.0, k * k, 1.0)
-    c_max = np.cbrt(rd / (2.0 * np.pi * e_star * c_major))     # hertz_3d's formula at N = 1
-    c_min = k * c_max
-    x_major = c_y >= c_x
-    a1 = np.where(x_major, c_max, c_min)
-    b1 = np.where(x_major, c_min, c_max)
-    return a1, b1, 1.5 * (1.0 / (np.pi * a1 * b1))
+    nodes, coefficients = inverse_grid()
+    if _compiled.unit_ellipses_kernel()(c_x, c_y, float(e_star), nodes, coefficients, out):
+        # beyond a0/b0 = 1e6 either way: hertz_3d's clipped answer there
+        for k in np.flatnonzero(np.isnan(out[:, 0])):
+            out[k] = [float(v) for v in hertz.hertz_3d(1.0, c_x[k], c_y[k], youngs_modulus,
+                                                       poisson_ratio)]
+    return out[:, 0], out[:, 1], out[:, 2]
 
 
 def check_geometry_input(name, value, unit):
@@ -150,13 +159,15 @@ class NormalContact(Effect):
     ``semi_axis_longitudinal``, ``semi_axis_lateral``): the contact's fields of those names,
     when not None, override the scene's. A changed pair of curvatures gives a new ellipse at
     1 N by :func:`unit_ellipses` (the same values as ``hertz_3d`` to a few ulp); unchanged
-    ones reuse the last (at the scene's own values, ``hertz_3d``'s own result). A value that
+    ones reuse the last (at the scene's own values, ``hertz_3d``'s own result, or ``unit``,
+    the scene's ellipse at 1 N (a1, b1, p1) when the caller made it: a vehicle, by
+    :func:`unit_ellipses`, without importing scipy). A value that
     is not in (0, inf) is a ValueError naming the input.
     """
 
     name = "normal"
 
-    def __init__(self, scene, mu_source=None, warn=None):
+    def __init__(self, scene, mu_source=None, warn=None, unit=None):
         super().__init__()
         self._warn = warn if warn is not None else (lambda key, msg: None)
         geo = scene.geometry
@@ -169,8 +180,8 @@ class NormalContact(Effect):
             self._fixed = False
         elif geo["kind"] == "curvatures":
             self._cx, self._cy = geo["curvature_longitudinal"], geo["curvature_lateral"]
-            a1, b1, p1 = hertz.hertz_3d(1.0, self._cx, self._cy, scene.youngs_modulus,
-                                        scene.poisson_ratio)
+            a1, b1, p1 = unit if unit is not None else hertz.hertz_3d(
+                1.0, self._cx, self._cy, scene.youngs_modulus, scene.poisson_ratio)
             self._a1, self._b1, self._p1 = float(a1), float(b1), float(p1)
             self._fixed = False
         else:

@@ -143,7 +143,7 @@ def checked_steps(steps):
     return checked
 
 
-def build_pipeline(scene, tables_dir=None, warn=None, creep_table=None):
+def build_pipeline(scene, tables_dir=None, warn=None, creep_table=None, normal_unit=None):
     """Build the effects ``scene`` switches on (and only those), in the registry's order.
 
     The normal contact comes first, then the effects of :data:`railcontact.scene.EFFECTS` that
@@ -163,6 +163,9 @@ def build_pipeline(scene, tables_dir=None, warn=None, creep_table=None):
     creep_table : optional
         A creep table reader already loaded for this scene (another contact's): the creep
         effect uses it instead of loading one (:class:`railcontact.effects.Vehicle`).
+    normal_unit : tuple, optional
+        The scene's Hertz ellipse at 1 N (a1, b1, p1) for a scene given by curvatures, if the
+        caller made it (:class:`~.normal.NormalContact`'s ``unit``).
 
     Raises
     ------
@@ -177,7 +180,7 @@ def build_pipeline(scene, tables_dir=None, warn=None, creep_table=None):
             raise EffectUnavailable(f"effect {name} not available in this build")
     replaced = {victim: name for name in EFFECTS if name in scene.effects
                 for victim in EFFECTS[name].replaces if victim in scene.effects}
-    effects = {"normal": NormalContact(scene, warn=warn)}
+    effects = {"normal": NormalContact(scene, warn=warn, unit=normal_unit)}
     wear = None
     for name in EFFECTS:
         if name not in scene.effects or name in replaced:

@@ -13,21 +13,35 @@ the costly parts are evaluated for all K contacts at once:
   :meth:`railcontact.strip_table.CreepTable._solve`), not K calls. The analytic
   theories keep their per-contact scalar paths (a loop over the contacts).
 
+The scene a vehicle model runs most, Kalker's exact theory from its table on contacts given
+by their curvatures (effects normal and creep only), takes a path without per-effect Python
+(:meth:`Vehicle.checked_step`): the inputs of all contacts are read into one array, checked,
+the changed ellipses made in one compiled call (:func:`~.normal.unit_ellipses`' kernel), the
+semi-axes scaled, the forces, moment, stick area and Jacobian of every contact evaluated in
+one compiled call of the table's batch kernel on the table summed over Poisson's ratio (made
+when the vehicle is built: :meth:`railcontact.exact_table.ExactCreepTable.prepare`), and the
+outputs written back in one pass. A lifted wheel, a point beyond the table or another scene
+takes the per-effect path above.
+
 A contact gives what a single-contact instance with the same inputs gives: the same effect
-code, and the batched table call evaluates the same spline (round-off apart:
-tests/test_fmu_vehicle.py). Errors name the contact (1-based, as in the FMU's ``name[k]``).
+code or the same kernels, and the batched table call evaluates the same spline (round-off
+apart: tests/test_fmu_vehicle.py). Errors name the contact (1-based, as in the FMU's
+``name[k]``).
 """
 
 from __future__ import annotations
 
 import math
+from operator import attrgetter
 
 import numpy as np
 
+from .. import _compiled
 from .._validation import check_range
 from ..scene import INPUTS
-from .normal import check_geometry_input, unit_ellipses
-from .pipeline import build_pipeline
+from .normal import (NO_NORMAL_FORCE_MESSAGE, check_geometry_input, inverse_grid,
+                     unit_ellipses)
+from .pipeline import build_pipeline, inputs_plausible
 
 __all__ = ["Vehicle", "MAX_CONTACTS"]
 
@@ -51,12 +65,20 @@ class Vehicle:
     def __init__(self, scene, contacts, tables_dir=None, warn=None):
         self.scene = scene
         self.contacts = list(contacts)
-        first = build_pipeline(scene, tables_dir=tables_dir, warn=warn)
+        unit = None
+        if scene.geometry["kind"] == "curvatures":
+            # the scene's ellipse at 1 N once, by the kernel of the changing curvatures (no
+            # scipy import; hertz_3d's values to a few ulp)
+            unit = tuple(float(v[0]) for v in unit_ellipses(
+                np.array([scene.geometry["curvature_longitudinal"]]),
+                np.array([scene.geometry["curvature_lateral"]]), scene.youngs_modulus,
+                scene.poisson_ratio))
+        first = build_pipeline(scene, tables_dir=tables_dir, warn=warn, normal_unit=unit)
         creep = first.effects.get("creep")
         table = getattr(creep, "_table", None)
         # one reader object for every contact (the loader gives it; the others reuse it)
         self.pipelines = [first] + [build_pipeline(scene, tables_dir=tables_dir, warn=warn,
-                                                   creep_table=table)
+                                                   creep_table=table, normal_unit=unit)
                                     for _ in self.contacts[1:]]
         names = list(first.effects)
         i = names.index("creep") if "creep" in names else len(names)
@@ -76,6 +98,128 @@ class Vehicle:
             self._use_spin = creep.use_spin
         self.summary = first.summary()
         self._pipeline_of = {id(c): p for c, p in zip(self.contacts, self.pipelines)}
+        self._warn = warn if warn is not None else (lambda key, msg: None)
+        self._lazy = True       # (outputs may be computed when read: auxiliary)
+        self._fast = (names == ["normal", "creep"] and self._batch is not None
+                      and creep._exact and self._curvatures)
+        if self._fast:
+            self._fast_setup(creep)
+
+    # -- the array path (exact table, curvatures, normal and creep only) --------------------
+    #: The inputs the array path reads, in the order of its rows: the three that must be
+    #: >= 0 first, then the other four checked for being finite, then the curvatures.
+    _FAST_INPUTS = ("normal_force", "rolling_speed", "friction_coefficient",
+                    "creepage_longitudinal", "creepage_lateral", "spin", "rail_position",
+                    "curvature_longitudinal", "curvature_lateral")
+
+    def _fast_setup(self, creep):
+        k = len(self.contacts)
+        self._read = attrgetter(*self._FAST_INPUTS)
+        # the curvatures (2, K) of the ellipses at 1 N in self._unit (3, K): a0, b0, p0
+        # (the normal effects keep their own, the per-effect path's: both map curvatures to
+        # the same ellipse, so neither needs the other's)
+        self._cxy = np.array([[n._cx for n in self._normals], [n._cy for n in self._normals]])
+        self._unit_rows = np.array([[n._a1, n._b1, n._p1] for n in self._normals])   # (K, 3)
+        self._unit = self._unit_rows.T
+        self._e_star = float(self._e / (2.0 * (1.0 - self._nu**2)))
+        table = self._table
+        table.prepare(self._nu)     # (deterministic: every step on the table summed over nu)
+        self._coef = table._nu_slabs[float(self._nu)][0]
+        self._tbuf = table._tbuf
+        self._e_k, self._nu_k = np.full(k, float(self._e)), np.full(k, float(self._nu))
+        self._zeros = np.zeros(k)
+        self._r, self._ok = np.zeros((k, 14)), np.zeros(k, dtype=bool)
+        self._out = np.zeros((k, 19))
+        self._kernel = None         # the batch kernel, resolved with the first step
+        self._estimate = creep.table_error_estimate
+        self._rows = list(zip(self.contacts, self._normals, self._creeps))
+
+    def _fast_geometry(self, cxy):
+        """New ellipses at 1 N for the contacts whose curvatures ``cxy`` (2, K; checked)
+        changed: one compiled call."""
+        nodes, coefficients = inverse_grid()
+        kernel = _compiled.unit_ellipses_kernel()
+        changed = (cxy != self._cxy).any(axis=0)
+        if changed.all():           # (a vehicle's contacts move together)
+            if kernel(cxy[0], cxy[1], self._e_star, nodes, coefficients, self._unit_rows):
+                self._unit_rows[:] = np.column_stack(unit_ellipses(cxy[0], cxy[1], self._e,
+                                                                   self._nu))   # (rare)
+            self._cxy[:] = cxy
+            return
+        changed = np.flatnonzero(changed)
+        cx, cy = cxy[0, changed], cxy[1, changed]
+        out = np.empty((changed.size, 3))
+        if kernel(cx, cy, self._e_star, nodes, coefficients, out):
+            out = np.column_stack(unit_ellipses(cx, cy, self._e, self._nu))   # (rare)
+        self._unit_rows[changed] = out
+        self._cxy[:, changed] = cxy[:, changed]
+
+    def _fast_step(self, step_size):
+        """The array path: True when stepped, False (nothing changed) if the cheap input check
+        fails, None where it does not apply (a geometry input not set yet)."""
+        contacts = self.contacts
+        read = self._read
+        try:
+            x = np.array([read(c) for c in contacts], dtype=float).T.copy()
+        except TypeError:           # (None: a geometry input not set yet)
+            return None
+        cxy = x[7:9]
+        if not (math.isfinite(float(x[:7].sum())) and x[:3].min() >= 0.0):
+            return False
+        if (cxy != self._cxy).any():
+            if not (cxy.min() > 0.0 and cxy.max() < math.inf):
+                for k, c in enumerate(contacts):
+                    try:
+                        check_geometry_input("curvature_longitudinal", cxy[0, k], "1/m")
+                        check_geometry_input("curvature_lateral", cxy[1, k], "1/m")
+                    except ValueError as exc:
+                        raise ValueError(f"contact {k + 1}: {exc}") from None
+            self._fast_geometry(cxy)
+        n_load = x[0]
+        scale = n_load ** (1.0 / 3.0)
+        unit = self._unit
+        a0, b0, p0 = unit[0] * scale, unit[1] * scale, unit[2] * scale
+        r, ok = self._r, self._ok
+        live = n_load.min() > 0.0
+        if live:
+            args = (self._tbuf, self._coef, x[3], x[4], x[5] if self._use_spin else self._zeros,
+                    n_load, a0, b0, self._e_k, self._nu_k, x[2], True, 4, r, ok)
+            kernel = self._kernel
+            if kernel is None:
+                kernel = self._kernel = _compiled.batch_kernel("creep_table_batch_nu", args)
+            kernel(*args)
+            live = ok.all()
+        self._lazy = False
+        if not live:            # a lifted wheel, a point beyond the table: per contact
+            for (c, normal, _), a0_, b0_, p0_ in zip(self._rows, a0.tolist(), b0.tolist(),
+                                                      p0.tolist()):
+                normal.calls += 1
+                c.step_size = step_size
+                c.a0, c.b0, c.p0 = a0_, b0_, p0_
+                c.contact_half_width = a0_
+                if c.normal_force <= 0.0 and (c.creepage_longitudinal or c.creepage_lateral
+                                              or c.spin):
+                    self._warn("no-normal-force", NO_NORMAL_FORCE_MESSAGE)
+            self._exact_batch()
+            return True
+        out = self._out
+        out[:, 0], out[:, 1], out[:, 2] = a0, b0, p0
+        out[:, 3:17] = r
+        zc = np.minimum(r[:, 4], 1.0)
+        np.sqrt(1.0 - zc * zc, out=out[:, 17])          # b*/b0, Eq. (2.84)
+        np.subtract(1.0, zc, out=out[:, 18])            # a*(0)/a0, Eq. (2.83)
+        estimate = self._estimate
+        for (c, normal, creep), row in zip(self._rows, out.tolist()):
+            normal.calls += 1
+            creep.calls += 1        # (its _aux_args stay None: the exact table's)
+            c.step_size = step_size
+            (c.a0, c.b0, c.p0, c.Fx, c.Fy, c.Mz, c.stick_area_fraction, _,
+             c.dFx_dxi_x, c.dFx_dxi_y, c.dFx_dphi, c.dFy_dxi_x, c.dFy_dxi_y, c.dFy_dphi,
+             c.dMz_dxi_x, c.dMz_dxi_y, c.dMz_dphi, c.stick_width_ratio, c.r_a0) = row
+            c.contact_half_width = row[0]
+            c.creep_within_validity = True
+            c.creep_table_error_estimate = estimate
+        return True
 
     # -- the step ------------------------------------------------------------------------------
     def check_inputs(self):
@@ -97,9 +241,49 @@ class Vehicle:
                 except ValueError as exc:
                     raise ValueError(f"contact {k + 1}: {name}[{k + 1}]: {exc}") from None
 
+    def checked_step(self, step_size):
+        """:meth:`step` behind the cheap input check of every contact
+        (:func:`~.pipeline.inputs_plausible`): True when stepped, False (nothing changed)
+        when the check does not pass (the caller then makes :meth:`check_inputs`, which names
+        the input)."""
+        if self._fast:
+            done = self._fast_step(step_size)
+            if done is not None:
+                return done
+        if not all(inputs_plausible(c) for c in self.contacts):
+            return False
+        self._plain_step(step_size)
+        return True
+
+    def fmu_step(self, otherwise, on_error):
+        """The FMU's ``do_step(current_time, step_size)`` for this vehicle (as
+        :meth:`~.pipeline.Pipeline.fmu_step` for one contact): :meth:`checked_step`, else
+        ``otherwise(current_time, step_size)`` (the slave's full path: the range check that
+        names the input, then :meth:`step`); a model's ValueError goes to
+        ``on_error(current_time, exc)`` and is re-raised."""
+        checked = self.checked_step
+
+        def do_step(current_time, step_size, _inf=math.inf):
+            if 0.0 <= step_size < _inf:
+                try:
+                    if checked(step_size):
+                        return True
+                except ValueError as exc:
+                    on_error(current_time, exc)
+                    raise
+            return otherwise(current_time, step_size)
+        return do_step
+
     def step(self, step_size):
         """Evaluate every contact (inputs checked by :meth:`check_inputs` first). A model's
         ValueError is re-raised naming the contact."""
+        if self._fast and self._fast_step(step_size):
+            return
+        self._plain_step(step_size)
+
+    def _plain_step(self, step_size):
+        """The per-effect path of :meth:`step`."""
+        self._lazy = True
         contacts = self.contacts
         for c in contacts:
             c.step_size = step_size
@@ -211,6 +395,8 @@ class Vehicle:
     def auxiliary(self, contact=None):
         """The outputs computed only when read: of ``contact`` (one of :attr:`contacts`), or of
         every contact (None)."""
+        if not self._lazy:      # (the array path set every output)
+            return
         if contact is not None:
             self._pipeline_of[id(contact)].auxiliary(contact)
             return
@@ -221,5 +407,6 @@ class Vehicle:
         return [p.get_state() for p in self.pipelines]
 
     def set_state(self, state):
+        self._lazy = True
         for p, s in zip(self.pipelines, state):
             p.set_state(s)
