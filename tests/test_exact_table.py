@@ -661,8 +661,8 @@ def test_jacobian_against_finite_differences_of_the_solver(table):
 
 @needs_table
 def test_beyond_the_spin_axis_the_solver_answers(table):
-    """|tau| > 20: the documented fallback, the solver at the table's setting (36 lateral
-    elements for a0/b0 < 0.87); without a solver attached, a ValueError naming the spin and
+    """|tau| > 20: the documented fallback, the solver at the table's setting (48 lateral
+    elements for a0/b0 < 0.115, 36 for a0/b0 < 0.87); without a solver attached, a ValueError naming the spin and
     the table's range."""
     from railcontact import creep_solution_3d
 
@@ -670,12 +670,13 @@ def test_beyond_the_spin_axis_the_solver_answers(table):
     got = table.creep_solution_3d(*args, sensitivities=False)
     want = creep_solution_3d(*args, method="exact", tolerance=1e-4)  # the table's setting
     assert got.tx == want.tx and got.ty == want.ty and got.spin_moment == want.spin_moment
-    # a batch with a narrow contact beyond the a0/b0 axis: that one at 36 lateral elements
-    # (the table's rule for narrow contacts with large spin), the other at 20, both in place
+    # a batch with a narrow contact beyond the a0/b0 axis: that one at 48 lateral elements
+    # (the table's rule for the narrowest contacts with large spin), the other at 20, both in
+    # place
     narrow = _args(1e-4, 0.0, 40.0, a0=1e-3, b0=2e-2)
     both = [np.array([x, y]) for x, y in zip(args, narrow)]
     got = table.creep_solution_3d(*both, sensitivities=False)
-    want_n = creep_solution_3d(*narrow, method="exact", grid=(30, 36), tolerance=1e-4)
+    want_n = creep_solution_3d(*narrow, method="exact", grid=(30, 48), tolerance=1e-4)
     assert got.tx[0] == want.tx and got.spin_moment[0] == want.spin_moment
     assert got.tx[1] == want_n.tx and got.ty[1] == want_n.ty
     assert got.stick_area_fraction[1] == want_n.stick_area_fraction
