@@ -779,6 +779,13 @@ def family_falling_3d(quick):
             ("polach 2005, its law at V s_C", "k_A = k_S = 1",
              lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="polach",
                                             rolling_speed=speed), False),
+            ("fastsim, friction law", "40 x 40 (default)",
+             lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="fastsim",
+                                            rolling_speed=speed), False),
+            ("fastsim, friction law", "20 x 20",
+             lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="fastsim",
+                                            rolling_speed=speed, n_strips=20,
+                                            n_elements=20), False),
             ("exact table, Coulomb mu_0", "the law ignored",
              lambda x, y, p: table.creep_force_3d(x, y, p, *contact, mu0), False),
             ("exact table, mu(RMS rigid slip)", "one table call", rigid, False)]

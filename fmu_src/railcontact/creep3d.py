@@ -386,8 +386,10 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         ``method="exact"`` (Kalker's exact theory with slip-dependent friction: the bound
         ``mu(|s|) p`` element by element, at the local slip; the force scale is
         ``mu(0) N``) and ``"polach"`` (a :class:`PolachFriction` only: its own 2005 law, at
-        the slip velocity ``V |xi|`` of the contact); every other method, ``"exact_table"``
-        included (no table fast path yet: docs/reference_solvers.md), raises ValueError. The law must give a finite ``mu >= 0`` at every slip and
+        the slip velocity ``V |xi|`` of the contact) and ``"fastsim"`` (the bound ``mu(q) p``
+        per element at the element's slip q: :mod:`railcontact.fastsim`); every other method,
+        ``"exact_table"`` included (no table fast path yet: docs/reference_solvers.md),
+        raises ValueError. The law must give a finite ``mu >= 0`` at every slip and
         ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model (default "modified_strip", the thesis's method; the module docstring
@@ -476,7 +478,7 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
     if method in COMPARISON_METHODS:
         tx, ty = _comparison(creepage_longitudinal, creepage_lateral, spin, normal_load, a0, b0,
                              youngs_modulus, poisson_ratio, friction_coefficient, method,
-                             method_options)[:2]
+                             method_options, law, speed)[:2]
         return CreepForce3D(tx, ty)
     _no_options(method, method_options)
     if method == "exact":
@@ -506,11 +508,11 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
     if not callable(friction_coefficient):
         return friction_coefficient, None, None, options
     law = friction_coefficient
-    if method not in ("exact", "exact_table", "polach"):
+    if method not in ("exact", "exact_table", "polach", "fastsim"):
         raise ValueError(
             f"method {method!r} cannot honour a friction law (friction_coefficient={law!r}): "
-            f"it is a Coulomb-friction theory; use method='exact' or 'exact_table' (or pass a "
-            f"number for friction_coefficient)")
+            f"it is a Coulomb-friction theory; use method='exact', 'exact_table' or 'fastsim' "
+            f"(or pass a number for friction_coefficient)")
     needs_speed = bool(getattr(law, "needs_rolling_speed", False))
     speed = None
     if method == "polach" and rolling_speed is None:
@@ -569,13 +571,17 @@ def _no_options(method, method_options):
                          f"{sorted(method_options)!r}")
 
 
-def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options):
+def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options, law=None,
+                speed=None):
     """(tx, ty, stick_area_fraction or None) of a method of COMPARISON_METHODS.
 
     Inputs are range-checked here, then each case is evaluated on the similar reference
     contact (:func:`_similar_reference`): FASTSIM, FaStrip and Polach's forces over mu N
     depend only on a0/b0, nu and the creepages over mu p0 / G (Polach 2005's slip velocity
-    V |xi| is kept by scaling the speed back), so no product of the inputs can overflow."""
+    V |xi| is kept by scaling the speed back), so no product of the inputs can overflow.
+    ``law`` (FASTSIM only; ``mu`` is then its mu(0)) and ``speed``: a friction law in the slip
+    (or, with ``speed``, the slip velocity), carried to the reference contact as for
+    ``method="exact"`` (the slip scaled back to the user's, also beyond the creepage cap)."""
     unknown = sorted(set(options) - set(_OPTIONS[method]))
     if unknown:
         raise ValueError(f"method {method!r} takes the options {list(_OPTIONS[method])!r}; "
@@ -589,6 +595,16 @@ def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options)
         speed = check_range("rolling_speed", options["rolling_speed"], "m/s", 0.0, None)
         with np.errstate(over="ignore", invalid="ignore"):
             options["rolling_speed"] = np.where(speed > 0.0, speed * speed_scale, 0.0)
+    if law is not None:
+        if speed is not None:
+            speed = np.broadcast_to(speed, np.broadcast_shapes(np.shape(speed),
+                                                               ref[0].shape))
+            if speed.shape != ref[0].shape:
+                raise ValueError(f"rolling_speed must broadcast with the other inputs (shape "
+                                 f"{ref[0].shape}); got shape {speed.shape}")
+        ref = ref[:8] + (_reference_law(law, sim["creepage_scale"][..., None],
+                                        None if speed is None else speed[..., None],
+                                        float(np.max(mu))),)
     if method == "polach":
         from .polach import polach_force_3d
         tx, ty = polach_force_3d(*ref, **options)
@@ -597,6 +613,9 @@ def _comparison(xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu, method, options)
         from . import fastsim
         fun = fastsim.fastsim_force_3d if method == "fastsim" else fastsim.fastrip_force_3d
         tx, ty, stick = fun(*ref, **options)
+    if law is not None:   # the bound is max mu(s) N, not mu(0) N: FASTSIM's own clip holds
+        tx, ty = tx * force_scale + 0.0, ty * force_scale + 0.0
+        return tx[()], ty[()], stick
     tx, ty = _coulomb_clipped(tx * force_scale, ty * force_scale, n_load, mu)
     return tx[()], ty[()], stick
 
@@ -798,7 +817,8 @@ def creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load
     if method in COMPARISON_METHODS:
         tx, ty, stick_own = _comparison(creepage_longitudinal, creepage_lateral, spin,
                                         normal_load, a0, b0, youngs_modulus, poisson_ratio,
-                                        friction_coefficient, method, method_options)
+                                        friction_coefficient, method, method_options, law,
+                                        speed)
         base = creep_solution_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a0,
                                  b0, youngs_modulus, poisson_ratio, friction_coefficient)
         stick = base.stick_area_fraction if stick_own is None else stick_own
@@ -906,9 +926,10 @@ def _reference_law(law, creepage_scale, speed, mu0):
         mu = np.broadcast_to(np.asarray(law(slip), dtype=float), slip.shape)
         if not np.all(np.isfinite(mu) & (mu >= 0.0)):
             i = np.flatnonzero(~(np.isfinite(mu) & (mu >= 0.0)))[0]
+            v = np.broadcast_to(1.0 if speed is None else speed, slip.shape).flat[i]
             raise ValueError(f"friction_coefficient {law!r} must give a finite mu >= 0 at "
                              f"every slip [-]; got {mu.flat[i]:g} at slip "
-                             f"{slip.flat[i] / (1.0 if speed is None else speed):g}")
+                             f"{slip.flat[i] / v:g}")
         return mu_ref * mu / mu0
     return mu_r
 
