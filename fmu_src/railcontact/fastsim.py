@@ -185,46 +185,70 @@ def _law_values(law, slip, where):
     return mu
 
 
-#: Bisection steps for the slip of a sliding element with a friction law (the bracket
-#: [0, L |p_trial| / dx] halved to 2^-60 of its width: the root to round-off).
-LAW_BISECTION_STEPS = 60
+#: The slip of a sliding element with a friction law (:func:`_sliding_slip`): halvings of the
+#: scan from q_max down (to 2^-40 q_max), and most steps of the regula falsi that follows.
+LAW_SCAN_STEPS = 40
+LAW_ROOT_STEPS = 60
 
 
 def _sliding_slip(law, t_abs, bound_unit, flex, step, q_prev):
-    """Slip magnitude q [-] of an element with a friction law: a root q > 0 of
+    """Slip magnitude q [-] of an element with a friction law: the largest root q > 0 of
 
         G(q) = q - (L / dx) (|p_trial| - mu(q) p_bound) = 0
 
     (q is the share of the element's rigid-slip increment that its traction cannot take up
     elastically; ``flex`` = L [m/Pa], ``bound_unit`` = p_bound, the parabolic bound per unit
-    friction [Pa]). The element slides where such a root is reached from the element before:
-    G(0) < 0 (the trial traction exceeds the static bound mu(0) p_bound, as under Coulomb
-    friction) or G(q_prev) < 0 with q_prev the slip of the element before in the strip (it
-    slid, and sliding on at the lower friction mu(q) is consistent: a falling law would let it
-    re-stick at once under the static bound, a stick/slip chatter the exact theory does not
-    show). The root is bracketed by [0 or q_prev, L |p_trial| / dx], where G >= 0, and found
-    by bisection (:data:`LAW_BISECTION_STEPS`); for a law convex in q (Eq. (5.16), Polach's)
-    it is the stable root (G' > 0). Returns (slides, q, mu(q)) (q = 0, mu = mu(0) where the
-    element sticks)."""
+    friction [Pa]). The element slides where G(0) < 0 (the trial traction exceeds the static
+    bound mu(0) p_bound, as under Coulomb friction), or where the element before it in the
+    strip slid (``q_prev > 0``) and G < 0 somewhere: it slides on at the lower friction
+    mu(q), where a falling law would otherwise let it re-stick at once under the static bound
+    (a stick/slip chatter the exact theory does not show). The largest root is the stable one
+    (G' >= 0; G >= 0 at L |p_trial| / dx): it is bracketed on the grid ``q_max 2^-k``,
+    k = 0..:data:`LAW_SCAN_STEPS`, then found by regula falsi (Illinois) to round-off. Returns
+    (slides, q, mu(q)) (q = 0 where the element sticks; mu None if no element slides)."""
     c = flex / step
-    lo = np.where(q_prev > 0.0, q_prev, 0.0)
-    g_lo = lo - c * (t_abs - _law_values(law, lo, None) * bound_unit)
-    from_prev = (q_prev > 0.0) & (g_lo < 0.0)
-    lo = np.where(from_prev, lo, 0.0)
     g_0 = -c * (t_abs - _law_values(law, np.zeros(t_abs.shape), None) * bound_unit)
-    slides = from_prev | (g_0 < 0.0)
-    if not np.any(slides):
-        return slides, np.zeros(t_abs.shape), None
-    hi = np.where(slides, np.maximum(c * t_abs, lo), 0.0)
-    lo = np.where(slides, lo, 0.0)
-    for _ in range(LAW_BISECTION_STEPS):
-        mid = 0.5 * (lo + hi)
-        g = mid - c * (t_abs - _law_values(law, mid, slides) * bound_unit)
-        lo = np.where(g < 0.0, mid, lo)
-        hi = np.where(g < 0.0, hi, mid)
-        if not np.any(hi - lo > 1e-15 * hi):
+    candidates = (g_0 < 0.0) | (q_prev > 0.0)
+    if not np.any(candidates):
+        return candidates, np.zeros(t_abs.shape), None
+    q_max = np.where(candidates, c * t_abs, 0.0)
+    hi, g_hi = q_max, q_max - c * (t_abs - _law_values(law, q_max, candidates) * bound_unit)
+    lo = np.zeros(t_abs.shape)
+    g_lo = np.where(g_0 < 0.0, g_0, 1.0)      # 1: no negative G seen yet
+    found = np.zeros(t_abs.shape, dtype=bool)
+    q_k = q_max
+    for _ in range(LAW_SCAN_STEPS):           # from q_max down: the first G < 0 brackets
+        q_k = 0.5 * q_k
+        g_k = q_k - c * (t_abs - _law_values(law, q_k, candidates) * bound_unit)
+        new = candidates & ~found & (g_k < 0.0)
+        lo, g_lo = np.where(new, q_k, lo), np.where(new, g_k, g_lo)
+        found |= new
+        higher = candidates & ~found
+        hi, g_hi = np.where(higher, q_k, hi), np.where(higher, g_k, g_hi)
+        if not np.any(candidates & ~found & (g_0 >= 0.0)):
             break
-    q = np.where(slides, hi, 0.0)
+    slides = candidates & (found | (g_0 < 0.0))
+    lo = np.where(found, lo, 0.0)
+    g_lo = np.where(slides, np.where(found, g_lo, g_0), -1.0)
+    g_hi = np.where(slides, g_hi, 1.0)
+    hi = np.where(slides, hi, 0.0)
+    width = hi - lo
+    side = np.zeros(t_abs.shape)              # Illinois: the end replaced last (-1 lo, +1 hi)
+    for _ in range(LAW_ROOT_STEPS):
+        q = np.where(g_hi > g_lo, (lo * g_hi - hi * g_lo) / np.where(g_hi > g_lo,
+                                                                     g_hi - g_lo, 1.0),
+                     0.5 * (lo + hi))
+        q = np.where((q > lo) & (q < hi), q, 0.5 * (lo + hi))
+        g = q - c * (t_abs - _law_values(law, q, slides) * bound_unit)
+        below = g < 0.0
+        g_hi = np.where(below & (side < 0.0), 0.5 * g_hi, g_hi)
+        g_lo = np.where(~below & (side > 0.0), 0.5 * g_lo, g_lo)
+        lo, g_lo = np.where(below, q, lo), np.where(below, g, g_lo)
+        hi, g_hi = np.where(below, hi, q), np.where(below, g_hi, g)
+        side = np.where(below, -1.0, 1.0)
+        if not np.any(slides & (hi - lo > 1e-13 * width) & (hi - lo > 1e-15 * hi)):
+            break
+    q = np.where(slides, np.where(-g_lo < g_hi, lo, hi), 0.0)
     return slides, q, _law_values(law, q, None)
 
 
