@@ -92,6 +92,7 @@ from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
 from .creep_common import (EXACT_TABLE_LATERAL_ELEMENTS_NARROW,
                            EXACT_TABLE_NARROW_ASPECT_MAX)
 from .errors import RollingConvergenceError
+from .friction import SmoothFriction
 from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
@@ -469,6 +470,14 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
         return table.creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                                     a0, b0, youngs_modulus, poisson_ratio, friction_coefficient)
+    if (method == "exact_table" and type(friction_coefficient) is SmoothFriction
+            and not method_options):
+        # one contact in plain floats: the compiled smooth-law path (None: the general one)
+        got = _falling_smooth_scalar(creepage_longitudinal, creepage_lateral, spin,
+                                     normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                     friction_coefficient)
+        if got is not None:
+            return got
     friction_coefficient, law, speed, method_options = _friction_input(
         friction_coefficient, rolling_speed, method, method_options)
     if law is not None and method == "exact_table":
@@ -552,6 +561,29 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
                        friction_decay=law.friction_decay)
         return mu0, None, None, options
     return mu0, law, speed, options
+
+
+def _falling_smooth_scalar(*args):
+    """``CreepForce3D`` of the exact table with a :class:`SmoothFriction` for one contact in
+    plain floats by :func:`railcontact.falling_table.falling_friction_table_smooth`, or None
+    (other inputs, mu_0 = 0, no contact buffer yet, or a case the table's kernel hands to its
+    array path: the caller takes the general path, which checks the inputs)."""
+    law = args[8]
+    if not (all(type(v) is float for v in args[:8]) and law.mu_static > 0.0):
+        return None
+    from .falling_table import falling_friction_table_smooth  # noqa: PLC0415
+
+    table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
+    try:
+        got = falling_friction_table_smooth(table, *args[:8], law.mu_static, law.mu_kinetic,
+                                            law.kappa)
+    except (TypeError, ValueError, ArithmeticError):
+        return None
+    return None if got is None else _new_force(got[0] + 0.0, got[1] + 0.0)
+
+
+def _new_force(tx, ty):
+    return tuple.__new__(CreepForce3D, (tx, ty))
 
 
 def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, mu0,

@@ -4,9 +4,9 @@ r"""Falling (slip-dependent) friction on the Coulomb exact table: the fast path 
 An approximation, measured against Kalker's exact theory with the same law
 (``method="exact"``; ``benchmarks/bench_falling_friction_3d.py``, 150 random cases over a0/b0
 0.2-5, nu 0-0.5, every creepage direction and size, spin coordinate |tau| 0-10,
-mu_k/mu_0 0.3-1, kappa mu_0 p0 / G 0-2 of Eq. (5.16)): max error 0.87 % of mu_0 N without
-spin, 0.96 % with |tau| <= 1, **5.6 % with |tau| > 1** (RMS 1.3 %), where the target of
-1 % is not met. Three steps, each one call of the Coulomb table
+mu_k/mu_0 0.3-1, kappa mu_0 p0 / G 0-2 of Eq. (5.16)): max error 0.88 % of mu_0 N without
+spin, 0.92 % with |tau| <= 1, **5.5 % with |tau| > 1** (RMS 0.85 % over all), where the
+target of 1 % is not met. Three steps, each one call of the Coulomb table
 (:class:`railcontact.exact_table.ExactCreepTable`):
 
 1. **Effective coefficient.** The table's Coulomb solution at mu_e gives the frictional power
@@ -17,8 +17,9 @@ spin, 0.96 % with |tau| <= 1, **5.6 % with |tau| > 1** (RMS 1.3 %), where the ta
    (``w = (xi_x - phi y, xi_y + phi x)``): ``s(x, y) = lambda |w(x, y)|`` with
    ``lambda = s_m / <|w|>``, ``<.>`` the Hertz-pressure-weighted mean over the ellipse. Then
    ``mu_e = <mu(lambda |w|)>``, a fixed point found by :data:`EFFECTIVE_MU_STEPS` steps,
-   relaxed by 1/2 from the second (3, 4, 6, 10 steps: max errors within 0.03 % of mu_0 N) (the law evaluated at the mean slip instead, Jensen's
-   inequality makes mu_e too low for a convex law where spin spreads the slip).
+   relaxed by 1/2 from the second (3, 4, 6 or 10 steps: max errors within 0.03 % of mu_0 N;
+   the law at the mean slip instead, Jensen's inequality makes mu_e too low for a convex law
+   where spin spreads the slip).
 2. **Coulomb force there**: ``T_c(mu_e)`` from the table.
 3. **Spread correction** for the spin: where friction varies over the contact, the parts with
    larger slip carry less traction: ``T = T_c(mu_e) - N (1 - A_stick)^2
@@ -27,7 +28,15 @@ spin, 0.96 % with |tau| <= 1, **5.6 % with |tau| > 1** (RMS 1.3 %), where the ta
 
 Limits (exact): Coulomb friction (a constant law) gives the Coulomb table; zero creepage
 gives zero; in full sliding without spin |T| -> mu(|xi|) N. The means over the ellipse use
-Gauss points (8 radial Gauss-Legendre x 16 angular, weights ``(3/(2 pi)) sqrt(1 - r^2)``).
+Gauss points (:data:`GAUSS_POINTS`: 5 radial Gauss-Legendre x 10 angular, weights
+``(3/(2 pi)) sqrt(1 - r^2)``).
+
+Speed: this numpy function takes any Python law (about 200 us per scalar call: five table
+calls and some 60 numpy operations on the 50 Gauss points). For the smooth law (5.16)
+:func:`falling_friction_table_smooth` runs the same steps in one compiled call
+(:mod:`railcontact._falling_kernels`, about 12 us; the public ``creep_force_3d`` with a
+:class:`railcontact.friction.SmoothFriction` and plain floats about 17 us, the FMU's step
+too); the two agree to round-off (1e-15 of the force).
 
 This is not Nielsen's or Kalker's method: it is this package's own cheap model, chosen among
 the candidates of ``benchmarks/bench_falling_friction_3d.py`` (the law at the rigid slip,
@@ -40,7 +49,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["falling_friction_table", "EFFECTIVE_MU_STEPS"]
+__all__ = ["falling_friction_table", "falling_friction_table_smooth",
+           "EFFECTIVE_MU_STEPS", "GAUSS_POINTS"]
 
 #: Fixed-point steps for the effective friction coefficient (relaxed by 1/2 from the second).
 EFFECTIVE_MU_STEPS = 4
@@ -50,11 +60,16 @@ SLIP_SHARE_MIN = 1e-3
 
 # Gauss points over the unit disc: r Gauss-Legendre on [0, 1], theta midpoint rule, weights
 # of the Hertz pressure (3 / (2 pi)) sqrt(1 - r^2) r dr dtheta, summing to 1.
-_R, _WR = np.polynomial.legendre.leggauss(8)
+#: Gauss points over the ellipse: radial (Gauss-Legendre) x angular (midpoint rule). 5 x 10:
+#: as accurate as 8 x 16 against the exact theory (max errors within 0.15 % of mu_0 N on the
+#: benchmark's 150 cases, 8 x 16 0.05 % worse with large spin), 2.5 times fewer points.
+GAUSS_POINTS = (5, 10)
+_R, _WR = np.polynomial.legendre.leggauss(GAUSS_POINTS[0])
 _R, _WR = 0.5 * (_R + 1.0), 0.5 * _WR
-_TH = 2.0 * np.pi * (np.arange(16) + 0.5) / 16
+_TH = 2.0 * np.pi * (np.arange(GAUSS_POINTS[1]) + 0.5) / GAUSS_POINTS[1]
 _RR, _TT = np.meshgrid(_R, _TH, indexing="ij")
-_W = ((_WR[:, None] * (2.0 * np.pi / 16)) * _RR * np.sqrt(1.0 - _RR**2) * 1.5 / np.pi).ravel()
+_W = ((_WR[:, None] * (2.0 * np.pi / GAUSS_POINTS[1])) * _RR * np.sqrt(1.0 - _RR**2)
+      * 1.5 / np.pi).ravel()
 _W = _W / _W.sum()
 _CX, _SY = (_RR * np.cos(_TT)).ravel(), (_RR * np.sin(_TT)).ravel()
 
@@ -119,7 +134,7 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     def slips(v, mu):
         """The modelled slip lambda |w(x, y)| [-] of the table's solution v at mu."""
         power = abs(v[0] * rx + v[1] * ry + v[2] * rp)     # frictional power / (V scale)
-        share = np.clip(1.0 - v[3], SLIP_SHARE_MIN, 1.0)
+        share = np.minimum(np.maximum(1.0 - v[3], SLIP_SHARE_MIN), 1.0)   # (not np.clip: slow)
         lam = power * inv / (np.maximum(mu, tiny) * share)
         return np.minimum(lam[ex] * wn, s_cap[ex]) * scale[ex]
 
@@ -131,11 +146,44 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     mu_w = _law_at(law_s, slips(v, mu))         # checked: finite, >= 0 (so is mu, a mean)
     wn_safe = np.where(wn > 0.0, wn, 1.0)
     dmu = (mu_w - mu[ex]) / wn_safe             # (w = 0 has wx = wy = 0: no term)
-    # (without spin |w| is uniform and the correction zero: exactly 0, not round-off)
-    weight = (has_slip & (phi != 0.0)) * n_load * (1.0 - np.clip(v[3], 0.0, 1.0)) ** 2
+    # (without spin |w| is uniform and the term is (mu(lambda |w|) - mu_e) along -w: what
+    # the relaxed fixed point has left, weighted by the sliding share)
+    slide = 1.0 - np.minimum(np.maximum(v[3], 0.0), 1.0)
+    weight = has_slip * n_load * slide * slide
     tx = v[0] - weight * ((dmu * wx) @ _W)
     ty = v[1] - weight * ((dmu * wy) @ _W)
     if not (np.all(np.isfinite(tx)) and np.all(np.isfinite(ty)) and np.all(np.isfinite(mu))):
         raise ValueError("friction_coefficient must give a finite mu >= 0 at every slip [-]; "
                          "the falling-friction table path got a non-finite force")
     return tx, ty, v[2], v[3], v[4], mu
+
+
+_OUT = np.zeros(6)
+_GAUSS = np.ascontiguousarray(np.stack([_CX, _SY, _W]))
+
+
+def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                  poisson_ratio, mu0, mu_k, kappa, eager=False):
+    """One contact (plain floats, checked), the smooth law (5.16), compiled
+    (:mod:`railcontact._falling_kernels`): ``(tx, ty, mz, stick_area_fraction,
+    normalised_creepage, mu_effective)`` as :func:`falling_friction_table`, or None where the
+    table has no contact buffer for (a0/b0, nu) yet (its first points of a contact, a0/b0
+    beyond it) or hands the case to its array path: the caller then takes
+    :func:`falling_friction_table`. ``table`` is a
+    :class:`railcontact.exact_table.ExactCreepTable` (its contact buffers are read). The
+    buffer of a new contact is made at once with ``eager`` (the FMU: some 10 ms once), else
+    after the table's ski rental (its :data:`~railcontact.exact_table.SLAB_AFTER_POINTS`
+    points, each call counting its ``EFFECTIVE_MU_STEPS + 1`` table points)."""
+    key = (a0 / b0, poisson_ratio)
+    entry = table._buffers.get(key)
+    if entry is None:
+        entry = table._buffer(*key) if eager else table._entry(key, EFFECTIVE_MU_STEPS + 1)
+    if entry is None:
+        return None
+    from ._falling_kernels import falling_contact_smooth  # noqa: PLC0415  (numba)
+
+    out = _OUT
+    if not falling_contact_smooth(entry[0], xi_x, xi_y, phi, normal_load, a0, b0,
+                                  youngs_modulus, mu0, mu_k, kappa, _GAUSS, out):
+        return None
+    return out[0], out[1], out[2], out[3], out[4], out[5]

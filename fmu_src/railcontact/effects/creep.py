@@ -11,7 +11,8 @@ import numpy as np
 from .. import creep3d
 from .._scalar import (carter_scalar, creep_force_3d_scalar, creep_stick_3d_scalar,
                        spin_coefficient_scalar)
-from ..falling_table import falling_friction_table
+from ..falling_table import (falling_friction_table,
+                             falling_friction_table_smooth)
 from ..scene import POLACH_KEYS, SceneError
 from .base import NOT_ESTIMATED, Effect, EffectUnavailable
 
@@ -184,6 +185,10 @@ class Creep3D(Effect):
             try:
                 self._table.step_values(1e-4, 1e-4, 0.1, 1e5, 6e-3, 6e-3, self._e, self._nu,
                                         0.3)
+                if self._smooth_law is not None:    # (its compiled kernel loaded now too)
+                    falling_friction_table_smooth(self._table, 1e-4, 1e-4, 0.1, 1e5, 6e-3,
+                                                  6e-3, self._e, self._nu, 0.3,
+                                                  *self._smooth_law, eager=True)
             except ValueError:
                 pass            # (a scene outside the table's range: the step will say so)
         else:
@@ -262,8 +267,12 @@ class Creep3D(Effect):
         def law(slip):
             return (mu0 - mu_k) / (1.0 + kappa * np.minimum(slip, cap)) + mu_k
 
-        tx, ty, mz, stick, z, _ = falling_friction_table(
-            lambda mu: self._falling_values(args, mu), *args[:6], law, mu0)
+        got = falling_friction_table_smooth(self._table, *args[:8], mu0, mu_k, kappa,
+                                            eager=True)      # compiled, one call
+        if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
+            got = falling_friction_table(lambda mu: self._falling_values(args, mu), *args[:6],
+                                         law, mu0)
+        tx, ty, mz, stick, z, _ = got
         c.Fx, c.Fy, c.Mz = float(tx), float(ty), float(mz)
         zc = z if z < 1.0 else 1.0
         c.stick_area_fraction = float(stick)

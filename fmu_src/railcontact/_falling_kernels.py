@@ -1,0 +1,96 @@
+"""Compiled scalar path of :func:`railcontact.falling_table.falling_friction_table` for the
+smooth law (5.16) on one exact-table contact buffer (the FMU's step and the public scalar call
+with a :class:`railcontact.friction.SmoothFriction`).
+
+The same steps and constants as the numpy function (module docstring of
+:mod:`railcontact.falling_table`), with the law in closed form
+``mu(s) = (mu_0 - mu_k) / (1 + kappa s) + mu_k`` and the table's compiled contact kernel
+(:func:`railcontact._exact_kernels.creep_contact`) called directly: one call instead of five
+table calls and some 60 numpy operations. The two agree to round-off (the quadrature sums
+run in another order); tests/test_falling_friction_3d.py compares them on a table of cases.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
+from ._exact_kernels import _buffer_views, creep_contact
+from .falling_table import EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN
+
+# (module constants: numba freezes them into the kernel, one argument less each)
+_STEPS = EFFECTIVE_MU_STEPS
+_SHARE_MIN = SLIP_SHARE_MIN
+
+__all__ = ["falling_contact_smooth"]
+
+
+@njit(cache=True)
+def falling_contact_smooth(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0,
+                           mu_k, kappa, gauss, out):
+    """Falling friction on one contact buffer of the exact table, smooth law.
+
+    ``gauss``: rows x/a0, y/b0 and weight (summing to 1) of the Gauss points of
+    :mod:`railcontact.falling_table`, whose fixed-point steps and least slip share are used
+    too. Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
+    normalised_creepage, mu_effective)`` and returns True; False where the table's kernel
+    hands the case to its array path (the caller then takes the numpy function)."""
+    res = _buffer_views(buf)[7]
+    gx, gy, gw = gauss[0], gauss[1], gauss[2]
+    steps, share_min = _STEPS, _SHARE_MIN
+    n = gw.shape[0]
+    fmax = 1.7976931348623157e308
+    tiny = 2.2250738585072014e-308
+    scale = max(max(abs(xi_x), abs(xi_y)), abs(phi) * max(a0, b0))
+    has_slip = scale > 0.0 and normal_load > 0.0
+    if not has_slip:
+        scale = 1.0
+    rx, ry, rp = xi_x / scale, xi_y / scale, phi / scale
+    wx = gw.copy()
+    wy = gw.copy()
+    wn = gw.copy()
+    w_mean = 0.0
+    for k in range(n):
+        wx[k] = rx - rp * b0 * gy[k]
+        wy[k] = ry + rp * a0 * gx[k]
+        wn[k] = math.hypot(wx[k], wy[k])
+        w_mean += wn[k] * gw[k]
+    has_slip = has_slip and w_mean > 0.0
+    inv = 1.0 / (normal_load * w_mean) if has_slip else 0.0
+    s_cap = fmax / max(scale, 1.0)
+    kap_cap = 1e300 / max(kappa, 1.0)
+    d_mu = mu0 - mu_k
+    mu = mu0
+    for step in range(steps + 1):
+        if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu,
+                             False):
+            return False
+        power = abs(res[0] * rx + res[1] * ry + res[2] * rp)
+        share = min(max(1.0 - res[3], share_min), 1.0)
+        lam = power * inv / (max(mu, tiny) * share)
+        if step == steps:
+            break
+        new = 0.0
+        for k in range(n):
+            s = min(min(lam * wn[k], s_cap) * scale, kap_cap)
+            new += (d_mu / (1.0 + kappa * s) + mu_k) * gw[k]
+        mu = new if step == 0 else 0.5 * (mu + new)
+    slide = 1.0 - min(max(res[3], 0.0), 1.0)
+    weight = normal_load * slide * slide if has_slip else 0.0
+    cx = 0.0
+    cy = 0.0
+    for k in range(n):
+        s = min(min(lam * wn[k], s_cap) * scale, kap_cap)
+        dmu = (d_mu / (1.0 + kappa * s) + mu_k - mu) / (wn[k] if wn[k] > 0.0 else 1.0)
+        cx += dmu * wx[k] * gw[k]
+        cy += dmu * wy[k] * gw[k]
+    out[0] = res[0] - weight * cx
+    out[1] = res[1] - weight * cy
+    out[2] = res[2]
+    out[3] = res[3]
+    out[4] = res[4]
+    out[5] = mu
+    inf = math.inf
+    return -inf < out[0] < inf and -inf < out[1] < inf
