@@ -111,9 +111,10 @@ class Creep3D(Effect):
     Falling friction (``friction_law = "smooth"``, method "exact" only): the smooth law (5.16)
     ``mu(s) = (mu_0 - mu_k) / (1 + kappa s) + mu_k`` with mu_0 the step's friction coefficient
     and ``kinetic_friction_coefficient``, ``kappa`` from the scene, through the Coulomb table
-    (:mod:`railcontact.falling_table`: an effective coefficient and a spread correction, five
-    table calls per step; against the exact theory with the law 0.9 % of mu_0 N without spin
-    or with spin coordinate |tau| <= 1, up to 5.6 % with larger spin). ``Mz``, the stick
+    (:mod:`railcontact.falling_table`: an effective coefficient and a spread correction, its
+    compiled smooth-law path, one call per step; against the exact theory with the law 0.9 %
+    of mu_0 N without spin or with spin coordinate |tau| <= 1, up to 5.5 % with larger spin;
+    the numpy path where the table has no buffer for the contact). ``Mz``, the stick
     measures and z are the table's at the effective coefficient; the Jacobian outputs are 0.
 
     FASTSIM, Polach, FaStrip (``method = "fastsim" | "polach" | "fastrip"``, analytic source
