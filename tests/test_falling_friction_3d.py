@@ -419,7 +419,7 @@ def test_fastsim_peak_and_fall_against_the_exact_theory():
     """FASTSIM is a crude theory: its creep curve with a falling law peaks and falls like the
     exact one, but higher (its slip zone grows more slowly). Measured on the round contact,
     0.1-20 saturation creepages (mu_0 p0 / G) longitudinal: max |dT| 3.0 % of mu_0 N under
-    Coulomb friction, 5.8 % with the moderately falling law (mu_k/mu_0 = 0.5, kappa mu_0 p0/G =
+    Coulomb friction, 5.6 % with the moderately falling law (mu_k/mu_0 = 0.5, kappa mu_0 p0/G =
     1), 16 % with the strongly falling one (0.3, 2) (docs/accuracy_vs_time.md)."""
     mags = SAT * np.array([0.3, 0.6, 1.0, 1.5, 2.5, 4.0, 8.0, 20.0])
     for law, bound in ((0.3, 0.031), (SmoothFriction(0.3, 0.15, 1.0 / SAT), 0.06),
