@@ -318,6 +318,8 @@ def test_exact_table_with_a_law_slides_at_mu_of_the_creepage_and_vectorises():
         assert one.ty == pytest.approx(f.ty[k], rel=1e-10, abs=1e-9 * N)
     zero = _table(0.0, 0.0, 0.0, law, rolling_speed=30.0)
     assert zero.tx == 0.0 and zero.ty == 0.0
+    huge = _table(np.array([1e308, -1e308]), 0.0, 0.0, law, rolling_speed=30.0)
+    np.testing.assert_allclose(huge.tx, [-0.3 * 0.4 * N, 0.3 * 0.4 * N], rtol=1e-6)
 
 
 @pytest.mark.parametrize("case", [
@@ -325,9 +327,11 @@ def test_exact_table_with_a_law_slides_at_mu_of_the_creepage_and_vectorises():
     (-3e-3, 2e-3, -0.8), (1e308, 0.0, 0.0), (1e-300, 0.0, 1e-300)])
 def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     """The two implementations of railcontact.falling_table (numpy for any law; compiled for
-    the smooth law: the FMU's step and the public scalar call) agree to round-off."""
+    the smooth and Polach's laws: the FMU's step and the public scalar call) agree to
+    round-off."""
     from railcontact.creep3d import load_exact_table
     from railcontact.falling_table import (falling_friction_table,
+                                           falling_friction_table_compiled,
                                            falling_friction_table_smooth)
 
     table = load_exact_table()
@@ -341,6 +345,12 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     ref = falling_friction_table(values, *args[:6], law, 0.3)
     got = falling_friction_table_smooth(table, *args, 0.3, 0.1, 0.8 / SAT, eager=True)
     assert got is not None
+    np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
+    np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
+    polach = PolachFriction(0.3, 0.4, 0.6)       # at 30 m/s: the law in s is polach(30 s)
+    ref = falling_friction_table(values, *args[:6],
+                                 lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3)
+    got = falling_friction_table_compiled(table, *args, 1, 0.3, 0.4, 0.6, 30.0, eager=True)
     np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
     np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
 

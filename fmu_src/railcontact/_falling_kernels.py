@@ -1,10 +1,13 @@
 """Compiled scalar path of :func:`railcontact.falling_table.falling_friction_table` for the
-smooth law (5.16) on one exact-table contact buffer (the FMU's step and the public scalar call
-with a :class:`railcontact.friction.SmoothFriction`).
+package's two laws on one exact-table contact buffer (the FMU's step and the public scalar call
+with a :class:`railcontact.friction.SmoothFriction` or
+:class:`~railcontact.friction.PolachFriction`).
 
 The same steps and constants as the numpy function (module docstring of
-:mod:`railcontact.falling_table`), with the law in closed form
-``mu(s) = (mu_0 - mu_k) / (1 + kappa s) + mu_k`` and the table's compiled contact kernel
+:mod:`railcontact.falling_table`), with the law in closed form (:func:`_law`: the smooth law
+``mu(s) = (mu_0 - mu_k) / (1 + kappa s) + mu_k``, or Polach's
+``mu_0 ((1 - A) exp(-B s V) + A)``, the operations of the law objects) and the table's compiled
+contact kernel
 (:func:`railcontact._exact_kernels.creep_contact`) called directly: one call instead of five
 table calls and some 60 numpy operations. The two agree to round-off (the quadrature sums
 run in another order); tests/test_falling_friction_3d.py compares them on a table of cases.
@@ -24,13 +27,27 @@ from .falling_table import EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN
 _STEPS = EFFECTIVE_MU_STEPS
 _SHARE_MIN = SLIP_SHARE_MIN
 
-__all__ = ["falling_contact_smooth"]
+__all__ = ["falling_contact", "LAW_SMOOTH", "LAW_POLACH"]
+
+#: Law kinds of :func:`falling_contact`.
+LAW_SMOOTH = 0
+LAW_POLACH = 1
 
 
 @njit(cache=True)
-def falling_contact_smooth(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0,
-                           mu_k, kappa, gauss, out):
-    """Falling friction on one contact buffer of the exact table, smooth law.
+def _law(kind, p0, p1, p2, p3, s):
+    """mu(s): kind 0 the smooth law (p0, p1, p2) = (mu_0, mu_k, kappa); kind 1 Polach's
+    (p0, p1, p2, p3) = (mu_0, A, B [s/m], V [m/s]). s >= 0."""
+    if kind == 0:
+        return (p0 - p1) / (1.0 + p2 * s) + p1
+    return p0 * ((1.0 - p1) * math.exp(-p2 * (s * p3)) + p1)
+
+
+@njit(cache=True)
+def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1,
+                    p2, p3, gauss, out):
+    """Falling friction on one contact buffer of the exact table, the law ``(kind, p0..p3)``
+    of :func:`_law` (mu_0 = mu(0)); slips s are capped where ``p2 s`` would reach 1e300.
 
     ``gauss``: rows x/a0, y/b0 and weight (summing to 1) of the Gauss points of
     :mod:`railcontact.falling_table`, whose fixed-point steps and least slip share are used
@@ -59,10 +76,9 @@ def falling_contact_smooth(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_mod
         w_mean += wn[k] * gw[k]
     has_slip = has_slip and w_mean > 0.0
     inv = 1.0 / (normal_load * w_mean) if has_slip else 0.0
-    s_cap = fmax / max(scale, 1.0)
-    kap_cap = 1e300 / max(kappa, 1.0)
-    d_mu = mu0 - mu_k
-    mu = mu0
+    s_cap = 0.5 * fmax / max(scale, 1.0)
+    kap_cap = 1e300 / max(p2, 1.0) / (max(p3, 1.0) if kind == 1 else 1.0)
+    mu = _law(kind, p0, p1, p2, p3, 0.0)
     for step in range(steps + 1):
         if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu,
                              False):
@@ -75,7 +91,7 @@ def falling_contact_smooth(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_mod
         new = 0.0
         for k in range(n):
             s = min(min(lam * wn[k], s_cap) * scale, kap_cap)
-            new += (d_mu / (1.0 + kappa * s) + mu_k) * gw[k]
+            new += _law(kind, p0, p1, p2, p3, s) * gw[k]
         mu = new if step == 0 else 0.5 * (mu + new)
     slide = 1.0 - min(max(res[3], 0.0), 1.0)
     weight = normal_load * slide * slide if has_slip else 0.0
@@ -83,7 +99,7 @@ def falling_contact_smooth(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_mod
     cy = 0.0
     for k in range(n):
         s = min(min(lam * wn[k], s_cap) * scale, kap_cap)
-        dmu = (d_mu / (1.0 + kappa * s) + mu_k - mu) / (wn[k] if wn[k] > 0.0 else 1.0)
+        dmu = (_law(kind, p0, p1, p2, p3, s) - mu) / (wn[k] if wn[k] > 0.0 else 1.0)
         cx += dmu * wx[k] * gw[k]
         cy += dmu * wy[k] * gw[k]
     out[0] = res[0] - weight * cx

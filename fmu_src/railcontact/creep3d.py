@@ -92,7 +92,7 @@ from .creep_common import (CreepForce3D, CreepSolution3D, ExactCreepSolution3D,
 from .creep_common import (EXACT_TABLE_LATERAL_ELEMENTS_NARROW,
                            EXACT_TABLE_NARROW_ASPECT_MAX)
 from .errors import RollingConvergenceError
-from .friction import SmoothFriction
+from .friction import PolachFriction, SmoothFriction
 from .kalker import kalker_coefficients
 
 __all__ = ["CreepForce3D", "CreepSolution3D", "ExactCreepSolution3D", "METHODS",
@@ -391,8 +391,9 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         per element at the element's slip q: :mod:`railcontact.fastsim`, a crude theory) and
         ``"exact_table"`` (a fast path on the Coulomb table, :mod:`railcontact.falling_table`:
         an approximation, 0.9 % of mu(0) N off the exact theory without spin or with spin
-        coordinate |tau| <= 1, up to 5.5 % with larger spin; 17 us a scalar call with a
-        :class:`SmoothFriction`); every other method raises ValueError. The law must give a
+        coordinate |tau| <= 1, up to 5.5 % with larger spin; about 15 us a scalar call with
+        a :class:`SmoothFriction`, 30 us with a :class:`PolachFriction`, on a contact the
+        table keeps a buffer for); every other method raises ValueError. The law must give a
         finite ``mu >= 0`` at every slip and ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model (default "modified_strip", the thesis's method; the module docstring
@@ -472,12 +473,14 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
         return table.creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                                     a0, b0, youngs_modulus, poisson_ratio, friction_coefficient)
-    if (method == "exact_table" and type(friction_coefficient) is SmoothFriction
+    if (method == "exact_table" and type(friction_coefficient) in (SmoothFriction,
+                                                                   PolachFriction)
             and not method_options):
-        # one contact in plain floats: the compiled smooth-law path (None: the general one)
-        got = _falling_smooth_scalar(creepage_longitudinal, creepage_lateral, spin,
-                                     normal_load, a0, b0, youngs_modulus, poisson_ratio,
-                                     friction_coefficient)
+        # one contact in plain floats: the compiled path of the package's laws (None: the
+        # general one)
+        got = _falling_compiled_scalar(creepage_longitudinal, creepage_lateral, spin,
+                                       normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                                       friction_coefficient, rolling_speed)
         if got is not None:
             return got
     friction_coefficient, law, speed, method_options = _friction_input(
@@ -565,20 +568,26 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
     return mu0, law, speed, options
 
 
-def _falling_smooth_scalar(*args):
-    """``CreepForce3D`` of the exact table with a :class:`SmoothFriction` for one contact in
-    plain floats by :func:`railcontact.falling_table.falling_friction_table_smooth`, or None
-    (other inputs, mu_0 = 0, no contact buffer yet, or a case the table's kernel hands to its
-    array path: the caller takes the general path, which checks the inputs)."""
-    law = args[8]
+def _falling_compiled_scalar(*args):
+    """``CreepForce3D`` of the exact table with a :class:`SmoothFriction` or
+    :class:`PolachFriction` (with a float ``rolling_speed`` > 0) for one contact in plain
+    floats by :func:`railcontact.falling_table.falling_friction_table_compiled`, or None (other
+    inputs, mu_0 = 0, no contact buffer yet, or a case the table's kernel hands to its array
+    path: the caller takes the general path, which checks the inputs)."""
+    law, speed = args[8], args[9]
     if not (all(type(v) is float for v in args[:8]) and law.mu_static > 0.0):
         return None
-    from .falling_table import falling_friction_table_smooth  # noqa: PLC0415
+    if type(law) is SmoothFriction:
+        params = (0, law.mu_static, law.mu_kinetic, law.kappa, 0.0)
+    elif type(speed) is float and 0.0 < speed < math.inf:
+        params = (1, law.mu_static, law.friction_ratio_limit, law.friction_decay, speed)
+    else:
+        return None
+    from .falling_table import falling_friction_table_compiled  # noqa: PLC0415
 
     table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
     try:
-        got = falling_friction_table_smooth(table, *args[:8], law.mu_static, law.mu_kinetic,
-                                            law.kappa)
+        got = falling_friction_table_compiled(table, *args[:8], *params)
     except (TypeError, ValueError, ArithmeticError):
         return None
     return None if got is None else _new_force(got[0] + 0.0, got[1] + 0.0)
@@ -619,8 +628,10 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
     factor = None if speed is None else np.broadcast_to(np.asarray(speed, dtype=float),
                                                          shape)[..., None]
 
-    def law_s(slip):
-        return law(slip if factor is None else slip * factor)
+    cap = None if factor is None else 0.5 * np.finfo(float).max / np.maximum(factor, 1.0)
+
+    def law_s(slip):    # (a slip velocity s V kept finite at any creepage)
+        return law(slip if factor is None else np.minimum(slip, cap) * factor)
 
     tx, ty, mz, stick, z, _ = falling_friction_table(values, *args[:6], law_s, args[8])
     if not solution:

@@ -32,11 +32,12 @@ Gauss points (:data:`GAUSS_POINTS`: 5 radial Gauss-Legendre x 10 angular, weight
 ``(3/(2 pi)) sqrt(1 - r^2)``).
 
 Speed: this numpy function takes any Python law (about 200 us per scalar call: five table
-calls and some 60 numpy operations on the 50 Gauss points). For the smooth law (5.16)
-:func:`falling_friction_table_smooth` runs the same steps in one compiled call
-(:mod:`railcontact._falling_kernels`, about 12 us; the public ``creep_force_3d`` with a
-:class:`railcontact.friction.SmoothFriction` and plain floats about 17 us, the FMU's step
-too); the two agree to round-off (1e-15 of the force).
+calls and some 60 numpy operations on the 50 Gauss points). For the package's laws (the
+smooth law (5.16), Polach's) :func:`falling_friction_table_compiled` runs the same steps in
+one compiled call (:mod:`railcontact._falling_kernels`; the public ``creep_force_3d`` with
+plain floats about 15 us with a :class:`railcontact.friction.SmoothFriction`, 30 us with a
+:class:`~railcontact.friction.PolachFriction`, the FMU's step about 11 us); the two agree to
+round-off (1e-15 of the force).
 
 This is not Nielsen's or Kalker's method: it is this package's own cheap model, chosen among
 the candidates of ``benchmarks/bench_falling_friction_3d.py`` (the law at the rigid slip,
@@ -50,6 +51,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["falling_friction_table", "falling_friction_table_smooth",
+           "falling_friction_table_compiled",
            "EFFECTIVE_MU_STEPS", "GAUSS_POINTS"]
 
 #: Fixed-point steps for the effective friction coefficient (relaxed by 1/2 from the second).
@@ -129,7 +131,7 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     # 1 / (N <|w|>) (w over its scale) where there is slip, else 0 (the law at zero slip)
     inv = has_slip / np.where(has_slip, n_load * w_mean, 1.0)
     tiny = np.finfo(float).tiny
-    s_cap = np.finfo(float).max / np.maximum(scale, 1.0)   # slips kept finite
+    s_cap = 0.5 * np.finfo(float).max / np.maximum(scale, 1.0)   # slips kept finite
 
     def slips(v, mu):
         """The modelled slip lambda |w(x, y)| [-] of the table's solution v at mu."""
@@ -164,12 +166,23 @@ _GAUSS = np.ascontiguousarray(np.stack([_CX, _SY, _W]))
 
 def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                                   poisson_ratio, mu0, mu_k, kappa, eager=False):
-    """One contact (plain floats, checked), the smooth law (5.16), compiled
-    (:mod:`railcontact._falling_kernels`): ``(tx, ty, mz, stick_area_fraction,
-    normalised_creepage, mu_effective)`` as :func:`falling_friction_table`, or None where the
-    table has no contact buffer for (a0/b0, nu) yet (its first points of a contact, a0/b0
-    beyond it) or hands the case to its array path: the caller then takes
-    :func:`falling_friction_table`. ``table`` is a
+    """One contact (plain floats, checked), the smooth law (5.16), compiled: see
+    :func:`falling_friction_table_compiled` (``mu0, mu_k, kappa`` [-])."""
+    return falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
+                                           youngs_modulus, poisson_ratio, 0, mu0, mu_k, kappa,
+                                           0.0, eager)
+
+
+def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
+                                    youngs_modulus, poisson_ratio, kind, p0, p1, p2, p3,
+                                    eager=False):
+    """One contact (plain floats, checked), a closed-form law, compiled
+    (:func:`railcontact._falling_kernels.falling_contact`: ``kind`` 0 the smooth law with
+    ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with ``(mu_0, A, B [s/m], V [m/s])``):
+    ``(tx, ty, mz, stick_area_fraction, normalised_creepage, mu_effective)`` as
+    :func:`falling_friction_table`, or None where the table has no contact buffer for
+    (a0/b0, nu) yet (its first points of a contact, a0/b0 beyond it) or hands the case to its
+    array path: the caller then takes :func:`falling_friction_table`. ``table`` is a
     :class:`railcontact.exact_table.ExactCreepTable` (its contact buffers are read). The
     buffer of a new contact is made at once with ``eager`` (the FMU: some 10 ms once), else
     after the table's ski rental (its :data:`~railcontact.exact_table.SLAB_AFTER_POINTS`
@@ -178,12 +191,12 @@ def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, y
     entry = table._buffers.get(key)
     if entry is None:
         entry = table._buffer(*key) if eager else table._entry(key, EFFECTIVE_MU_STEPS + 1)
-    if entry is None:
-        return None
-    from ._falling_kernels import falling_contact_smooth  # noqa: PLC0415  (numba)
+        if entry is None:
+            return None
+    from ._falling_kernels import falling_contact  # noqa: PLC0415  (numba)
 
     out = _OUT
-    if not falling_contact_smooth(entry[0], xi_x, xi_y, phi, normal_load, a0, b0,
-                                  youngs_modulus, mu0, mu_k, kappa, _GAUSS, out):
+    if not falling_contact(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                           kind, p0, p1, p2, p3, _GAUSS, out):
         return None
     return out[0], out[1], out[2], out[3], out[4], out[5]
