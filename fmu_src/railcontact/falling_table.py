@@ -161,6 +161,7 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
 
 
 _OUT = np.zeros(6)
+_KERNEL = [None]
 _GAUSS = np.ascontiguousarray(np.stack([_CX, _SY, _W]))
 
 
@@ -193,10 +194,12 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         entry = table._buffer(*key) if eager else table._entry(key, EFFECTIVE_MU_STEPS + 1)
         if entry is None:
             return None
-    from ._falling_kernels import falling_contact  # noqa: PLC0415  (numba)
-
+    kernel = _KERNEL[0]
+    if kernel is None:     # (numba imported on the first compiled call only)
+        from ._falling_kernels import falling_contact  # noqa: PLC0415
+        kernel = _KERNEL[0] = falling_contact
     out = _OUT
-    if not falling_contact(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                           kind, p0, p1, p2, p3, _GAUSS, out):
+    if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
+                  p1, p2, p3, _GAUSS, out):
         return None
     return out[0], out[1], out[2], out[3], out[4], out[5]
