@@ -391,8 +391,8 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         per element at the element's slip q: :mod:`railcontact.fastsim`, a crude theory) and
         ``"exact_table"`` (a fast path on the Coulomb table, :mod:`railcontact.falling_table`:
         an approximation, 0.9 % of mu(0) N off the exact theory without spin or with spin
-        coordinate |tau| <= 1, up to 5.5 % with larger spin; about 15 us a scalar call with
-        a :class:`SmoothFriction`, 30 us with a :class:`PolachFriction`, on a contact the
+        coordinate |tau| <= 1, up to 5.5 % with larger spin; about 9 us a scalar call with
+        a :class:`SmoothFriction`, 10 us with a :class:`PolachFriction`, on a contact the
         table keeps a buffer for); every other method raises ValueError. The law must give a
         finite ``mu >= 0`` at every slip and ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
