@@ -807,10 +807,10 @@ def family_falling_3d(quick):
     fam.notes.append("exact table with a friction law: railcontact.falling_table, an "
                      "effective coefficient and a spread correction on the Coulomb table; over "
                      "150 random cases 0.88 % of mu_0 N without spin, 0.92 % at |tau| <= 1, "
-                     "5.5 % beyond (docs/reference_solvers.md; a Python law such as "
-                     "SmoothFriction and PolachFriction take a compiled path, "
-                     "9 us; "
-                     "benchmarks/bench_falling_friction_3d.py); FASTSIM with the law: the "
+                     "5.5 % beyond (docs/reference_solvers.md; a Python law takes the "
+                     "numpy path, SmoothFriction and PolachFriction a compiled one, 9 us a "
+                     "scalar call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
+                     "the law: the "
                      "local bound mu(q) p per element, a crude theory")
     return fam
 
