@@ -806,8 +806,8 @@ def family_falling_3d(quick):
                             t1, tb))
     fam.notes.append("exact table with a friction law: railcontact.falling_table, an "
                      "effective coefficient and a spread correction on the Coulomb table; over "
-                     "150 random cases 0.88 % of mu_0 N without spin, 0.92 % at |tau| <= 1, "
-                     "5.5 % beyond (docs/reference_solvers.md; a Python law takes the "
+                     "150 random cases 0.90 % of mu_0 N without spin, 0.93 % at |tau| <= 1, "
+                     "5.4 % beyond (docs/reference_solvers.md; a Python law takes the "
                      "numpy path, SmoothFriction and PolachFriction a compiled one, 9 us a "
                      "scalar call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
                      "the law: the "
