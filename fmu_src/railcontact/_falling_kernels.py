@@ -21,11 +21,6 @@ from numba import njit
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
 from ._exact_kernels import _buffer_views, creep_contact
-from .falling_table import EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN
-
-# (module constants: numba freezes them into the kernel, one argument less each)
-_STEPS = EFFECTIVE_MU_STEPS
-_SHARE_MIN = SLIP_SHARE_MIN
 
 __all__ = ["falling_contact", "LAW_SMOOTH", "LAW_POLACH"]
 
@@ -45,18 +40,18 @@ def _law(kind, p0, p1, p2, p3, s):
 
 @njit(cache=True)
 def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1,
-                    p2, p3, gauss, out):
+                    p2, p3, gauss, steps, share_min, out):
     """Falling friction on one contact buffer of the exact table, the law ``(kind, p0..p3)``
     of :func:`_law` (mu_0 = mu(0)); slips s are capped where ``p2 s`` would reach 1e300.
 
     ``gauss``: rows x/a0, y/b0 and weight (summing to 1) of the Gauss points of
-    :mod:`railcontact.falling_table`, whose fixed-point steps and least slip share are used
-    too. Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
+    :mod:`railcontact.falling_table`; ``steps``, ``share_min`` its fixed-point steps and least
+    slip share (arguments, not module constants: numba's cache would keep a constant of
+    another module frozen at its old value). Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
     normalised_creepage, mu_effective)`` and returns True; False where the table's kernel
     hands the case to its array path (the caller then takes the numpy function)."""
     res = _buffer_views(buf)[7]
     gx, gy, gw = gauss[0], gauss[1], gauss[2]
-    steps, share_min = _STEPS, _SHARE_MIN
     n = gw.shape[0]
     fmax = 1.7976931348623157e308
     tiny = 2.2250738585072014e-308

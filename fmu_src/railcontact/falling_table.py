@@ -202,6 +202,6 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         kernel = _KERNEL[0] = falling_contact
     out = _OUT
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
-                  p1, p2, p3, _GAUSS, out):
+                  p1, p2, p3, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
         return None
     return out[0], out[1], out[2], out[3], out[4], out[5]
