@@ -788,7 +788,7 @@ def family_falling_3d(quick):
              lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="fastsim",
                                             rolling_speed=speed, n_strips=20,
                                             n_elements=20), False),
-            ("exact table, friction law", "falling_table (5 table calls)",
+            ("exact table, friction law", "falling_table (4 table calls)",
              lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="exact_table",
                                             rolling_speed=speed), False),
             ("exact table, Coulomb mu_0", "the law ignored",

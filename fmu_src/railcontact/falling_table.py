@@ -32,7 +32,7 @@ gives zero; in full sliding without spin |T| -> mu(|xi|) N. The means over the e
 Gauss points (:data:`GAUSS_POINTS`: 5 radial Gauss-Legendre x 10 angular, weights
 ``(3/(2 pi)) sqrt(1 - r^2)``).
 
-Speed: this numpy function takes any Python law (about 200 us per scalar call: five table
+Speed: this numpy function takes any Python law (about 200 us per scalar call: four table
 calls and some 60 numpy operations on the 50 Gauss points). For the package's laws (the
 smooth law (5.16), Polach's) :func:`falling_friction_table_compiled` runs the same steps in
 one compiled call (:mod:`railcontact._falling_kernels`; the public ``creep_force_3d`` with

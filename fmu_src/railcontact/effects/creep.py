@@ -260,7 +260,7 @@ class Creep3D(Effect):
 
     def _exact_table_falling(self, c, args):
         # falling friction (smooth law (5.16), mu_0 the step's friction coefficient) on the
-        # Coulomb table: railcontact.falling_table, four table calls plus one
+        # Coulomb table: railcontact.falling_table, three table calls plus one
         mu0 = args[8]
         mu_k, kappa = self._smooth_law
         cap = _SLIP_CAP / max(kappa, 1.0)        # kappa s stays finite (any creepage)
