@@ -116,7 +116,7 @@ FASTSIM with a friction law (slip-dependent, falling friction)
     (tests/test_falling_friction_3d.py, docs/accuracy_vs_time.md). With very steep laws the
     result depends on the grid (the slip of an element is L / dx times a traction excess:
     refining folds the element's friction graph, a known trouble of the local model): on the
-    report's Polach case (B = 6.93 s/m at 30 m/s) 4.9 % at 20 x 20, 12 % at 40 x 40.
+    report's Polach case (B = 6.93 s/m at 30 m/s) 8.8 % at 20 x 20, 12 % at 40 x 40.
 
 Both are computed for many contacts at once: the broadcast inputs form the leading axes, the
 strips one more axis, and only the n_elements steps along x are a Python loop.
