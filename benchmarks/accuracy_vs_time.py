@@ -740,8 +740,10 @@ def family_friction(quick):
 def family_falling_3d(quick):
     """Kalker's exact theory with Polach's falling law, element by element (method "exact"
     with a friction law), against its own fine grids; the cheaper stand-ins: Polach 2005 (the
-    law at the contact's slip velocity V |xi|), the Coulomb exact table at mu_0 and at mu of
-    the RMS rigid slip (benchmarks/bench_falling_friction_3d.py has more)."""
+    law at the contact's slip velocity V |xi|), FASTSIM with the law (the local bound per
+    element), the exact table's fast path with the law (railcontact.falling_table), the Coulomb
+    exact table at mu_0 and at mu of the RMS rigid slip (benchmarks/bench_falling_friction_3d.py
+    has more)."""
     from railcontact import creep_force_3d
     from railcontact.creep3d import load_exact_table
     from railcontact.friction import PolachFriction
@@ -779,6 +781,16 @@ def family_falling_3d(quick):
             ("polach 2005, its law at V s_C", "k_A = k_S = 1",
              lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="polach",
                                             rolling_speed=speed), False),
+            ("fastsim, friction law", "40 x 40 (default)",
+             lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="fastsim",
+                                            rolling_speed=speed), False),
+            ("fastsim, friction law", "20 x 20",
+             lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="fastsim",
+                                            rolling_speed=speed, n_strips=20,
+                                            n_elements=20), False),
+            ("exact table, friction law", "falling_table (4 table calls)",
+             lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="exact_table",
+                                            rolling_speed=speed), False),
             ("exact table, Coulomb mu_0", "the law ignored",
              lambda x, y, p: table.creep_force_3d(x, y, p, *contact, mu0), False),
             ("exact table, mu(RMS rigid slip)", "one table call", rigid, False)]
@@ -792,9 +804,14 @@ def family_falling_3d(quick):
             t1 = per_call(lambda: fun(2e-3, 1e-3, 0.5))
         fam.rows.append(Row(fam.name, method, knob, _vec_err(f.tx, f.ty, ref.tx, ref.ty, scale),
                             t1, tb))
-    fam.notes.append("no table fast path with a friction law yet: one effective coefficient "
-                     "on the Coulomb table misses 1 % of mu_0 N with large spin (docs/"
-                     "reference_solvers.md, benchmarks/bench_falling_friction_3d.py)")
+    fam.notes.append("exact table with a friction law: railcontact.falling_table, an "
+                     "effective coefficient and a spread correction on the Coulomb table; over "
+                     "150 random cases 0.90 % of mu_0 N without spin, 0.93 % at |tau| <= 1, "
+                     "5.4 % beyond (docs/reference_solvers.md; a Python law takes the "
+                     "numpy path, SmoothFriction and PolachFriction a compiled one, 9 us a "
+                     "scalar call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
+                     "the law: the "
+                     "local bound mu(q) p per element, a crude theory")
     return fam
 
 

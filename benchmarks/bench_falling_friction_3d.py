@@ -97,7 +97,81 @@ def sliding_ratio(args, law):
     return fl / fc if fc > 0.0 else 1.0
 
 
+def full_sliding(args, law, mu=None):
+    """Full-sliding force T_fs / N (tx, ty) with the rigid slip field: the law, or Coulomb mu."""
+    xi, eta, phi, _, a0, b0 = args[:6]
+    wx = xi - phi * b0 * _SY
+    wy = eta + phi * a0 * _CX
+    wn = np.hypot(wx, wy)
+    wn = np.where(wn > 0.0, wn, 1e-300)
+    m = law(wn) if mu is None else mu
+    return -float(np.sum(m * _W * wx / wn)), -float(np.sum(m * _W * wy / wn))
+
+
+def effective_mu(table, args, law, steps=6):
+    """The dissipation candidate's mu_eff and the table's values there (tx, ty, mz, stick)."""
+    xi, eta, phi, n_load = args[:4]
+    mu = law.mu_static
+    for it in range(steps):
+        v = table.step_values(*args[:8], mu, False) or table.step(*args[:8], mu, False)
+        power = abs(v[0] * xi + v[1] * eta + v[2] * phi)
+        slip_load = n_load * min(max(1.0 - float(v[3]), 1e-3), 1.0)
+        new = float(law(power / (mu * slip_load)))
+        mu = new if it == 0 else 0.5 * (mu + new)
+    return mu, table.step_values(*args[:8], mu, False) or table.step(*args[:8], mu, False)
+
+
+def effective_mu_spread(table, args, law, steps=6):
+    """As effective_mu, but mu_eff the pressure-weighted mean of mu(lambda |w|) over the
+    ellipse, |w| the rigid slip and lambda |w|'s mean scaled to the dissipation's slip."""
+    xi, eta, phi, n_load, a0, b0 = args[:6]
+    wn = np.hypot(xi - phi * b0 * _SY, eta + phi * a0 * _CX)
+    w_mean = float(np.sum(_W * wn))
+    mu = law.mu_static
+    for it in range(steps):
+        v = table.step_values(*args[:8], mu, False) or table.step(*args[:8], mu, False)
+        power = abs(v[0] * xi + v[1] * eta + v[2] * phi)
+        slip_load = n_load * min(max(1.0 - float(v[3]), 1e-3), 1.0)
+        s_mean = power / (mu * slip_load)
+        lam = s_mean / w_mean if w_mean > 0.0 else 0.0
+        new = float(np.sum(_W * law(lam * wn)))
+        mu = new if it == 0 else 0.5 * (mu + new)
+    return mu, table.step_values(*args[:8], mu, False) or table.step(*args[:8], mu, False)
+
+
 def candidate(name, table, args, law):
+    if name == "package":
+        return creep_force_3d(*args[:8], law, method="exact_table")
+    if name.startswith("spread+vec"):
+        mu, v = effective_mu_spread(table, args, law)
+        xi, eta, phi, n_load, a0, b0 = args[:6]
+        wx, wy = xi - phi * b0 * _SY, eta + phi * a0 * _CX
+        wn = np.hypot(wx, wy)
+        w_mean = float(np.sum(_W * wn))
+        power = abs(v[0] * xi + v[1] * eta + v[2] * phi)
+        slip_load = n_load * min(max(1.0 - float(v[3]), 1e-3), 1.0)
+        lam = power / (mu * slip_load) / w_mean if w_mean > 0.0 else 0.0
+        wn = np.where(wn > 0.0, wn, 1e-300)
+        dm = law(lam * wn) - mu
+        w = 1.0 - float(v[3])
+        if name.endswith("2"):
+            w = w * w
+        cx = -float(np.sum(dm * _W * wx / wn)) * n_load * w
+        cy = -float(np.sum(dm * _W * wy / wn)) * n_load * w
+        return type(table.creep_force_3d(*args))(v[0] + cx, v[1] + cy)
+    if name == "dissip-spread":
+        mu, v = effective_mu_spread(table, args, law)
+        return type(table.creep_force_3d(*args))(v[0], v[1])
+    if name.startswith("dissip+fs"):
+        mu, v = effective_mu(table, args, law)
+        n_load = args[3]
+        w = 1.0 - float(v[3])
+        if name.endswith("^2"):
+            w = w * w
+        lx, ly = full_sliding(args, law)
+        cx, cy = full_sliding(args, law, mu)
+        return type(table.creep_force_3d(*args))(v[0] + w * n_load * (lx - cx),
+                                                  v[1] + w * n_load * (ly - cy))
     if name == "coulomb":
         return table.creep_force_3d(*args)
     if name == "mu(rigid)":
@@ -123,20 +197,36 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=200)
     ap.add_argument("--seed", type=int, default=11)
+    ap.add_argument("--cache", default="", help="npz file keeping the exact forces between runs")
+    ap.add_argument("--candidates", nargs="*", default=None)
     opts = ap.parse_args(argv)
     warnings.simplefilter("ignore", RuntimeWarning)
     table = load_exact_table()
     rng = np.random.default_rng(opts.seed)
     data = cases(opts.n, rng)
     ref, kept, failed, t0 = [], [], 0, time.perf_counter()
-    for args, law, tau, m, kn in data:
-        try:
-            f = creep_force_3d(*args[:8], law, method="exact")
-        except RollingConvergenceError:
-            failed += 1
-            continue
-        ref.append((f.tx, f.ty))
+    cache = {}
+    if opts.cache and Path(opts.cache).is_file():
+        cache = dict(np.load(opts.cache))
+    for k, (args, law, tau, m, kn) in enumerate(data):
+        key = f"c{k}"
+        if key in cache:
+            if np.isnan(cache[key][0]):
+                failed += 1
+                continue
+            f = type("F", (), {"tx": cache[key][0], "ty": cache[key][1]})
+        else:
+            try:
+                f = creep_force_3d(*args[:8], law, method="exact")
+            except RollingConvergenceError:
+                failed += 1
+                cache[key] = np.array([np.nan, np.nan])
+                continue
+            cache[key] = np.array([f.tx, f.ty])
+        ref.append((float(f.tx), float(f.ty)))
         kept.append((args, law, tau, m, kn))
+    if opts.cache:
+        np.savez(opts.cache, **cache)
     t_exact = (time.perf_counter() - t0) / max(len(data), 1)
     print(f"{len(kept)} cases solved by method='exact' ({failed} did not converge), "
           f"{t_exact * 1e3:.0f} ms per case")
@@ -147,7 +237,8 @@ def main(argv=None):
                ("|tau| > 1", np.abs(tau) > 1.0), ("kappa_n > 1", kn > 1.0),
                ("m < 0.5", m < 0.5))
     print("error in % of mu_0 N, max / RMS; time per scalar call (least of 3 passes)")
-    for name in ("coulomb", "mu(rigid)", "sliding ratio", "dissipation"):
+    for name in opts.candidates or ("coulomb", "mu(rigid)", "sliding ratio", "dissipation",
+                                    "dissip+fs", "dissip+fs^2"):
         err = []
         for (args, law, *_), (rx, ry) in zip(kept, ref):
             f = candidate(name, table, args, law)
@@ -171,6 +262,29 @@ def main(argv=None):
             table.creep_force_3d(*args)
         best = min(best, (time.perf_counter() - t0) / 200)
     print(f"  (the Coulomb table alone: {best * 1e6:.1f} us per scalar call in this run)")
+    # the fast path's scalar call on one contact the table keeps a buffer for (the compiled
+    # path of the package's laws), interleaved with the Coulomb call: best of 7 rounds
+    from railcontact.friction import PolachFriction  # noqa: PLC0415
+
+    one = (2e-3, 1e-3, 0.5, 1e5, 6e-3, 9e-3, 210e9, 0.28)
+    smooth, polach = SmoothFriction(0.3, 0.15, 300.0), PolachFriction(0.3, 0.4, 0.6)
+    calls = {"coulomb exact table": lambda: creep_force_3d(*one, 0.3, method="exact_table"),
+             "SmoothFriction": lambda: creep_force_3d(*one, smooth, method="exact_table"),
+             "PolachFriction": lambda: creep_force_3d(*one, polach, method="exact_table",
+                                                      rolling_speed=30.0)}
+    for fun in calls.values():
+        for _ in range(1000):        # past the table's ski rental: the contact's buffer
+            fun()
+    best = dict.fromkeys(calls, np.inf)
+    for _ in range(7):
+        for name, fun in calls.items():
+            t0 = time.perf_counter()
+            for _ in range(300):
+                fun()
+            best[name] = min(best[name], (time.perf_counter() - t0) / 300)
+    print("  scalar creep_force_3d(method='exact_table') on one contact, us per call: "
+          + ", ".join(f"{k} {v * 1e6:.1f}" for k, v in best.items())
+          + " (target <= 20)")
 
 
 if __name__ == "__main__":

@@ -1799,3 +1799,36 @@ def test_corrugation_keeps_creep():
     pipe = build_pipeline(parse_scene(_ALL_ON["corrugation"]))
     assert list(pipe.effects) == ["normal", "creep", "corrugation", "wear"]
     assert pipe.replaced == {}
+
+
+# --------------------------------------------------------------------------------------------
+# falling friction on the exact table (effects.creep.friction_law = "smooth")
+# --------------------------------------------------------------------------------------------
+def test_falling_friction_scene_steps_as_the_public_fast_path_and_slides_at_mu_k():
+    """The effect's scalar path equals creep_force_3d(..., method="exact_table", law) (the
+    array path) to round-off; beyond saturation the force falls; at huge creepage
+    |T| -> mu_k N (the law's limit), finite; the Jacobian outputs are 0 with a law."""
+    from railcontact.friction import SmoothFriction
+    from railcontact.scene import load_scene
+
+    slave = _scene_slave("creep_exact_table_falling")
+    scene = load_scene(_SCENES / "creep_exact_table_falling.toml")
+    opts = scene.effects["creep"]
+    law = SmoothFriction(0.3, opts["kinetic_friction_coefficient"], opts["kappa"])
+    c = slave._contact
+    forces = []
+    for xi, eta, phi in ((1e-3, 0.0, 0.0), (4e-3, 1e-3, 0.3), (2e-2, 0.0, 0.0), (0.0, 0.0, 2.0)):
+        c.creepage_longitudinal, c.creepage_lateral, c.spin = xi, eta, phi
+        assert slave.do_step(0.0, 1e-3) is True
+        ref = creep3d.creep_force_3d(np.array([xi]), eta, phi, c.normal_force, c.a0, c.b0,
+                                scene.youngs_modulus, scene.poisson_ratio, law,
+                                method="exact_table")
+        mu_n = 0.3 * c.normal_force
+        assert c.Fx == pytest.approx(ref.tx[0], abs=1e-10 * mu_n)
+        assert c.Fy == pytest.approx(ref.ty[0], abs=1e-10 * mu_n)
+        assert c.dFx_dxi_x == 0.0 and c.dMz_dphi == 0.0
+        forces.append(-c.Fx / mu_n)
+    assert forces[2] < forces[1] * 0.9                       # past the peak: it falls
+    c.creepage_longitudinal, c.creepage_lateral, c.spin = 1e308, 0.0, 0.0
+    assert slave.do_step(0.0, 1e-3) is True
+    assert math.hypot(c.Fx, c.Fy) == pytest.approx(0.15 * c.normal_force, rel=1e-12)

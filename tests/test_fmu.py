@@ -29,6 +29,7 @@ from railcontact.carter import carter_creep_force, carter_stick_ratio  # noqa: E
 from railcontact.corrugation import corrugated_contact  # noqa: E402
 from railcontact.creep3d import creep_solution_3d  # noqa: E402
 from railcontact.evolution import evolve_harmonics, wear_number  # noqa: E402
+from railcontact.friction import SmoothFriction  # noqa: E402
 from railcontact.friction import (normalised_inputs,  # noqa: E402
                                   solve_velocity_friction_normalised,
                                   step_law_creep_force_normalised)
@@ -265,7 +266,15 @@ def reference_result(scene, inputs=None, source=None):
             scene.youngs_modulus, scene.poisson_ratio, scene.friction_coefficient)
     contact = n_load > 0
     mz = np.zeros(n_load.shape)
-    if opts["method"] == "exact" and source != "analytic":
+    if opts.get("friction_law") == "smooth" and source != "analytic":
+        # falling friction: the public fast path (its array path; the FMU its scalar one)
+        law = SmoothFriction(scene.friction_coefficient, opts["kinetic_friction_coefficient"],
+                             opts["kappa"])
+        sol = creep_solution_3d(*args[:8], law, method="exact_table")
+        tx, ty, mz, stick, z = (sol.tx, sol.ty, sol.spin_moment, sol.stick_area_fraction,
+                                sol.normalised_creepage)
+        width = np.sqrt(1.0 - np.minimum(z, 1.0) ** 2)
+    elif opts["method"] == "exact" and source != "analytic":
         table = ExactCreepTable.from_file(ROOT / "tables" / f"{opts['table']}.nc")
         sol = table.creep_solution_3d(*args, sensitivities=False)
         tx, ty, mz, stick, z = (sol.tx, sol.ty, sol.spin_moment, sol.stick_area_fraction,

@@ -438,3 +438,30 @@ def test_input_signals_without_normal_force_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error", NoContactWarning)
         parse_scene("[inputs]\nnormal_force = 8e4\n").input_signals()
+
+
+def test_creep_friction_law_keys_are_checked():
+    from railcontact.scene import SceneError, scene_from_dict
+
+    def scene(**creep):
+        return scene_from_dict({"effects": {"creep": dict(method="exact", **creep)}})
+
+    opts = scene(friction_law="smooth", kinetic_friction_coefficient=0.15,
+                 kappa=300.0).effects["creep"]
+    assert (opts["friction_law"], opts["kinetic_friction_coefficient"], opts["kappa"]) == (
+        "smooth", 0.15, 300.0)
+    assert "friction_law" not in scene(friction_law="coulomb").effects["creep"]
+    with pytest.raises(SceneError, match="effects.creep.friction_law must be one of"):
+        scene(friction_law="polach")
+    with pytest.raises(SceneError, match=r"effects.creep.kappa must be in \[0, inf\)"):
+        scene(friction_law="smooth", kinetic_friction_coefficient=0.1, kappa=-1.0)
+    with pytest.raises(SceneError, match="effects.creep.kinetic_friction_coefficient must be "
+                                         "a number"):
+        scene(friction_law="smooth", kappa=1.0)
+    with pytest.raises(SceneError, match="kappa applies to friction_law = 'smooth' only"):
+        scene(kappa=1.0)
+    with pytest.raises(SceneError, match="friction_law = 'smooth' needs method = 'exact'"):
+        scene_from_dict({"effects": {"creep": dict(method="modified_strip",
+                                                   friction_law="smooth",
+                                                   kinetic_friction_coefficient=0.1,
+                                                   kappa=1.0)}})

@@ -231,6 +231,12 @@ POLACH_KEYS = {
     "polach_friction_ratio_limit": ("friction_ratio_limit", "-", 0.0, 1.0, True, 1.0),
     "polach_friction_decay": ("friction_decay", "s/m", 0.0, None, True, 0.0),
 }
+#: Falling friction on the 3-D exact table (``[effects.creep]``, method = "exact" only; the
+#: fast path :mod:`railcontact.falling_table`): ``friction_law`` "coulomb" (default) or
+#: "smooth" (Eq. (5.16) with mu_0 = ``friction.friction_coefficient``), with
+#: ``kinetic_friction_coefficient`` mu_k >= 0 and ``kappa`` >= 0 (per unit slip s = |w|/V).
+CREEP_FRICTION_LAWS = ("coulomb", "smooth")
+CREEP_FRICTION_LAW_KEYS = ("friction_law", "kinetic_friction_coefficient", "kappa")
 #: Defaults of the accuracy knobs of the smooth friction law's iteration (those of
 #: :func:`railcontact.friction.solve_velocity_friction_normalised`).
 FRICTION_SERIES_DEGREE = 128
@@ -310,7 +316,7 @@ EFFECTS = MappingProxyType({spec.name: spec for spec in (
                "relaxed creepages in place of the input creepages for every later effect "
                "(Ch. 7); the inputs are put back after the last effect"),
     EffectSpec("creep", frozenset({"enabled", "method", "source", "spin", "table",
-                                   *POLACH_KEYS}), (),
+                                   *POLACH_KEYS, *CREEP_FRICTION_LAW_KEYS}), (),
                "creep forces and stick measures (3-D theories; Carter on a line contact)"),
     EffectSpec("velocity_friction", frozenset({"enabled", "source", "law",
                                                "kinetic_friction_coefficient", "kappa",
@@ -728,6 +734,7 @@ def scene_from_dict(data, base_dir=None):
             if opts["source"] == "table":
                 _check_table_exists("effects.creep.table", opts["table"])
             _check_polach_keys(opts)
+            _check_creep_friction_law(opts)
         elif name == "corrugation":
             opts["method"] = _choice("effects.corrugation.method", opts.get("method", "exact"),
                                      ("exact", "linear"))
@@ -848,6 +855,30 @@ def _check_roughness_combination(effects, geometry):
         if other in effects:
             raise SceneError(f"effects.roughness cannot be combined with effects.{other} "
                              f"({why})")
+def _check_creep_friction_law(opts):
+    """``friction_law`` of [effects.creep]: "smooth" needs method = "exact" (the table's
+    falling-friction fast path) and its two parameters; "coulomb" takes neither."""
+    law = _choice("effects.creep.friction_law", opts.get("friction_law", "coulomb"),
+                  CREEP_FRICTION_LAWS)
+    if law == "coulomb":
+        extra = [k for k in CREEP_FRICTION_LAW_KEYS[1:] if k in opts]
+        if extra:
+            raise SceneError(f"effects.creep.{extra[0]} applies to friction_law = 'smooth' "
+                             f"only; got it with friction_law = 'coulomb'")
+        opts.pop("friction_law", None)      # (Coulomb: the scene dict as before)
+        return
+    opts["friction_law"] = law
+    if opts["method"] != "exact":
+        raise SceneError(f"effects.creep.friction_law = 'smooth' needs method = 'exact' (the "
+                         f"exact table's falling-friction path; FASTSIM and the exact solver "
+                         f"take a law through the Python API only); got method "
+                         f"{opts['method']!r}")
+    opts["kinetic_friction_coefficient"] = _number(
+        "effects.creep.kinetic_friction_coefficient",
+        opts.get("kinetic_friction_coefficient"), "-", 0.0)
+    opts["kappa"] = _number("effects.creep.kappa", opts.get("kappa"), "-", 0.0)
+
+
 def _check_polach_keys(opts):
     """Polach's falling friction and reduction factors: ranges, k_S <= k_A (Polach 2005), only
     with method = "polach" (a non-default value with another method is a SceneError)."""

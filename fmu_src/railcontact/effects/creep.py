@@ -6,9 +6,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
+
 from .. import creep3d
 from .._scalar import (carter_scalar, creep_force_3d_scalar, creep_stick_3d_scalar,
                        spin_coefficient_scalar)
+from ..falling_table import (falling_friction_table,
+                             falling_friction_table_smooth)
 from ..scene import POLACH_KEYS, SceneError
 from .base import NOT_ESTIMATED, Effect, EffectUnavailable
 
@@ -51,6 +55,11 @@ def table_error_estimate(table):
     if not all(math.isfinite(e) for e in errors):
         return NOT_ESTIMATED
     return float(math.hypot(*errors))
+
+
+#: Slips beyond this over max(kappa, 1) are evaluated there by the smooth law (its value is
+#: then mu_k to round-off): kappa s stays finite for any finite creepage. [-]
+_SLIP_CAP = 1e300
 
 
 class Creep3D(Effect):
@@ -99,6 +108,15 @@ class Creep3D(Effect):
     the solver itself (milliseconds per step), so every input gets the exact theory.
     With ``spin = false`` the spin input is ignored (treated as 0).
 
+    Falling friction (``friction_law = "smooth"``, method "exact" only): the smooth law (5.16)
+    ``mu(s) = (mu_0 - mu_k) / (1 + kappa s) + mu_k`` with mu_0 the step's friction coefficient
+    and ``kinetic_friction_coefficient``, ``kappa`` from the scene, through the Coulomb table
+    (:mod:`railcontact.falling_table`: an effective coefficient and a spread correction, its
+    compiled smooth-law path, one call per step; against the exact theory with the law 0.9 %
+    of mu_0 N without spin or with spin coordinate |tau| <= 1, up to 5.5 % with larger spin;
+    the numpy path where the table has no buffer for the contact). ``Mz``, the stick
+    measures and z are the table's at the effective coefficient; the Jacobian outputs are 0.
+
     FASTSIM, Polach, FaStrip (``method = "fastsim" | "polach" | "fastrip"``, analytic source
     only): the public :func:`~railcontact.creep3d.creep_solution_3d` each step (no scalar path;
     FASTSIM and FaStrip loop over their 40 elements per strip). Polach's 2005 parameters come
@@ -124,6 +142,9 @@ class Creep3D(Effect):
         self._stick_measures = None
         self._solution = (0.0, 0.0, 0.0)    # the analytic step's (tx, ty, z)
         self._exact = self.method == "exact"
+        # falling friction on the exact table (friction_law = "smooth"): (mu_k, kappa)
+        self._smooth_law = ((float(opts["kinetic_friction_coefficient"]), float(opts["kappa"]))
+                            if opts.get("friction_law", "coulomb") == "smooth" else None)
         self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
                         in POLACH_KEYS.items()}
         #: Output ``creep_table_error_estimate``: :func:`table_error_estimate` of the table in
@@ -165,6 +186,10 @@ class Creep3D(Effect):
             try:
                 self._table.step_values(1e-4, 1e-4, 0.1, 1e5, 6e-3, 6e-3, self._e, self._nu,
                                         0.3)
+                if self._smooth_law is not None:    # (its compiled kernel loaded now too)
+                    falling_friction_table_smooth(self._table, 1e-4, 1e-4, 0.1, 1e5, 6e-3,
+                                                  6e-3, self._e, self._nu, 0.3,
+                                                  *self._smooth_law, eager=True)
             except ValueError:
                 pass            # (a scene outside the table's range: the step will say so)
         else:
@@ -225,7 +250,44 @@ class Creep3D(Effect):
         c.r_a0 = 1.0 if self.method == "linear" else 1.0 - min(z, 1.0)
         c.creep_within_validity = valid
 
+    def _falling_values(self, args, mu):
+        # the Coulomb table at mu: (tx, ty, mz, stick, z) (scalar path, else the array path)
+        mu = float(mu)
+        values = self._table.step_values(*args[:8], mu, False)
+        if values is None:
+            return self._table.step(*args[:8], mu, False)[:5]
+        return values[:5]
+
+    def _exact_table_falling(self, c, args):
+        # falling friction (smooth law (5.16), mu_0 the step's friction coefficient) on the
+        # Coulomb table: railcontact.falling_table, three table calls plus one
+        mu0 = args[8]
+        mu_k, kappa = self._smooth_law
+        cap = _SLIP_CAP / max(kappa, 1.0)        # kappa s stays finite (any creepage)
+
+        def law(slip):
+            return (mu0 - mu_k) / (1.0 + kappa * np.minimum(slip, cap)) + mu_k
+
+        got = falling_friction_table_smooth(self._table, *args[:8], mu0, mu_k, kappa,
+                                            eager=True)      # compiled, one call
+        if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
+            got = falling_friction_table(lambda mu: self._falling_values(args, mu), *args[:6],
+                                         law, mu0)
+        tx, ty, mz, stick, z, _ = got
+        c.Fx, c.Fy, c.Mz = float(tx), float(ty), float(mz)
+        zc = z if z < 1.0 else 1.0
+        c.stick_area_fraction = float(stick)
+        c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
+        c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
+        c.creep_within_validity = True
+        (c.dFx_dxi_x, c.dFx_dxi_y, c.dFx_dphi, c.dFy_dxi_x, c.dFy_dxi_y, c.dFy_dphi,
+         c.dMz_dxi_x, c.dMz_dxi_y, c.dMz_dphi) = (0.0,) * 9    # no Jacobian with a law
+        self._aux_args = None
+
     def _exact_table(self, c, args):
+        if self._smooth_law is not None and args[8] > 0.0:
+            self._exact_table_falling(c, args)
+            return
         # one evaluation: forces, moment, stick area, normalised creepage, Jacobian
         values = self._table.step_values(*args)
         if values is None:        # the reader's array path (beyond its grid etc.)
