@@ -113,6 +113,28 @@ def test_a_damaged_cache_entry_is_never_read_as_numbers(fresh, monkeypatch, dama
     assert calls == [first]
 
 
+def test_an_unchanged_entry_is_opened_without_reading_its_bytes(fresh, monkeypatch):
+    """The CRC-32 of the coefficients is taken when the entry is written and again only when
+    the file is not the one written (here: its modification time changed, its bytes not):
+    then the entry passes its check and is kept."""
+    entries, (first, _) = fresh
+    tables.Table.from_file(first)
+    data = next(entries.glob("*.npy"))
+    crcs = []
+    real = _table_store._crc32
+    monkeypatch.setattr(_table_store, "_crc32", lambda fh: crcs.append(1) or real(fh))
+    monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE)   # a new process
+    calls = _reads(monkeypatch)
+    tables.Table.from_file(first)
+    assert (calls, crcs) == ([], [])
+    os.utime(data, ns=(1, 1))                        # touched, not changed
+    monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE)
+    table = tables.Table.from_file(first)
+    assert (calls, crcs) == ([], [1])                # checked in full, and it passed
+    np.testing.assert_array_equal(np.moveaxis(table.coefficients, 0, -1),
+                                  _file_coefficients(first))
+
+
 def test_an_entry_replaced_while_mapped_keeps_the_mapped_numbers(fresh, monkeypatch):
     entries, (first, _) = fresh
     table = tables.Table.from_file(first)
