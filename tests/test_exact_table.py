@@ -1013,3 +1013,35 @@ def test_a_batch_of_changing_contacts_is_evaluated_in_any_order_alike():
     few = table.creep_solution_3d(*_args(xi[:m], eta[:m], phi[:m], a0=a0[:m]))
     np.testing.assert_array_equal(few.tx, whole.tx[:m])
     np.testing.assert_array_equal(few.sensitivity, whole.sensitivity[:m])
+
+
+@needs_table
+def test_the_sum_over_nu_is_made_once_per_machine(tmp_path, monkeypatch):
+    """ExactCreepTable.prepare keeps the table summed over nu in the user cache: a second
+    process maps it instead of summing again, and both hold the sum of the file's float32
+    coefficients weighted by the cubic B-splines of the nu axis at nu (scipy's, an
+    independent basis), on sampled a0/b0 planes."""
+    import sys
+
+    from scipy.interpolate import BSpline
+
+    from railcontact import _table_store
+
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
+    monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE, raising=False)
+    first = ExactCreepTable.from_file(TABLE)
+    first.prepare(0.3)
+    assert len(list((tmp_path / "tables").glob("*-nu-*.npy"))) == 1
+    monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE)      # a new process
+    monkeypatch.setattr(_table_store, "_write_entry",
+                        lambda *a, **k: pytest.fail("the sum was made again"))
+    second = ExactCreepTable.from_file(TABLE)
+    second.prepare(0.3)
+    a, b = first._nu_slabs[0.3][0], second._nu_slabs[0.3][0]
+    assert isinstance(b.base, np.memmap) or isinstance(b, np.memmap)
+    np.testing.assert_array_equal(a, b)
+    t = first._knot_list[1]
+    weights = BSpline.design_matrix([0.3], t, 3).toarray()[0]
+    for plane in (0, 7, len(a) - 1):
+        want = np.tensordot(weights, first._coef[plane].astype(np.float64), axes=(0, 0))
+        np.testing.assert_allclose(b[plane, 0], want, rtol=0, atol=1e-12)

@@ -54,7 +54,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["REGISTRY_MODULE", "MAPPED_MIN_BYTES", "process_registry", "content_key", "load",
-           "release_pages", "TableCacheWarning"]
+           "derived", "release_pages", "TableCacheWarning"]
 
 #: Name, in :data:`sys.modules`, of the process-wide registry (shared by every copy of the
 #: package that a process imports).
@@ -172,6 +172,43 @@ def _read_only(content):
     return content
 
 
+def derived(path, name, make):
+    """An array derived from the table file ``path`` (e.g. its coefficients summed over one
+    axis at one value), made once per machine like the table's own coefficients: kept in the
+    user cache as ``<key>-<name>.npy`` beside the table's entry, mapped read-only, checked on
+    open as that entry is, and held once per process.
+
+    Parameters
+    ----------
+    path : path-like
+        The table file it derives from (its content key names the entry).
+    name : str
+        What it is, unique per table (letters, digits, ``.``, ``_``, ``-``).
+    make : callable
+        ``make() -> numpy.ndarray``, called only where neither the process nor the cache
+        has it.
+
+    Returns
+    -------
+    numpy.ndarray
+        Mapped copy-on-write where the cache can be written (``numpy.memmap`` mode ``"c"``:
+        the pages are the machine's shared ones until a process writes to them, which the
+        readers never do; writable, so that the compiled kernels take it with the types of an
+        array made in memory), else in memory (with the cache's one warning per process).
+    """
+    key = f"{content_key(path)}-{name}"
+    registry = process_registry()
+    with registry.lock:
+        content = registry.tables.get(key)
+        if content is None:
+            content = _open_entry(key, mode="c")
+            if content is None:
+                content = {"coefficients": np.ascontiguousarray(make())}
+                content = _write_entry(key, content, path, mode="c") or content
+            registry.tables[key] = content
+    return np.asarray(content["coefficients"])
+
+
 def _entry_paths(key):
     from ._files import user_cache_dir  # noqa: PLC0415
 
@@ -191,9 +228,10 @@ def _identity(st):
     return (st.st_size, st.st_mtime_ns, st.st_ino)
 
 
-def _open_entry(key):
-    """The cached content of ``key``, its coefficients mapped read-only, or None (no entry,
-    or one that fails its check: never read as numbers)."""
+def _open_entry(key, mode="r"):
+    """The cached content of ``key``, its coefficients mapped read-only (``mode="r"``) or
+    copy-on-write (``"c"``), or None (no entry, or one that fails its check: never read as
+    numbers)."""
     _, data_path, meta_path = _entry_paths(key)
     try:
         with open(meta_path, "rb") as fh:
@@ -212,7 +250,7 @@ def _open_entry(key):
                 if _crc32(fh) != meta["crc32"]:
                     return None
             # the same open file: the inode checked is the inode mapped
-            coefficients = np.memmap(fh, dtype=dtype, mode="r", offset=offset, shape=shape)
+            coefficients = np.memmap(fh, dtype=dtype, mode=mode, offset=offset, shape=shape)
     except Exception:  # noqa: BLE001  (missing, truncated, another format: read the file)
         return None
     content = dict(meta["content"])
@@ -220,7 +258,7 @@ def _open_entry(key):
     return content
 
 
-def _write_entry(key, content, source):
+def _write_entry(key, content, source, mode="r"):
     """Write the cache entry of ``content`` and return it re-opened (mapped), or None where
     the cache cannot be written (one warning per process; the caller keeps ``content`` in
     memory)."""
@@ -261,4 +299,4 @@ def _write_entry(key, content, source):
             except OSError:
                 pass
         return None
-    return _open_entry(key)
+    return _open_entry(key, mode)

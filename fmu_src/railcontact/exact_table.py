@@ -518,9 +518,11 @@ class ExactCreepTable:
         instead of 16 x 64 coefficients per variable (:meth:`step_values`, the public scalar
         call and the arrays of changing contacts).
 
-        The values are the file's to round-off (the sum is held in float64). Costs about
-        0.1-0.3 s and 66 MB (the two most recent Poisson's ratios are kept); the pages of the
-        mapped file it reads are given back to the operating system as it goes. Made by the
+        The values are the file's to round-off (the sum is held in float64). The sum is made
+        once per machine and Poisson's ratio: about 0.1-0.5 s and a 66 MB file in the user
+        cache (:func:`railcontact._table_store.derived`), which every later process maps
+        read-only (the pages of the mapped table it reads are given back to the operating
+        system as it goes; the two most recent Poisson's ratios are kept per process). Made by the
         reader itself once a Poisson's ratio has been asked for :data:`NU_SLAB_AFTER_POINTS`
         points of changing contacts.
 
@@ -529,7 +531,7 @@ class ExactCreepTable:
         poisson_ratio : float
             Poisson's ratio, in [0, 0.5]. [-]
         """
-        from ._table_store import release_pages  # noqa: PLC0415
+        from ._table_store import derived, release_pages  # noqa: PLC0415
         from ._validation import check_range  # noqa: PLC0415
 
         nu = float(poisson_ratio)
@@ -541,14 +543,24 @@ class ExactCreepTable:
         w, dw = np.empty(4), np.empty(4)
         _compiled.cubic_basis()(t, i, nu, w, dw, np.empty(12))
         coef = self._coef
-        out = np.empty((coef.shape[0], 1) + coef.shape[2:])
-        for p in range(coef.shape[0]):     # one a0/b0 plane at a time (9 MB of the file)
-            block = coef[p, i - 3:i + 1]
-            plane = out[p, 0]
-            np.multiply(block[0], w[0], out=plane)
-            for q in range(1, 4):
-                plane += w[q] * block[q]
-            release_pages(block)
+
+        def summed():
+            out = np.empty((coef.shape[0], 1) + coef.shape[2:])
+            for p in range(coef.shape[0]):     # one a0/b0 plane at a time (9 MB of the file)
+                block = coef[p, i - 3:i + 1]
+                plane = out[p, 0]
+                np.multiply(block[0], w[0], out=plane)
+                for q in range(1, 4):
+                    plane += w[q] * block[q]
+                release_pages(block)
+            return out
+
+        # once per machine and Poisson's ratio (mapped from the user cache, shared by every
+        # process and FMU instance), like the table's own coefficients
+        from pathlib import Path  # noqa: PLC0415
+
+        out = (derived(self.path, f"nu-{nu.hex()}", summed)
+               if self.path is not None and Path(self.path).is_file() else summed())
         if self._tbuf is None:
             self._make_table_buffer()
         if len(self._nu_slabs) >= 2:
