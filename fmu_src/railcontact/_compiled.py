@@ -14,7 +14,8 @@ build machine without a C compiler) or does not load (another Python version), t
 the numba kernels: the same source and, as the tests check, the same results. A wheel's
 build (``setup.py``) compiles the same module into the installed package, with the serial
 batch kernels of :data:`BATCH_EXPORTS` too, so that a user's first call neither imports numba
-nor compiles (docs/performance.md).
+nor compiles (docs/performance.md), and the reference rolling solver's sweep
+(:data:`SOLVER_EXPORTS`), so that a first ``method="exact"`` call does not compile it.
 """
 
 from __future__ import annotations
@@ -26,8 +27,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-__all__ = ["EXPORTS", "BATCH_EXPORTS", "matches", "aot_batch", "AOT_MODULE", "aot_module",
-           "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force",
+__all__ = ["EXPORTS", "BATCH_EXPORTS", "SOLVER_EXPORTS", "matches", "aot_kernel", "aot_batch",
+           "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force",
            "creep_table_point", "creep_table_force", "superposed_response", "exact_kernels",
            "build_aot"]
 
@@ -81,6 +82,22 @@ BATCH_EXPORTS = (
 )
 
 
+# --- kernels compiled ahead of time for a wheel: the reference solver --------------------
+#: The reference rolling solver's kernel compiled ahead of time for a wheel beside
+#: :data:`BATCH_EXPORTS` (same format; the module is relative to the package): the block
+#: Gauss-Seidel sweep of :mod:`railcontact.reference.rolling3d` and its callees (the line
+#: Newton solver, the friction table). numba compiles it in 10-30 s on a first
+#: ``method="exact"`` call with an empty user cache, nearly all of that call's time; the
+#: solver takes the compiled copy where it loads and its arguments match (:func:`aot_kernel`).
+#: The FMU's build leaves it out: a table scene never calls the reference solver.
+SOLVER_EXPORTS = (
+    ("_sweep", "reference.rolling3d",
+     "f8(i8[::1], i8[::1], i8[::1], f8[::1], f8[::1], f8[::1], f8[:, ::1], f8[:, ::1], "
+     "f8[:, ::1], f8[:, :, ::1], f8[:, :, ::1], i8[::1], i8, i8, f8[::1], f8[::1], f8[::1], "
+     "f8[::1], f8, i8, f8)"),
+)
+
+
 @lru_cache(maxsize=None)
 def _split_args(signature):
     """The argument types of a numba signature string such as ``"b1(f8[::1], f8)"``, split at
@@ -110,10 +127,11 @@ def _coefficient_type():
 
 @lru_cache(maxsize=1)
 def _all_exports():
-    """:data:`EXPORTS` and :data:`BATCH_EXPORTS`, the latter's ``{coef}`` filled in."""
+    """:data:`EXPORTS`, :data:`BATCH_EXPORTS` (their ``{coef}`` filled in) and
+    :data:`SOLVER_EXPORTS`: what a wheel's build compiles."""
     coef = _coefficient_type()
     return EXPORTS + tuple((name, module, sig.format(coef=coef))
-                           for name, module, sig in BATCH_EXPORTS)
+                           for name, module, sig in BATCH_EXPORTS) + SOLVER_EXPORTS
 
 
 _DTYPES = {"f8": np.float64, "f4": np.float32, "i8": np.int64, "b1": np.bool_}
@@ -153,9 +171,10 @@ def matches(signature, args):
 _BATCH_SIGNATURES = {}
 
 
-def aot_batch(name, args):
-    """The ahead-of-time serial batch kernel ``name`` (:data:`BATCH_EXPORTS`) if there is one
-    and ``args`` match its signature, else None (then the numba kernels)."""
+def aot_kernel(name, args):
+    """The ahead-of-time kernel ``name`` of a wheel (:data:`BATCH_EXPORTS`,
+    :data:`SOLVER_EXPORTS`) if there is one and ``args`` match its signature, else None (then
+    the numba kernels)."""
     aot = aot_module()
     kernel = getattr(aot, name, None) if aot is not None else None
     if kernel is None:
@@ -165,6 +184,10 @@ def aot_batch(name, args):
     return kernel if matches(_BATCH_SIGNATURES[name], args) else None
 
 
+#: The serial batch kernels (:data:`BATCH_EXPORTS`) are looked up as every wheel kernel.
+aot_batch = aot_kernel
+
+
 _AOT = []      # [module or None] once looked up
 
 
@@ -172,7 +195,8 @@ def aot_module():
     """The ahead-of-time compiled kernels (the extension module ``_aot_kernels`` beside this
     file: made by a wheel's or an FMU's build), or None where there is none, it does not load,
     or it lacks one of :data:`EXPORTS` (an older build: the numba kernels then). Its
-    attributes are the exported kernels (of :data:`BATCH_EXPORTS` those it has)."""
+    attributes are the exported kernels (of :data:`BATCH_EXPORTS` and :data:`SOLVER_EXPORTS`
+    those it has)."""
     if not _AOT:
         import importlib  # noqa: PLC0415
 
@@ -182,7 +206,8 @@ def aot_module():
         except (ImportError, AttributeError):
             _AOT.append(None)
         else:
-            kernels.update({name: getattr(module, name) for name, _, _ in BATCH_EXPORTS
+            kernels.update({name: getattr(module, name)
+                            for name, _, _ in BATCH_EXPORTS + SOLVER_EXPORTS
                             if hasattr(module, name)})
             _AOT.append(SimpleNamespace(**kernels))
     return _AOT[0]
@@ -297,8 +322,9 @@ def superposed_response(fbuf, ibuf, harm):
 
 
 def build_aot(directory, batches=False):
-    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS`) ahead of time into
-    ``directory`` as the extension module ``_aot_kernels`` (``numba.pycc``: needs a C
+    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS` and
+    :data:`SOLVER_EXPORTS`) ahead of time into ``directory`` as the extension module
+    ``_aot_kernels`` (``numba.pycc``: needs a C
     compiler and the Python headers; generic code for the architecture, e.g. x86-64, so the
     module runs on any CPU of it). Used by the FMU build (the per-step kernels only: the FMU
     makes no batch calls, and each export adds to its build time) and by the wheel's
@@ -316,15 +342,14 @@ def build_aot(directory, batches=False):
             warnings.simplefilter("ignore")         # numba.pycc: pending deprecation
             from numba.pycc import CC  # noqa: PLC0415
 
-            from . import _response_kernels  # noqa: PLC0415
+            import importlib  # noqa: PLC0415
 
-            modules = {"_spline_kernels": _spline_kernels(), "_exact_kernels": exact_kernels(),
-                       "_response_kernels": _response_kernels}
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False
             for name, module, signature in (_all_exports() if batches else EXPORTS):
-                cc.export(name, signature)(getattr(modules[module], name).py_func)
+                kernel = getattr(importlib.import_module(f"{__package__}.{module}"), name)
+                cc.export(name, signature)(kernel.py_func)
             cc.compile()
     except Exception as exc:  # noqa: BLE001  (no compiler, no headers, a numba without pycc)
         return (f"ahead-of-time kernels not compiled ({type(exc).__name__}: "
