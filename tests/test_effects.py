@@ -1799,3 +1799,31 @@ def test_corrugation_keeps_creep():
     pipe = build_pipeline(parse_scene(_ALL_ON["corrugation"]))
     assert list(pipe.effects) == ["normal", "creep", "corrugation", "wear"]
     assert pipe.replaced == {}
+
+
+def test_a_scenes_unit_ellipse_is_hertz_3d_kept_exactly_in_the_user_cache(tmp_path, monkeypatch):
+    """effects.normal.unit_ellipse: hertz_3d's floats at 1 N; a later process (here: the same
+    call with hertz_3d unavailable) reads them back bit for bit from the user cache instead of
+    importing scipy.special; a corrupt cache file is recomputed and rewritten."""
+    import json
+
+    from railcontact import hertz
+    from railcontact.effects import normal
+
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
+    args = (1.087, 1.667, 210e9, 0.28)
+    want = tuple(float(v) for v in hertz.hertz_3d(1.0, *args))
+    assert normal.unit_ellipse(*args) == want
+    (cache,) = tmp_path.glob("hertz-*.json")
+    assert json.loads(cache.read_text()) == {"1.087 1.667 210000000000.0 0.28": list(want)}
+
+    def unavailable(*_):
+        raise AssertionError("hertz_3d called although the cache holds the ellipse")
+
+    monkeypatch.setattr(hertz, "hertz_3d", unavailable)
+    assert normal.unit_ellipse(*args) == want
+    cache.write_text("{not json")
+    monkeypatch.undo()
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
+    assert normal.unit_ellipse(*args) == want
+    assert json.loads(cache.read_text())["1.087 1.667 210000000000.0 0.28"] == list(want)
