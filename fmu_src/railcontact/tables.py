@@ -457,7 +457,8 @@ def _read_netcdf_file(path):
             attrs = {k: nc.getncattr(k) for k in nc.ncattrs()}
             variables = {}
             for vname, var in nc.variables.items():
-                variables[vname] = (tuple(var.dimensions), np.array(var[...]),
+                # (netCDF4 returns a new array: no second copy of 165 MB)
+                variables[vname] = (tuple(var.dimensions), np.asarray(var[...]),
                                     {k: var.getncattr(k) for k in var.ncattrs()})
     except (OSError, RuntimeError, IndexError, KeyError, AttributeError, ValueError,
             TypeError) as exc:   # a damaged header or attribute: netCDF4 raises any of these
