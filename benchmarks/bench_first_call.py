@@ -25,7 +25,9 @@ fresh process running ``fmpy.simulate_fmu`` for 10 steps of each table scene
 interface (``bench_fmu.TRIVIAL``), the two in turn (A B A B ...), so each difference compares
 processes run under the same machine load; with an empty user cache per process ("cold") and
 with a warm one. The figure is the median of the pairwise differences (targets: <= 0.5 s warm,
-<= 2 s cold). PATH defaults to the FMU built from this checkout
+<= 2 s cold); the CPU seconds (user + system) of each process are printed too, the median of
+the pairwise CPU differences for the FMU: on a loaded machine they stretch much less than wall
+times. PATH defaults to the FMU built from this checkout
 (``railcontact.fmu_build.cached_build``).
 """
 
@@ -78,9 +80,24 @@ def _run(python, code, cache, timeout, args=()):
     env["RAILCONTACT_CACHE_DIR"] = cache
     env.setdefault("OPENBLAS_NUM_THREADS", "1")
     t0 = time.perf_counter()
+    cpu0 = _children_cpu()
     subprocess.run([python, "-c", code, *args], env=env, check=True, stdout=subprocess.DEVNULL,
                    timeout=timeout)
-    return time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    _CPU.append(_children_cpu() - cpu0)
+    return wall
+
+
+#: CPU seconds (user + system) of each process run, in order: on a loaded machine the wall
+#: time of a single-threaded process stretches with the load, its CPU time much less.
+_CPU = []
+
+
+def _children_cpu():
+    import resource  # noqa: PLC0415
+
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
 
 
 def fmu_cold_start(python, fmu, runs, timeout, tmp):
@@ -110,22 +127,25 @@ def fmu_cold_start(python, fmu, runs, timeout, tmp):
         for scene in scenes:
             if kind == "warm":     # the untimed first process fills the cache
                 _run(python, SIMULATE, warm, timeout, (str(fmu), scene))
-            own, base = [], []
+            own, base, cpu = [], [], []
             for k in range(runs):
                 cache = warm if kind == "warm" else os.path.join(tmp, f"fmu-{scene}-{k}")
                 base.append(_run(python, SIMULATE, cache + "-trivial" * (kind == "cold"),
                                  timeout, (str(trivial),)))
                 own.append(_run(python, SIMULATE, cache, timeout, (str(fmu), scene)))
+                cpu.append(_CPU[-1] - _CPU[-2])
             diff = [a - b for a, b in zip(own, base)]
             print(f"{kind} {scene:<24s} {statistics.median(own):6.2f} s, trivial "
                   f"{statistics.median(base):5.2f} s: +{statistics.median(diff):.2f} s "
-                  f"(min {min(diff):+.2f}, max {max(diff):+.2f}, {runs} pairs; target "
-                  f"{0.5 if kind == 'warm' else 2.0} s)", flush=True)
+                  f"(min {min(diff):+.2f}, max {max(diff):+.2f}, {runs} pairs; CPU "
+                  f"+{statistics.median(cpu):.2f} s; target {0.5 if kind == 'warm' else 2.0} "
+                  "s)", flush=True)
 
 
 def _row(label, times):
+    cpu = _CPU[-len(times):]
     return (f"{label:<52s} {statistics.median(times):8.2f} s  (min {min(times):.2f}, "
-            f"max {max(times):.2f}, {len(times)} runs)")
+            f"max {max(times):.2f}, {len(times)} runs; CPU {statistics.median(cpu):.2f} s)")
 
 
 def main(argv=None):
