@@ -181,8 +181,10 @@ def test_no_contact_gives_zero_forces_not_nan():
 
 
 @pytest.fixture
-def counted(monkeypatch):
-    """Wrap the model entry points with call counters."""
+def counted(monkeypatch, tmp_path):
+    """Wrap the model entry points with call counters (an empty user cache: the scene's
+    Hertz ellipse is computed, not read from a cache, effects.normal.unit_ellipse)."""
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
     counts = {"hertz_3d": 0, "creep_solution_3d": 0, "creep_force_3d_scalar": 0}
 
     def wrap(module, name):
