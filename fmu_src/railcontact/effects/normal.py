@@ -71,15 +71,18 @@ def unit_ellipse(curvature_longitudinal, curvature_lateral, youngs_modulus, pois
     import hashlib  # noqa: PLC0415
     import json  # noqa: PLC0415
     import os  # noqa: PLC0415
-    from pathlib import Path  # noqa: PLC0415
 
     key = " ".join(repr(float(v)) for v in (curvature_longitudinal, curvature_lateral,
                                              youngs_modulus, poisson_ratio))
     base = _files.writable_cache_dir()
     path = None
     if base is not None:
-        digest = hashlib.sha256(Path(hertz.__file__).read_bytes()).hexdigest()[:16]
-        path = base / f"hertz-{digest}.json"
+        try:     # (the package's directory now: an FMU's first extraction may be gone)
+            source = (_files.package_directory() / "hertz.py").read_bytes()
+        except OSError:
+            source = None
+        if source is not None:
+            path = base / f"hertz-{hashlib.sha256(source).hexdigest()[:16]}.json"
     known = {}
     if path is not None:
         try:
