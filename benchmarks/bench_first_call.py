@@ -18,6 +18,17 @@ fresh virtual environment, run from another directory)::
 ``--python`` times another interpreter than the one running this script (default: this
 one). With an editable install (a checkout) the table kernels are numba's, compiled on first
 use, so "cold" then includes their compilation: minutes (``--skip-cold`` leaves it out).
+
+``--fmu [PATH]`` times instead the FMU's cold start as a co-simulation user waits for it: a
+fresh process running ``fmpy.simulate_fmu`` for 10 steps of each table scene
+(``examples/scenes``), against the same run of a trivial PythonFMU slave with the same
+interface (``bench_fmu.TRIVIAL``), the two in turn (A B A B ...), so each difference compares
+processes run under the same machine load; with an empty user cache per process ("cold") and
+with a warm one. The figure is the median of the pairwise differences (targets: <= 0.5 s warm,
+<= 2 s cold); the CPU seconds (user + system) of each process are printed too, the median of
+the pairwise CPU differences for the FMU: on a loaded machine they stretch much less than wall
+times. PATH defaults to the FMU built from this checkout
+(``railcontact.fmu_build.cached_build``).
 """
 
 from __future__ import annotations
@@ -54,19 +65,87 @@ CASES = (
 )
 
 
-def _run(python, code, cache, timeout):
+#: A co-simulation user's whole process: 10 steps of 1 ms through fmpy (argv: the FMU, and
+#: the scene's name or nothing for the trivial slave).
+SIMULATE = """
+import sys
+from fmpy import simulate_fmu
+simulate_fmu(sys.argv[1], start_time=0.0, stop_time=0.01, step_size=1e-3,
+             output_interval=1e-3, start_values={"scene_file": sys.argv[2]} if sys.argv[2:] else {})
+"""
+
+
+def _run(python, code, cache, timeout, args=()):
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",)}
     env["RAILCONTACT_CACHE_DIR"] = cache
     env.setdefault("OPENBLAS_NUM_THREADS", "1")
     t0 = time.perf_counter()
-    subprocess.run([python, "-c", code], env=env, check=True, stdout=subprocess.DEVNULL,
+    cpu0 = _children_cpu()
+    subprocess.run([python, "-c", code, *args], env=env, check=True, stdout=subprocess.DEVNULL,
                    timeout=timeout)
-    return time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    _CPU.append(_children_cpu() - cpu0)
+    return wall
+
+
+#: CPU seconds (user + system) of each process run, in order: on a loaded machine the wall
+#: time of a single-threaded process stretches with the load, its CPU time much less.
+_CPU = []
+
+
+def _children_cpu():
+    import resource  # noqa: PLC0415
+
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def fmu_cold_start(python, fmu, runs, timeout, tmp):
+    """The FMU's table scenes against the trivial slave, whole processes, cold and warm."""
+    from pathlib import Path  # noqa: PLC0415
+
+    from pythonfmu.builder import FmuBuilder  # noqa: PLC0415
+
+    from bench_fmu import TRIVIAL  # noqa: PLC0415
+
+    root = Path(__file__).resolve().parents[1]
+    if fmu is None:
+        sys.path[:0] = [str(root / "fmu_src")]
+        from railcontact.fmu_build import cached_build  # noqa: PLC0415
+
+        fmu = cached_build()
+    script = Path(tmp) / "trivialcontact_bench.py"
+    script.write_text(TRIVIAL)
+    trivial = FmuBuilder.build_FMU(script, dest=Path(tmp) / "TrivialContact.fmu")
+    scenes = [p.stem for p in sorted((root / "examples" / "scenes").glob("*.toml"))
+              if 'source = "table"' in p.read_text()]
+    print(f"FMU {fmu}\nfmpy.simulate_fmu of 10 steps in a fresh process: each table scene "
+          "against a trivial PythonFMU slave, in turn; the difference is the median of the "
+          "pairs")
+    for kind in ("warm", "cold"):
+        warm = os.path.join(tmp, "fmu-warm")
+        for scene in scenes:
+            if kind == "warm":     # the untimed first process fills the cache
+                _run(python, SIMULATE, warm, timeout, (str(fmu), scene))
+            own, base, cpu = [], [], []
+            for k in range(runs):
+                cache = warm if kind == "warm" else os.path.join(tmp, f"fmu-{scene}-{k}")
+                base.append(_run(python, SIMULATE, cache + "-trivial" * (kind == "cold"),
+                                 timeout, (str(trivial),)))
+                own.append(_run(python, SIMULATE, cache, timeout, (str(fmu), scene)))
+                cpu.append(_CPU[-1] - _CPU[-2])
+            diff = [a - b for a, b in zip(own, base)]
+            print(f"{kind} {scene:<24s} {statistics.median(own):6.2f} s, trivial "
+                  f"{statistics.median(base):5.2f} s: +{statistics.median(diff):.2f} s "
+                  f"(min {min(diff):+.2f}, max {max(diff):+.2f}, {runs} pairs; CPU "
+                  f"+{statistics.median(cpu):.2f} s; target {0.5 if kind == 'warm' else 2.0} "
+                  "s)", flush=True)
 
 
 def _row(label, times):
+    cpu = _CPU[-len(times):]
     return (f"{label:<52s} {statistics.median(times):8.2f} s  (min {min(times):.2f}, "
-            f"max {max(times):.2f}, {len(times)} runs)")
+            f"max {max(times):.2f}, {len(times)} runs; CPU {statistics.median(cpu):.2f} s)")
 
 
 def main(argv=None):
@@ -79,7 +158,14 @@ def main(argv=None):
     parser.add_argument("--skip-cold", action="store_true",
                         help="warm cache only (cold: minutes without the compiled kernels)")
     parser.add_argument("--timeout", type=float, default=900.0, help="per process [s]")
+    parser.add_argument("--fmu", nargs="?", const="", default=None, metavar="PATH",
+                        help="time the FMU's table scenes against a trivial slave instead "
+                             "(default PATH: the FMU built from this checkout)")
     args = parser.parse_args(argv)
+    if args.fmu is not None:
+        with tempfile.TemporaryDirectory(prefix="railcontact-bench-") as tmp:
+            fmu_cold_start(args.python, args.fmu or None, args.runs, args.timeout, tmp)
+        return
     where = subprocess.run([args.python, "-c", "import railcontact, railcontact._compiled as c;"
                             "print(railcontact.__file__, c.aot_module() is not None)"],
                            check=True, capture_output=True, text=True).stdout.split()

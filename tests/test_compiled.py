@@ -61,3 +61,30 @@ def test_matches_reads_tuple_return_types_and_strided_arrays():
 def test_without_the_compiled_module_no_batch_kernel_is_offered(monkeypatch):
     monkeypatch.setattr(_compiled, "_AOT", [None])
     assert _compiled.aot_batch("creep_contact_batch", ()) is None
+
+
+def test_the_reference_solver_takes_the_wheels_sweep_where_it_loads(monkeypatch):
+    """Where a wheel's compiled module has the sweep (:data:`SOLVER_EXPORTS`), the rolling
+    solver calls it with arguments of exactly its signature on every sweep (here numba's copy
+    stands in for the compiled one, so the answer is the checkout's)."""
+    from types import SimpleNamespace
+
+    import railcontact as rc
+    from railcontact.reference import rolling3d
+
+    calls = []
+
+    def sweep(*args):
+        calls.append(_compiled.matches(_signatures()["_sweep"], args))
+        return rolling3d._sweep(*args)
+
+    kw = dict(normal_load=100e3, a0=6e-3, b0=4e-3, youngs_modulus=210e9, poisson_ratio=0.28,
+              friction_coefficient=0.3)
+    plain = rc.creep_solution_3d(3e-4, 5e-4, 0.5, method="exact", **kw)
+    aot = SimpleNamespace(**{name: None for name, _, _ in _compiled.EXPORTS}, _sweep=sweep)
+    monkeypatch.setattr(_compiled, "_AOT", [aot])
+    rolling3d.clear_setup_cache()
+    via = rc.creep_solution_3d(3e-4, 5e-4, 0.5, method="exact", **kw)
+    assert calls and all(calls)
+    assert (via.tx, via.ty, via.spin_moment, via.stick_area_fraction) == (
+        plain.tx, plain.ty, plain.spin_moment, plain.stick_area_fraction)

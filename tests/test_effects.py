@@ -181,8 +181,10 @@ def test_no_contact_gives_zero_forces_not_nan():
 
 
 @pytest.fixture
-def counted(monkeypatch):
-    """Wrap the model entry points with call counters."""
+def counted(monkeypatch, tmp_path):
+    """Wrap the model entry points with call counters (an empty user cache: the scene's
+    Hertz ellipse is computed, not read from a cache, effects.normal.unit_ellipse)."""
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
     counts = {"hertz_3d": 0, "creep_solution_3d": 0, "creep_force_3d_scalar": 0}
 
     def wrap(module, name):
@@ -1832,3 +1834,31 @@ def test_falling_friction_scene_steps_as_the_public_fast_path_and_slides_at_mu_k
     c.creepage_longitudinal, c.creepage_lateral, c.spin = 1e308, 0.0, 0.0
     assert slave.do_step(0.0, 1e-3) is True
     assert math.hypot(c.Fx, c.Fy) == pytest.approx(0.15 * c.normal_force, rel=1e-12)
+
+
+def test_a_scenes_unit_ellipse_is_hertz_3d_kept_exactly_in_the_user_cache(tmp_path, monkeypatch):
+    """effects.normal.unit_ellipse: hertz_3d's floats at 1 N; a later process (here: the same
+    call with hertz_3d unavailable) reads them back bit for bit from the user cache instead of
+    importing scipy.special; a corrupt cache file is recomputed and rewritten."""
+    import json
+
+    from railcontact import hertz
+    from railcontact.effects import normal
+
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
+    args = (1.087, 1.667, 210e9, 0.28)
+    want = tuple(float(v) for v in hertz.hertz_3d(1.0, *args))
+    assert normal.unit_ellipse(*args) == want
+    (cache,) = tmp_path.glob("hertz-*.json")
+    assert json.loads(cache.read_text()) == {"1.087 1.667 210000000000.0 0.28": list(want)}
+
+    def unavailable(*_):
+        raise AssertionError("hertz_3d called although the cache holds the ellipse")
+
+    monkeypatch.setattr(hertz, "hertz_3d", unavailable)
+    assert normal.unit_ellipse(*args) == want
+    cache.write_text("{not json")
+    monkeypatch.undo()
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path))
+    assert normal.unit_ellipse(*args) == want
+    assert json.loads(cache.read_text())["1.087 1.667 210000000000.0 0.28"] == list(want)

@@ -116,7 +116,8 @@ def test_the_wheel_installed_in_a_fresh_venv_answers_from_elsewhere(aot_wheel, t
     file), run from an empty directory with an empty user cache: the exact table's scalar and
     array calls and the modified strip theory agree with this checkout's (numba's kernels),
     the table comes from the installed package, and numba is never imported (the wheel's
-    kernels were compiled when it was built)."""
+    kernels were compiled when it was built). A first ``method="exact"`` call runs the
+    wheel's compiled sweep of the reference solver and agrees with the checkout's."""
     wheel = aot_wheel
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
@@ -150,3 +151,27 @@ def test_the_wheel_installed_in_a_fresh_venv_answers_from_elsewhere(aot_wheel, t
         float(rc.creep_force_3d(x, 0.0, 0.0, method="modified_strip", **kw)[0][8]), rel=1e-12)
     assert Path(out[4]).is_relative_to(site / "railcontact" / "tables"), out[4]
     assert out[5] == "False"        # no numba: the compiled kernels answered
+    # the reference solver (method="exact") runs the wheel's compiled sweep, nothing compiled
+    out = subprocess.run([str(python), "-c", EXACT], cwd=elsewhere, env=env, check=True,
+                         capture_output=True, text=True, timeout=900).stdout.split()
+    want = rc.creep_solution_3d(3e-4, 5e-4, 0.5, method="exact", **kw)
+    assert float(out[0]) == pytest.approx(float(want.tx), rel=1e-12)
+    assert float(out[1]) == pytest.approx(float(want.ty), rel=1e-12)
+    assert out[2] == "True"
+
+
+EXACT = """
+import railcontact as rc
+from railcontact import _compiled
+used = []
+aot_kernel = _compiled.aot_kernel
+def spy(name, args):
+    kernel = aot_kernel(name, args)
+    used.append(kernel is not None)
+    return kernel
+_compiled.aot_kernel = spy
+kw = dict(normal_load=100e3, a0=6e-3, b0=4e-3, youngs_modulus=210e9, poisson_ratio=0.28,
+          friction_coefficient=0.3)
+s = rc.creep_solution_3d(3e-4, 5e-4, 0.5, method="exact", **kw)
+print(repr(float(s.tx)), repr(float(s.ty)), bool(used) and all(used))
+"""

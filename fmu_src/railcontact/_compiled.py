@@ -14,7 +14,8 @@ build machine without a C compiler) or does not load (another Python version), t
 the numba kernels: the same source and, as the tests check, the same results. A wheel's
 build (``setup.py``) compiles the same module into the installed package, with the serial
 batch kernels of :data:`BATCH_EXPORTS` too, so that a user's first call neither imports numba
-nor compiles (docs/performance.md).
+nor compiles (docs/performance.md), and the reference rolling solver's sweep
+(:data:`SOLVER_EXPORTS`), so that a first ``method="exact"`` call does not compile it.
 """
 
 from __future__ import annotations
@@ -26,10 +27,11 @@ from types import SimpleNamespace
 
 import numpy as np
 
-__all__ = ["EXPORTS", "BATCH_EXPORTS", "matches", "aot_batch", "AOT_MODULE", "aot_module",
-           "tensor_eval", "find_span", "cubic_basis", "creep_contact", "creep_contact_force",
-           "creep_table_point", "creep_table_force", "superposed_response", "exact_kernels",
-           "unit_ellipses_kernel", "batch_kernel", "build_aot"]
+__all__ = ["EXPORTS", "BATCH_EXPORTS", "SOLVER_EXPORTS", "matches", "aot_kernel", "aot_batch",
+           "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
+           "creep_contact", "creep_contact_force", "creep_table_point", "creep_table_force",
+           "superposed_response", "exact_kernels", "unit_ellipses_kernel", "batch_kernel",
+           "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -84,6 +86,22 @@ BATCH_EXPORTS = (
 )
 
 
+# --- kernels compiled ahead of time for a wheel: the reference solver --------------------
+#: The reference rolling solver's kernel compiled ahead of time for a wheel beside
+#: :data:`BATCH_EXPORTS` (same format; the module is relative to the package): the block
+#: Gauss-Seidel sweep of :mod:`railcontact.reference.rolling3d` and its callees (the line
+#: Newton solver, the friction table). numba compiles it in 10-30 s on a first
+#: ``method="exact"`` call with an empty user cache, nearly all of that call's time; the
+#: solver takes the compiled copy where it loads and its arguments match (:func:`aot_kernel`).
+#: The FMU's build leaves it out: a table scene never calls the reference solver.
+SOLVER_EXPORTS = (
+    ("_sweep", "reference.rolling3d",
+     "f8(i8[::1], i8[::1], i8[::1], f8[::1], f8[::1], f8[::1], f8[:, ::1], f8[:, ::1], "
+     "f8[:, ::1], f8[:, :, ::1], f8[:, :, ::1], i8[::1], i8, i8, f8[::1], f8[::1], f8[::1], "
+     "f8[::1], f8, i8, f8)"),
+)
+
+
 @lru_cache(maxsize=None)
 def _split_args(signature):
     """The argument types of a numba signature string such as ``"b1(f8[::1], f8)"``, split at
@@ -113,10 +131,11 @@ def _coefficient_type():
 
 @lru_cache(maxsize=1)
 def _all_exports():
-    """:data:`EXPORTS` and :data:`BATCH_EXPORTS`, the latter's ``{coef}`` filled in."""
+    """:data:`EXPORTS`, :data:`BATCH_EXPORTS` (their ``{coef}`` filled in) and
+    :data:`SOLVER_EXPORTS`: what a wheel's build compiles."""
     coef = _coefficient_type()
     return EXPORTS + tuple((name, module, sig.format(coef=coef))
-                           for name, module, sig in BATCH_EXPORTS)
+                           for name, module, sig in BATCH_EXPORTS) + SOLVER_EXPORTS
 
 
 _DTYPES = {"f8": np.float64, "f4": np.float32, "i8": np.int64, "b1": np.bool_}
@@ -156,9 +175,10 @@ def matches(signature, args):
 _BATCH_SIGNATURES = {}
 
 
-def aot_batch(name, args):
-    """The ahead-of-time serial batch kernel ``name`` (:data:`BATCH_EXPORTS`) if there is one
-    and ``args`` match its signature, else None (then the numba kernels)."""
+def aot_kernel(name, args):
+    """The ahead-of-time kernel ``name`` of a wheel (:data:`BATCH_EXPORTS`,
+    :data:`SOLVER_EXPORTS`) if there is one and ``args`` match its signature, else None (then
+    the numba kernels)."""
     aot = aot_module()
     kernel = getattr(aot, name, None) if aot is not None else None
     if kernel is None:
@@ -168,6 +188,10 @@ def aot_batch(name, args):
     return kernel if matches(_BATCH_SIGNATURES[name], args) else None
 
 
+#: The serial batch kernels (:data:`BATCH_EXPORTS`) are looked up as every wheel kernel.
+aot_batch = aot_kernel
+
+
 _AOT = []      # [module or None] once looked up
 
 
@@ -175,7 +199,8 @@ def aot_module():
     """The ahead-of-time compiled kernels (the extension module ``_aot_kernels`` beside this
     file: made by a wheel's or an FMU's build), or None where there is none, it does not load,
     or it lacks one of :data:`EXPORTS` (an older build: the numba kernels then). Its
-    attributes are the exported kernels (of :data:`BATCH_EXPORTS` those it has)."""
+    attributes are the exported kernels (of :data:`BATCH_EXPORTS` and :data:`SOLVER_EXPORTS`
+    those it has)."""
     if not _AOT:
         import importlib  # noqa: PLC0415
 
@@ -185,7 +210,8 @@ def aot_module():
         except (ImportError, AttributeError):
             _AOT.append(None)
         else:
-            kernels.update({name: getattr(module, name) for name, _, _ in BATCH_EXPORTS
+            kernels.update({name: getattr(module, name)
+                            for name, _, _ in BATCH_EXPORTS + SOLVER_EXPORTS
                             if hasattr(module, name)})
             _AOT.append(SimpleNamespace(**kernels))
     return _AOT[0]
@@ -327,9 +353,9 @@ def batch_kernel(name, args):
 
 
 def build_aot(directory, batches=False):
-    """Compile :data:`EXPORTS` (and with ``batches`` :data:`BATCH_EXPORTS`, or those of them
-    ``batches`` names) ahead of time into
-    ``directory`` as the extension module ``_aot_kernels`` (``numba.pycc``: needs a C
+    """Compile :data:`EXPORTS` (and with ``batches=True`` :data:`BATCH_EXPORTS` and
+    :data:`SOLVER_EXPORTS`, or with a list the :data:`BATCH_EXPORTS` it names) ahead of time
+    into ``directory`` as the extension module ``_aot_kernels`` (``numba.pycc``: needs a C
     compiler and the Python headers; generic code for the architecture, e.g. x86-64, so the
     module runs on any CPU of it). Used by the FMU build (the per-step kernels, and for a
     vehicle FMU the one batch kernel its step calls: each export adds to the build time) and
@@ -347,23 +373,35 @@ def build_aot(directory, batches=False):
             warnings.simplefilter("ignore")         # numba.pycc: pending deprecation
             from numba.pycc import CC  # noqa: PLC0415
 
-            from . import _hertz_kernels, _response_kernels  # noqa: PLC0415
+            import importlib  # noqa: PLC0415
 
-            modules = {"_spline_kernels": _spline_kernels(), "_exact_kernels": exact_kernels(),
-                       "_response_kernels": _response_kernels, "_hertz_kernels": _hertz_kernels}
             cc = CC(AOT_MODULE)
             cc.output_dir = str(directory)
             cc.verbose = False
+            solver = batches is True          # (the wheel's build; FMUs leave the solver out)
             if batches is True:
                 batches = [name for name, _, _ in BATCH_EXPORTS]
+            batch_names = {n for n, _, _ in BATCH_EXPORTS}
+            solver_names = {n for n, _, _ in SOLVER_EXPORTS}
+            skipped = []
             for name, module, signature in _all_exports():
-                if name in {n for n, _, _ in BATCH_EXPORTS} and name not in (batches or ()):
+                if (name in batch_names and name not in (batches or ())) \
+                        or (name in solver_names and not solver):
                     continue
-                cc.export(name, signature)(getattr(modules[module], name).py_func)
+                try:
+                    kernel = getattr(importlib.import_module(f"{__package__}.{module}"), name)
+                except ImportError as exc:
+                    if name not in solver_names:
+                        raise
+                    # a build environment without scipy: the table kernels all the same
+                    skipped.append(f"{name} ({exc})")
+                    continue
+                cc.export(name, signature)(kernel.py_func)
             cc.compile()
     except Exception as exc:  # noqa: BLE001  (no compiler, no headers, a numba without pycc)
         return (f"ahead-of-time kernels not compiled ({type(exc).__name__}: "
                 f"{str(exc).strip().splitlines()[-1] if str(exc).strip() else ''}); the FMU's "
                 "table scenes load numba's kernels at run time")
     made = sorted(directory.glob(f"{AOT_MODULE}.*"))
-    return f"ahead-of-time kernels compiled: {made[0].name if made else '?'}"
+    return (f"ahead-of-time kernels compiled: {made[0].name if made else '?'}"
+            + (f"; not compiled (numba's at run time): {', '.join(skipped)}" if skipped else ""))

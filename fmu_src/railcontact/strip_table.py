@@ -116,20 +116,28 @@ class CreepTable:
         self._i_f, self._i_s = _variable_indices(table, ("force_ratio", "stick_area_fraction"))
         # The same cubic spline of F(z) in piecewise-polynomial form, as plain Python floats, for
         # the scalar path (force_unchecked): one bisect and one Horner step cost far less than a
-        # numba dispatch with array arguments (an FMU calls this once per step), and reading the
-        # table needs no compiled code.
+        # compiled call with array arguments (an FMU calls this once per step). Per knot span
+        # [x0, x0 + h] (the zero-length double-knot span dropped) the coefficients of
+        # c0 + c1 d + c2 d^2 + c3 d^3 come from the table's own evaluator: F, F', F''/2 at x0 and
+        # c3 = (F''(x0 + h/2) - F''(x0)) / (3 h), exact for a cubic to round-off (what
+        # scipy's PPoly.from_spline gives, tests/test_strip_table.py), without importing
+        # scipy.interpolate: about 0.5 s of a fresh process, an FMU's start included
+        # (docs/performance.md).
         from bisect import bisect_right  # noqa: PLC0415
 
-        from scipy.interpolate import BSpline, PPoly  # noqa: PLC0415
-
         knots = np.asarray(table.axes[0]["knots"], dtype=float)
+        keep = np.diff(knots) > 0.0
+        x0, h = knots[:-1][keep], np.diff(knots)[keep]
+        ev = self._spline.evaluate
+        d0 = ev(x0[:, None], [0], check=False)
+        d1 = ev(x0[:, None], [1], check=False)
+        d2 = ev(np.concatenate([x0, x0 + 0.5 * h])[:, None], [2], check=False)
+        n = len(x0)
+        c3 = (d2[n:] - d2[:n]) / (3.0 * h[:, None])
+        self._pp_breaks = [float(v) for v in x0]
         for i, name in ((self._i_f, "_pp_coefs"), (self._i_s, "_pp_coefs_stick")):
-            coef = np.asarray(self._spline._coef[i], dtype=float)
-            pp = PPoly.from_spline(BSpline(knots, coef, 3, extrapolate=False))
-            keep = np.diff(pp.x) > 0.0                   # drop the zero-length double-knot span
-            self._pp_breaks = [float(v) for v in pp.x[:-1][keep]]
-            setattr(self, name, [tuple(float(v) for v in pp.c[:, j])
-                                 for j in np.flatnonzero(keep)])
+            setattr(self, name, [(float(c3[j, i]), float(0.5 * d2[j, i]), float(d1[j, i]),
+                                  float(d0[j, i])) for j in range(n)])
         self._bisect = bisect_right
         # F'(0) (3 pi / 4 in theory) and F''(0) of the table: its first piece at z = 0
         if self._pp_breaks[0] != 0.0:

@@ -20,9 +20,9 @@ attributes alone.
 Evaluation here is pure numpy/numba (no netCDF or xarray after loading): a compiled
 tensor-product de Boor kernel (:mod:`railcontact._spline_kernels`, loaded on the first
 evaluation) evaluates all variables of a table at once, with first and second partial
-derivatives. Loading checks the stored spline against the node values, for a 1-D table with
-scipy's ``NdBSpline``: reading the modified strip theory's table needs no numba (a format-3
-file: the HDF5 checksums of its coefficients, and that they are finite).
+derivatives. Loading checks the stored spline against the node values with the same kernel
+(compiled ahead of time in a wheel or an FMU: no numba, and no scipy; a format-3 file: the
+HDF5 checksums of its coefficients, and that they are finite).
 
 Out-of-grid behaviour (an explicit choice per axis, attribute ``out_of_range``):
 
@@ -457,7 +457,8 @@ def _read_netcdf_file(path):
             attrs = {k: nc.getncattr(k) for k in nc.ncattrs()}
             variables = {}
             for vname, var in nc.variables.items():
-                variables[vname] = (tuple(var.dimensions), np.array(var[...]),
+                # (netCDF4 returns a new array: no second copy of 165 MB)
+                variables[vname] = (tuple(var.dimensions), np.asarray(var[...]),
                                     {k: var.getncattr(k) for k in var.ncattrs()})
     except (OSError, RuntimeError, IndexError, KeyError, AttributeError, ValueError,
             TypeError) as exc:   # a damaged header or attribute: netCDF4 raises any of these
@@ -666,16 +667,10 @@ def _read_table_content(path):
         np.random.default_rng(0).integers(0, n_nodes, _INTEGRITY_NODES)])
     idx = np.unravel_index(flat, vshape)
     pts = np.stack([a["nodes"][sl][i] for a, sl, i in zip(axes, block, idx)], axis=1)
-    if len(axes) == 1:
-        # scipy's compiled B-spline evaluator: a 1-D table (the modified strip theory's,
-        # evaluated per step as a piecewise polynomial) is read without numba
-        from scipy.interpolate import NdBSpline  # noqa: PLC0415
-
-        got = NdBSpline(tuple(a["knots"] for a in axes), np.asarray(coefs, float),
-                        SPLINE_DEGREE)(pts)
-    else:   # the compiled evaluator the table is read with (faster here than NdBSpline)
-        got = TensorSpline(axes, np.moveaxis(coefs, -1, 0), var_names,
-                           source=str(path)).evaluate(pts, check=False)
+    # the compiled evaluator the table is read with (faster here than scipy's NdBSpline, and
+    # without scipy.interpolate's import: about 0.5 s of a fresh process, an FMU's start too)
+    got = TensorSpline(axes, np.moveaxis(coefs, -1, 0), var_names,
+                       source=str(path)).evaluate(pts, check=False)
     want = np.stack([values[v][idx] for v in var_names], axis=1)
     scale = np.maximum(1.0, np.abs(want).max(axis=0))
     bad = np.abs(got - want).max(axis=0) / scale

@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 
-from .. import _compiled, hertz
+from .. import _compiled, _files, hertz
 from .._validation import check_range
 from ..scene import DEFAULT_SCENE
 from .base import Effect
 
-__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipses", "inverse_grid",
-           "make_inverse_grid", "write_inverse_grid", "INVERSE_GRID_DATA"]
+__all__ = ["NormalContact", "NO_NORMAL_FORCE_MESSAGE", "unit_ellipse", "unit_ellipses",
+           "inverse_grid", "make_inverse_grid", "write_inverse_grid", "INVERSE_GRID_DATA"]
 
 _FLOAT_MAX = 1.7976931348623157e308
 
@@ -87,6 +87,61 @@ def inverse_grid():
             grid = make_inverse_grid()
         _INVERSE_GRID.append(grid)
     return _INVERSE_GRID[0]
+
+
+def unit_ellipse(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
+    """``hertz_3d(1.0, ...)`` as three floats (a1, b1, p1 at N = 1 N), kept in the user cache.
+
+    A scene's fixed curvatures give its ellipse once per process; computing it imports
+    ``scipy.special`` (Carlson's R_D), which costs a fresh process 0.3-1 s, most of what an FMU
+    of a table scene with curvatures adds to its user's start (docs/performance.md). The
+    values are ``hertz_3d``'s own, written exactly (JSON's shortest round-trip floats) to
+    ``<user cache>/hertz-<hash of hertz.py>.json`` (keyed by the inputs' exact values; a
+    changed ``hertz.py`` starts a new file) and read back by later processes. An unreadable or
+    foreign entry is recomputed; a cache that cannot be written (the one warning of
+    :func:`railcontact._files.writable_cache_dir`) or a full one (1000 entries) only loses the
+    saving."""
+    import hashlib  # noqa: PLC0415
+    import json  # noqa: PLC0415
+    import os  # noqa: PLC0415
+
+    key = " ".join(repr(float(v)) for v in (curvature_longitudinal, curvature_lateral,
+                                             youngs_modulus, poisson_ratio))
+    base = _files.writable_cache_dir()
+    path = None
+    if base is not None:
+        try:     # (the package's directory now: an FMU's first extraction may be gone)
+            source = (_files.package_directory() / "hertz.py").read_bytes()
+        except OSError:
+            source = None
+        if source is not None:
+            path = base / f"hertz-{hashlib.sha256(source).hexdigest()[:16]}.json"
+    known = {}
+    if path is not None:
+        try:
+            known = json.loads(path.read_text())
+        except (OSError, ValueError):
+            known = {}
+        if not isinstance(known, dict):
+            known = {}
+    got = known.get(key)
+    if isinstance(got, list) and len(got) == 3 and all(type(v) is float for v in got):
+        return tuple(got)
+    a1, b1, p1 = (float(v) for v in hertz.hertz_3d(1.0, curvature_longitudinal,
+                                                     curvature_lateral, youngs_modulus,
+                                                     poisson_ratio))
+    if path is not None and len(known) < 1000:
+        known[key] = [a1, b1, p1]
+        tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+        try:             # whole or not at all: concurrent writers replace the file atomically
+            tmp.write_text(json.dumps(known))
+            os.replace(tmp, path)
+        except OSError:
+            try:
+                tmp.unlink()
+            except OSError:
+                pass
+    return a1, b1, p1
 
 
 def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
@@ -180,8 +235,8 @@ class NormalContact(Effect):
             self._fixed = False
         elif geo["kind"] == "curvatures":
             self._cx, self._cy = geo["curvature_longitudinal"], geo["curvature_lateral"]
-            a1, b1, p1 = unit if unit is not None else hertz.hertz_3d(
-                1.0, self._cx, self._cy, scene.youngs_modulus, scene.poisson_ratio)
+            a1, b1, p1 = unit if unit is not None else unit_ellipse(
+                self._cx, self._cy, scene.youngs_modulus, scene.poisson_ratio)
             self._a1, self._b1, self._p1 = float(a1), float(b1), float(p1)
             self._fixed = False
         else:

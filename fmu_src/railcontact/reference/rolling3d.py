@@ -143,6 +143,7 @@ from numba import njit
 import scipy.fft
 from scipy.special import elliprd, elliprf
 
+from .. import _compiled
 from .. import _numba_cache  # noqa: F401  (numba's cache in a user cache directory)
 from .._validation import check_range
 from ..errors import RollingConvergenceError
@@ -751,8 +752,11 @@ def _sweep_solver(cix, ciy, row_start, pn, kern_t, line_inverses, mx, my, tab_s,
     it = 0
     for it in range(1, max_iterations + 1):
         sx, sy = slip()
-        num = _sweep(cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, inv_x, inv_y, row_inv,
-                     mx, my, tab_s, tab_mu, px, py, tol_p, newton, forcing)
+        args = (cix, ciy, row_start, sx, sy, pn, tbxx, tbxy, tbyy, inv_x, inv_y, row_inv, mx, my,
+                tab_s, tab_mu, px, py, tol_p, newton, forcing)
+        # a wheel's copy compiled ahead of time (railcontact._compiled.SOLVER_EXPORTS: no
+        # compile on a first call) where it loads and the arguments match, else numba's
+        num = (_compiled.aot_kernel("_sweep", args) or _sweep)(*args)
         den = float(px @ px + py @ py)
         residual = math.sqrt(num / max(den, 1e-24 * gmax * gmax + 1e-300))
         if it <= history.shape[0]:
