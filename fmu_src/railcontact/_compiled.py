@@ -31,7 +31,7 @@ __all__ = ["EXPORTS", "BATCH_EXPORTS", "SOLVER_EXPORTS", "matches", "aot_kernel"
            "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
            "creep_contact", "creep_contact_force", "creep_table_point", "creep_table_force",
            "superposed_response", "exact_kernels", "unit_ellipses_kernel", "batch_kernel",
-           "build_aot"]
+           "falling_contact", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -58,6 +58,11 @@ EXPORTS = (
      "UniTuple(f8, 2)(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, f8)"),
     ("superposed_response", "_response_kernels",
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
+    # falling friction on one exact-table contact (railcontact.falling_table: the FMU's step
+    # and the public scalar call with SmoothFriction or PolachFriction)
+    ("falling_contact", "_falling_kernels",
+     "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], i8, f8, "
+     "f8[::1])"),
     # the Hertz ellipses of changing curvatures (railcontact.effects.normal.unit_ellipses)
     ("unit_ellipses_kernel", "_hertz_kernels",
      "i8(f8[::1], f8[::1], f8, f8[::1], f8[:, ::1], f8[:, ::1])"),
@@ -323,6 +328,18 @@ def superposed_response(fbuf, ibuf, harm):
     # (r < 0: the kernel returns at once)
     return _entry_point(_response_kernels.superposed_response, fbuf, ibuf, harm, 0.0, 0.0,
                         -1.0, np.zeros(4))
+
+
+def falling_contact():
+    """Falling friction on one exact-table contact (``_falling_kernels.falling_contact``): the
+    ahead-of-time copy, or numba's dispatcher (its caller passes arrays of the exported
+    types: the table's contact buffer, ``falling_table``'s Gauss rows and result array)."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.falling_contact
+    from ._falling_kernels import falling_contact as kernel  # noqa: PLC0415  (numba)
+
+    return kernel
 
 
 @lru_cache(maxsize=1)

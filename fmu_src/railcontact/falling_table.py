@@ -197,9 +197,9 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         if entry is None:
             return None
     kernel = _KERNEL[0]
-    if kernel is None:     # (numba imported on the first compiled call only)
-        from ._falling_kernels import falling_contact  # noqa: PLC0415
-        kernel = _KERNEL[0] = falling_contact
+    if kernel is None:     # (compiled ahead of time in a wheel or FMU; else numba's, imported
+        from . import _compiled  # noqa: PLC0415                 on the first call only)
+        kernel = _KERNEL[0] = _compiled.falling_contact()
     out = _OUT
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
                   p1, p2, p3, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
