@@ -20,7 +20,7 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
 _TWO_OVER_PI = 2.0 / math.pi
 
-__all__ = ["cubic_basis", "spline_point", "creep_contact", "creep_contact_force",
+__all__ = ["buffer_views", "cubic_basis", "spline_point", "creep_contact", "creep_contact_force",
            "creep_table_point", "creep_table_force", "creep_table_batch",
            "creep_table_batch_parallel",
            "creep_contact_batch",
@@ -771,3 +771,8 @@ def creep_batch_parallel(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_
         _creep_points(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_x, xi_y, phi,
                       mu_n, a0, b0, w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, ok,
                       c * PARALLEL_CHUNK, min(n, (c + 1) * PARALLEL_CHUNK), np.empty(336))
+
+
+#: The views of a contact buffer (:func:`_buffer_views`), for compiled callers in other
+#: modules (railcontact._falling_kernels).
+buffer_views = _buffer_views

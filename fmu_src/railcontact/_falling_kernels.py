@@ -20,7 +20,7 @@ import math
 from numba import njit
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
-from ._exact_kernels import _buffer_views, creep_contact
+from ._exact_kernels import buffer_views, creep_contact
 
 __all__ = ["falling_contact", "LAW_SMOOTH", "LAW_POLACH"]
 
@@ -50,7 +50,7 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     another module frozen at its old value). Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
     normalised_creepage, mu_effective)`` and returns True; False where the table's kernel
     hands the case to its array path (the caller then takes the numpy function)."""
-    res = _buffer_views(buf)[7]
+    res = buffer_views(buf)[7]
     gx, gy, gw = gauss[0], gauss[1], gauss[2]
     n = gw.shape[0]
     fmax = 1.7976931348623157e308

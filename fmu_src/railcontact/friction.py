@@ -84,7 +84,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial import chebyshev as _cheb
-from scipy.optimize import brentq, minimize_scalar
 
 from ._validation import check_range
 from .hertz import hertz_2d
@@ -670,6 +669,8 @@ class _NormalisedSolver:
         if chi >= sat.chi:
             return self.full_sliding(chi)
         # chi(r) falls from sat.chi (r = 0) to 0 (r = 1)
+        from scipy.optimize import brentq  # noqa: PLC0415  (scipy: only where needed)
+
         r = brentq(lambda r_: self.at_stick_ratio(r_).chi - chi, 0.0, 1.0, xtol=1e-11,
                    rtol=1e-11, maxiter=200)
         raw = self.at_stick_ratio(r)
@@ -692,6 +693,8 @@ class _NormalisedSolver:
         if k == 0:
             return self.at_stick_ratio(0.0)
         lo, hi = rs[max(k - 1, 0)], rs[min(k + 1, rs.size - 1)]
+        from scipy.optimize import minimize_scalar  # noqa: PLC0415
+
         res = minimize_scalar(lambda r: -self.at_stick_ratio(r).force, bounds=(lo, hi),
                               method="bounded", options={"xatol": 1e-8})
         top = self.at_stick_ratio(float(res.x))
