@@ -75,15 +75,17 @@ def test_2d_solution_against_contact_velocity_dependent_example():
 # The Coulomb limit
 # ------------------------------------------------------------------------------------------
 CASES = [(0.6 * SAT, 0.0, 0.0), (0.0, 0.5 * SAT, 0.3 * SAT / 6e-3), (0.0, 0.0, 1.5 * SAT / 6e-3)]
-
-
-@pytest.mark.parametrize("law, speed", [
+#: laws that are Coulomb's mu = 0.3 (and the rolling speed they need)
+COULOMB_LAWS = [
     (SmoothFriction(0.3, 0.3, 500.0), None),      # mu_k = mu_0
     (SmoothFriction(0.3, 0.1, 0.0), None),        # kappa = 0
     (PolachFriction(0.3, 1.0, 5.0), 30.0),        # A = 1
     (PolachFriction(0.3, 0.4, 0.0), 30.0),        # B = 0
     (lambda s: 0.3 + 0.0 * s, None),              # a plain callable
-])
+]
+
+
+@pytest.mark.parametrize("law, speed", COULOMB_LAWS)
 def test_coulomb_limit_equals_the_coulomb_solution(law, speed):
     xi, eta, phi = (np.array(v) for v in zip(*CASES))
     coulomb = _exact(xi, eta, phi, 0.3)
@@ -388,13 +390,7 @@ def _fastsim(xi, eta, phi, law, contact=ROUND, **kw):
                              method="fastsim", **kw)
 
 
-@pytest.mark.parametrize("law, speed", [
-    (SmoothFriction(0.3, 0.3, 500.0), None),      # mu_k = mu_0
-    (SmoothFriction(0.3, 0.1, 0.0), None),        # kappa = 0
-    (PolachFriction(0.3, 1.0, 5.0), 30.0),        # A = 1
-    (PolachFriction(0.3, 0.4, 0.0), 30.0),        # B = 0
-    (lambda s: 0.3 + 0.0 * s, None),              # a plain callable
-])
+@pytest.mark.parametrize("law, speed", COULOMB_LAWS)
 def test_fastsim_coulomb_limit_is_coulomb_fastsim_to_the_bit(law, speed):
     rng = np.random.default_rng(5)
     xi, eta = rng.normal(size=(2, 40)) * 2.0 * SAT

@@ -124,18 +124,24 @@ def load(path, read):
         The content: shared, never to be modified.
     """
     path = Path(path)
-    key = content_key(path)
+    return _once(content_key(path), path, lambda: read(path),
+                 mapped=path.stat().st_size >= MAPPED_MIN_BYTES, finish=_read_only)
+
+
+def _once(key, source, make, mapped=True, mode="r", finish=None):
+    """The content of ``key``, once per process (the registry) and, where ``mapped``, once
+    per machine (the cache entry, opened with ``mode``); ``make()`` where neither has it;
+    ``finish(content)`` before it is registered."""
     registry = process_registry()
     with registry.lock:
         content = registry.tables.get(key)
         if content is None:
-            mapped = path.stat().st_size >= MAPPED_MIN_BYTES
-            content = _open_entry(key) if mapped else None
+            content = _open_entry(key, mode) if mapped else None
             if content is None:
-                content = read(path)
+                content = make()
                 if mapped:
-                    content = _write_entry(key, content, path) or content
-            registry.tables[key] = _read_only(content)
+                    content = _write_entry(key, content, source, mode) or content
+            registry.tables[key] = finish(content) if finish is not None else content
     return content
 
 
@@ -196,16 +202,8 @@ def derived(path, name, make):
         readers never do; writable, so that the compiled kernels take it with the types of an
         array made in memory), else in memory (with the cache's one warning per process).
     """
-    key = f"{content_key(path)}-{name}"
-    registry = process_registry()
-    with registry.lock:
-        content = registry.tables.get(key)
-        if content is None:
-            content = _open_entry(key, mode="c")
-            if content is None:
-                content = {"coefficients": np.ascontiguousarray(make())}
-                content = _write_entry(key, content, path, mode="c") or content
-            registry.tables[key] = content
+    content = _once(f"{content_key(path)}-{name}", path,
+                    lambda: {"coefficients": np.ascontiguousarray(make())}, mode="c")
     return np.asarray(content["coefficients"])
 
 
