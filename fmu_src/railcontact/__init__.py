@@ -64,8 +64,8 @@ More: README.md (recipes) and docs/conventions.md (nomenclature: symbol -> API n
 """
 
 import importlib as _importlib
-import importlib.util as _importlib_util
-import sys as _sys
+
+from ._lazy import lazy_submodule as _lazy_module
 
 __version__ = "0.1.0"
 
@@ -107,47 +107,6 @@ __all__ = [
     # submodules
     *_PUBLIC_SUBMODULES,
 ]
-
-
-class _CurrentPathLoader:
-    """Loader of a lazily bound submodule that finds its file when it runs, on the package's
-    ``__path__`` *then*: inside an FMU the slave points that path at each new extraction and an
-    importer may delete the one the submodule was bound from (fmpy does)."""
-
-    def __init__(self, fullname):
-        self.fullname = fullname
-
-    def create_module(self, spec):
-        return None
-
-    def exec_module(self, module):
-        from importlib.machinery import PathFinder  # noqa: PLC0415
-
-        spec = PathFinder.find_spec(self.fullname, _sys.modules[__name__].__path__)
-        if spec is None:
-            raise ModuleNotFoundError(f"No module named {self.fullname!r}", name=self.fullname)
-        module.__spec__, module.__loader__ = spec, spec.loader
-        module.__file__, module.__cached__ = spec.origin, spec.cached
-        spec.loader.exec_module(module)
-
-
-def _lazy_module(name):
-    """The submodule ``railcontact.<name>``, executed on its first attribute access
-    (:class:`importlib.util.LazyLoader`, from the package's path at that moment): ``from
-    railcontact import *`` binds every public submodule without importing scipy or numba for
-    the ones a session never uses."""
-    full = f"{__name__}.{name}"
-    if full in _sys.modules:     # (imported already, or blocked: None raises as import does)
-        return _importlib.import_module(full)
-    spec = _importlib_util.find_spec(full)
-    if spec is None:
-        raise ModuleNotFoundError(f"No module named {full!r}", name=full)
-    loader = _importlib_util.LazyLoader(_CurrentPathLoader(full))
-    spec.loader = loader
-    module = _importlib_util.module_from_spec(spec)
-    _sys.modules[full] = module
-    loader.exec_module(module)
-    return module
 
 
 def __getattr__(name):

@@ -61,9 +61,11 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from scipy.special import jv
+from ._lazy import lazy_submodule
 
-from . import _corrugation_kernels as _kernels
+# the compiled kernels (numba) and scipy.special load on the first call that needs them: a
+# table scene's corrugation effect imports this module for its checks only
+_kernels = lazy_submodule("_corrugation_kernels")
 from ._validation import (check_corrugated_contact_inputs, check_load_not_underflowing,
                           check_range, load_underflows)
 
@@ -569,6 +571,8 @@ def _cheb_coeffs(n_max, ka, phase_term, k, half_width, radius):
     """Chebyshev coefficients c_1..c_n of g' over an interval of half-width ``half_width``.
 
     ``phase_term`` = zeta e^{i k centre} per harmonic (complex, last axis M)."""
+    from scipy.special import jv  # noqa: PLC0415  (see _kernels)
+
     n = np.arange(1, n_max + 1)
     jn = jv(n[:, None], ka[None, :])                                   # (n, M)
     ipow = (1j) ** ((n + 1) % 4)

@@ -63,15 +63,16 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from scipy.special import itj0y0, j0, j1, jv
-
-from . import _corrugation_kernels as _kernels
+from ._lazy import lazy_submodule
 from ._validation import (check_choice, check_corrugated_contact_inputs,
                           check_load_not_underflowing, check_range)
 from .corrugation import (check_no_contact_loss, normal_response, solve_normal_exact,
                           solve_stick_zone_exact, stick_zone_response, tangential_force_response)
 
 _TWO_PI = 2.0 * np.pi
+# the compiled kernels (numba) and scipy.special load on the first call that needs them: the
+# closed forms (mean_wear) and a table scene's wear effect need neither
+_kernels = lazy_submodule("_corrugation_kernels")
 
 __all__ = ["WEAR_MODELS", "DEFAULT_WEAR_MODEL", "wear_coefficients", "mean_wear",
            "corrugated_wear_depth",
@@ -150,6 +151,7 @@ def mean_wear_unchecked(wear_coefficient, friction_coefficient, normal_load, rad
 # ---------------------------------------------------------------------------------------------
 def _h_basic(beta, r):
     """Coefficients h (Q = Re[h zeta e^{ikX}]) of Delta, a, a*, our orientation (R = a0 = 1)."""
+    from scipy.special import j0, j1  # noqa: PLC0415  (see _kernels)
     k = beta
     e_kd = np.exp(1j * k * (1.0 - r))
     h_d = 1j * k * j0(beta)
@@ -183,6 +185,7 @@ def passage_time_response(a0_over_wavelength, stick_ratio, *, convention="consis
     tau, tau_star : ndarray of complex
         ``c_|tau| / (k R / V)``, ``c_|tau*| / (k R / V)``. [-]
     """
+    from scipy.special import j0, j1  # noqa: PLC0415  (see _kernels)
     beta = _TWO_PI * check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
                                  lower_closed=False)
     r = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
@@ -249,6 +252,7 @@ def wear_coefficients(a0_over_wavelength, stick_ratio, wear_model=DEFAULT_WEAR_M
     ndarray of complex
         ``w``, broadcast over the inputs. [-]
     """
+    from scipy.special import itj0y0, j1  # noqa: PLC0415  (see _kernels)
     ratio = check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
                         lower_closed=False)
     r_in = check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0)
@@ -326,6 +330,7 @@ def wear_first_harmonic_exact(a0_over_wavelength, stick_ratio, relative_amplitud
         exact |T| (4.67) in units of ``mu pi E/(4(1-nu^2))`` (compare
         :func:`railcontact.corrugation.tangential_force_response`). [-]
     """
+    from scipy.special import j1, jv  # noqa: PLC0415  (see _kernels)
     ratio = float(check_range("a0_over_wavelength", a0_over_wavelength, "-", 0.0, None,
                               lower_closed=False))
     r = float(check_range("stick_ratio", stick_ratio, "-", 0.0, 1.0, lower_closed=False,

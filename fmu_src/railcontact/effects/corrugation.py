@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from .. import corrugation
-from .._corrugation_kernels import series_relative_error
+from .._lazy import lazy_submodule
 from ..scene import SceneError
 from ..wear import corrugated_wear_depth_unchecked
 from .base import NOT_ESTIMATED, Effect
@@ -81,7 +81,7 @@ class Corrugation(Effect):
         self._solve_scalar = solver.contact
         self._surface = solver.surface
         self._load_underflows = solver.load_underflows
-        self._truncation_error_scalar = series_relative_error
+        self._truncation_error_scalar = None   # (its compiled kernel, on the first estimate)
         self.wavelengths = list(opts["wavelengths"])
         self.amplitudes_cos = list(opts["amplitudes_cos"])
         self.amplitudes_sin = list(opts["amplitudes_sin"])
@@ -223,6 +223,9 @@ class Corrugation(Effect):
         """``corrugation_series_error_estimate`` of the last step (on demand)."""
         ka, self._pending_ka = self._pending_ka, None
         if ka is not None:
+            if self._truncation_error_scalar is None:
+                self._truncation_error_scalar = lazy_submodule(
+                    "_corrugation_kernels").series_relative_error
             c.corrugation_series_error_estimate = self._truncation_error_scalar(
                 ka, wear_series_degree(ka))
 

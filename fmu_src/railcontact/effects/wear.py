@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .. import wear
-from .._corrugation_kernels import wear_coefficients_list
+from .._lazy import lazy_submodule
 from .._scalar import evolve_harmonics_scalar
 from ..evolution import wear_number_unchecked
 from ..scene import SceneError
@@ -49,8 +49,10 @@ class Wear(Effect):
         # evolve_harmonics for one passage count on lists (cmath; checks W, falls back to it)
         self._evolve = evolve_harmonics_scalar
         # wear_coefficients on a list at one r: the series models' compiled kernel directly
+        # (the analytic source only: a table scene loads no numba or scipy.special for it)
         self._wear_coefficients = (
-            wear_coefficients_list
+            None if scene.effects["wear"]["source"] == "table"
+            else lazy_submodule("_corrugation_kernels").wear_coefficients_list
             if scene.effects["wear"]["wear_model"] in ("material_point", "patch_coordinate")
             else wear.wear_coefficients)
         opts = scene.effects["wear"]
