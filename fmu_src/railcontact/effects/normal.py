@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from .. import _compiled, _files, hertz
+from .. import _compiled, hertz
 from .._validation import check_range
 from ..scene import DEFAULT_SCENE
 from .base import Effect
@@ -90,58 +90,19 @@ def inverse_grid():
 
 
 def unit_ellipse(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
-    """``hertz_3d(1.0, ...)`` as three floats (a1, b1, p1 at N = 1 N), kept in the user cache.
+    """``hertz_3d(1.0, ...)`` as three floats (a1, b1, p1 at N = 1 N): :func:`unit_ellipses`
+    for one pair.
 
-    A scene's fixed curvatures give its ellipse once per process; computing it imports
+    A scene's fixed curvatures give its ellipse once per process. ``hertz_3d`` itself imports
     ``scipy.special`` (Carlson's R_D), which costs a fresh process 0.3-1 s, most of what an FMU
-    of a table scene with curvatures adds to its user's start (docs/performance.md). The
-    values are ``hertz_3d``'s own, written exactly (JSON's shortest round-trip floats) to
-    ``<user cache>/hertz-<hash of hertz.py>.json`` (keyed by the inputs' exact values; a
-    changed ``hertz.py`` starts a new file) and read back by later processes. An unreadable or
-    foreign entry is recomputed; a cache that cannot be written (the one warning of
-    :func:`railcontact._files.writable_cache_dir`) or a full one (1000 entries) only loses the
-    saving."""
-    import hashlib  # noqa: PLC0415
-    import json  # noqa: PLC0415
-    import os  # noqa: PLC0415
-
-    key = " ".join(repr(float(v)) for v in (curvature_longitudinal, curvature_lateral,
-                                             youngs_modulus, poisson_ratio))
-    base = _files.writable_cache_dir()
-    path = None
-    if base is not None:
-        try:     # (the package's directory now: an FMU's first extraction may be gone)
-            source = (_files.package_directory() / "hertz.py").read_bytes()
-        except OSError:
-            source = None
-        if source is not None:
-            path = base / f"hertz-{hashlib.sha256(source).hexdigest()[:16]}.json"
-    known = {}
-    if path is not None:
-        try:
-            known = json.loads(path.read_text())
-        except (OSError, ValueError):
-            known = {}
-        if not isinstance(known, dict):
-            known = {}
-    got = known.get(key)
-    if isinstance(got, list) and len(got) == 3 and all(type(v) is float for v in got):
-        return tuple(got)
-    a1, b1, p1 = (float(v) for v in hertz.hertz_3d(1.0, curvature_longitudinal,
-                                                     curvature_lateral, youngs_modulus,
-                                                     poisson_ratio))
-    if path is not None and len(known) < 1000:
-        known[key] = [a1, b1, p1]
-        tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-        try:             # whole or not at all: concurrent writers replace the file atomically
-            tmp.write_text(json.dumps(known))
-            os.replace(tmp, path)
-        except OSError:
-            try:
-                tmp.unlink()
-            except OSError:
-                pass
-    return a1, b1, p1
+    of a table scene with curvatures would add to its user's start (docs/performance.md);
+    :func:`unit_ellipses` gives the same values to a few ulp (4e-15 relative, against
+    ``hertz_3d`` in tests/test_fmu_vehicle.py) in a few microseconds, the same with an empty
+    user cache as with a warm one, and the same as a vehicle's contacts get."""
+    a1, b1, p1 = unit_ellipses(np.array([float(curvature_longitudinal)]),
+                               np.array([float(curvature_lateral)]), float(youngs_modulus),
+                               float(poisson_ratio))
+    return float(a1[0]), float(b1[0]), float(p1[0])
 
 
 def unit_ellipses(curvature_longitudinal, curvature_lateral, youngs_modulus, poisson_ratio):
@@ -201,8 +162,8 @@ def check_geometry_input(name, value, unit):
 class NormalContact(Effect):
     r"""Hertz contact ellipse from the normal force (always on).
 
-    ``geometry.kind = "curvatures"``: :func:`railcontact.hertz.hertz_3d` once at build time for
-    N = 1 N, then the exact Hertz scaling a0, b0, p0 proportional to N^(1/3) (Johnson (1985)
+    ``geometry.kind = "curvatures"``: :func:`railcontact.hertz.hertz_3d` (as :func:`unit_ellipse`,
+    the same values to a few ulp without importing scipy) once at build time for N = 1 N, then the exact Hertz scaling a0, b0, p0 proportional to N^(1/3) (Johnson (1985)
     Eqs. (4.17)-(4.19): the eccentricity depends on A'/B' only). ``"semi_axes"``: the ellipse
     is fixed and ``p0 = 3 N / (2 pi a0 b0)`` (Eq. (2.60)). ``"line"``: 2-D Hertz
     (:func:`railcontact.hertz.hertz_2d`, Eqs. (2.40)-(2.42)) for the load per unit length
@@ -214,9 +175,9 @@ class NormalContact(Effect):
     ``semi_axis_longitudinal``, ``semi_axis_lateral``): the contact's fields of those names,
     when not None, override the scene's. A changed pair of curvatures gives a new ellipse at
     1 N by :func:`unit_ellipses` (the same values as ``hertz_3d`` to a few ulp); unchanged
-    ones reuse the last (at the scene's own values, ``hertz_3d``'s own result, or ``unit``,
+    ones reuse the last (at the scene's own values, :func:`unit_ellipse`'s result, or ``unit``,
     the scene's ellipse at 1 N (a1, b1, p1) when the caller made it: a vehicle, by
-    :func:`unit_ellipses`, without importing scipy). A value that
+    :func:`unit_ellipses` for all its contacts at once). A value that
     is not in (0, inf) is a ValueError naming the input.
     """
 
