@@ -223,7 +223,8 @@ for _f, _fu in (("Fx", "N"), ("Fy", "N"), ("Mz", "N.m")):
         OUTPUTS[f"d{_f}_d{_v}"] = (
             {"N": "N.m", "N.m": "N.m2"}[_fu] if _per_m else _fu,
             f"Derivative of {_f} with respect to the {_vn}, from the spline of the exact-theory "
-            "table (creep_method = 'exact', source table; 0 for the other methods): the "
+            "table (creep_method = 'exact', source table; with a friction law, central "
+            "differences of its fast path, computed when read; 0 for the other methods): the "
             "creep-force Jacobian for implicit integrators", f"d{_f}_d{_v}")
 
 
@@ -235,6 +236,10 @@ def _described(description, unit):
 #: Outputs an effect may compute only when read (see railcontact.effects.Creep3D).
 _LAZY = {"stick_area_fraction", "stick_width_ratio", "r_a0", "creep_within_validity",
          "corrugation_growth_rate", "Mz", "corrugation_series_error_estimate"}
+#: The Jacobian outputs, which an effect may also compute only when read (falling friction:
+#: by differences of its fast path, railcontact.effects.Creep3D.jacobian); apart from _LAZY, so
+#: that reading the stick outputs does not pay for them.
+_JACOBIAN = frozenset(_effects.JACOBIAN_FIELDS)
 
 def _contact_names(pairs):
     """``(names, expressions)`` for generated code over (contact, field) pairs: ``{"c0": contact,
@@ -267,6 +272,12 @@ def _reader(pairs):
 
 def _no_auxiliary(contact):
     """Before initialisation: no effect computes anything on demand."""
+
+
+def _on_demand(fields):
+    """``(lazy, jacobian)``: whether ``fields`` name an output of :data:`_LAZY` and one of
+    :data:`_JACOBIAN`."""
+    return any(f in _LAZY for f in fields), any(f in _JACOBIAN for f in fields)
 
 
 def _name(name, k):
@@ -320,6 +331,7 @@ class WheelRailContact(Fmi2Slave):
         self._steps = ()
         self._checked_step = _effects.checked_steps(())    # (no effects before initialisation)
         self._auxiliary_all = _no_auxiliary
+        self._jacobian_all = _no_auxiliary
         self._warned = set()
         self._built_from = None
         self._initialised = False
@@ -369,6 +381,7 @@ class WheelRailContact(Fmi2Slave):
                     k, spec.name, spec.unit)
             for name, (unit, desc, field) in OUTPUTS.items():
                 getter = ((lambda f=field, c=c: self._auxiliary(f, c)) if field in _LAZY
+                          else (lambda f=field, c=c: self._jacobian(f, c)) if field in _JACOBIAN
                           else (lambda f=field, c=c: getattr(c, f)))
                 self._register_real(Real(
                     _name(name, k), causality=Fmi2Causality.output,
@@ -515,6 +528,7 @@ class WheelRailContact(Fmi2Slave):
             self._pipeline = self._vehicle.pipelines[0]
             # (bound to the vehicle, not to self: no reference cycle through the slave)
             self._auxiliary_all = self._vehicle.auxiliary
+            self._jacobian_all = self._vehicle.jacobian
             summary = self._vehicle.summary
             # the whole step without the slave's frames (as for one contact, below)
             self.do_step = self._vehicle.fmu_step(self._do_step_full, self._log_step_failure)
@@ -524,6 +538,7 @@ class WheelRailContact(Fmi2Slave):
             self._steps = self._pipeline.steps
             self._checked_step = self._pipeline.checked_step
             self._auxiliary_all = self._pipeline.auxiliary
+            self._jacobian_all = self._pipeline.jacobian
             # the whole step in one Python frame (an instance attribute shadows the do_step
             # method; PythonFMU looks the method up by name on each step)
             self.do_step = self._pipeline.fmu_step(self._contact, self._do_step_full,
@@ -596,6 +611,13 @@ class WheelRailContact(Fmi2Slave):
         contact ``c`` (default: the first)."""
         c = self._contact if c is None else c
         self._auxiliary_all(c)
+        return getattr(c, field)
+
+    def _jacobian(self, field, c=None):
+        """Value of a Jacobian output (:data:`_JACOBIAN`), of contact ``c`` (default: the
+        first)."""
+        c = self._contact if c is None else c
+        self._jacobian_all(c)
         return getattr(c, field)
 
     # ---------------------------------------------------------------------------------------
@@ -679,19 +701,31 @@ class WheelRailContact(Fmi2Slave):
         if not fields:
             return self._mixed_getter(vrs)
         if CONTACTS > 1:
-            lazy = any(f in _LAZY for _, f in fields)
-            aux = self._auxiliary_all
+            lazy, jac = _on_demand([f for _, f in fields])
+            aux, jac_all = self._auxiliary_all, self._jacobian_all
 
             read = _reader(fields)
-            if not lazy:
+            if not (lazy or jac):
                 return read
 
             def get():
-                aux(None)               # (every contact's, once)
+                if lazy:
+                    aux(None)           # (every contact's, once)
+                if jac:
+                    jac_all(None)
                 return read()
             return get
         c, get = self._contact, operator.attrgetter(*fields)
-        lazy = any(f in _LAZY for f in fields)
+        lazy, jac = _on_demand(fields)
+        if jac:
+            aux, jac_all = self._auxiliary_all, self._jacobian_all
+
+            def get_on_demand():
+                if lazy:
+                    aux(c)
+                jac_all(c)
+                return [get(c)] if len(fields) == 1 else list(get(c))
+            return get_on_demand
         if len(fields) == 1:
             if lazy:
                 return lambda: (self._auxiliary_all(c), [get(c)])[1]
@@ -704,23 +738,27 @@ class WheelRailContact(Fmi2Slave):
         """A list with parameters too (libcosim reads every variable each step): the contacts'
         fields directly, the others through their getters, the lazy outputs evaluated once
         first. A variable that is not Real keeps the generic path (and its TypeError)."""
-        calls, lazy = [], False
+        calls, lazy, jac = [], False, False
         for vr in vrs:
             entry = self._real_map.get(vr)
             if entry is not None:
                 k, field = entry
                 calls.append(partial(getattr, self._contacts[k], field))
                 lazy = lazy or field in _LAZY
+                jac = jac or field in _JACOBIAN
             elif isinstance(self.vars.get(vr), Real):
                 calls.append(self.vars[vr].getter)
             else:
                 return lambda: Fmi2Slave.get_real(self, list(vrs))
-        aux, contacts = self._auxiliary_all, self._contacts
+        aux, jac_all, contacts = self._auxiliary_all, self._jacobian_all, self._contacts
 
         def get():
             if lazy:
                 for c in contacts:
                     aux(c)
+            if jac:
+                for c in contacts:
+                    jac_all(c)
             return [call() for call in calls]
         return get
 
@@ -805,7 +843,7 @@ class WheelRailContact(Fmi2Slave):
         if built_from is None:
             self._pipeline, self._vehicle, self._steps, self._built_from = None, None, (), None
             self._checked_step = _effects.checked_steps(())
-            self._auxiliary_all = _no_auxiliary
+            self._auxiliary_all = self._jacobian_all = _no_auxiliary
             self.__dict__.pop("do_step", None)
         elif built_from != self._built_from:
             self._build(dict(built_from))

@@ -1810,7 +1810,7 @@ def test_corrugation_keeps_creep():
 def test_falling_friction_scene_steps_as_the_public_fast_path_and_slides_at_mu_k():
     """The effect's scalar path equals creep_force_3d(..., method="exact_table", law) (the
     array path) to round-off; beyond saturation the force falls; at huge creepage
-    |T| -> mu_k N (the law's limit), finite; the Jacobian outputs are 0 with a law."""
+    |T| -> mu_k N (the law's limit), finite."""
     from railcontact.friction import SmoothFriction
     from railcontact.scene import load_scene
 
@@ -1829,12 +1829,101 @@ def test_falling_friction_scene_steps_as_the_public_fast_path_and_slides_at_mu_k
         mu_n = 0.3 * c.normal_force
         assert c.Fx == pytest.approx(ref.tx[0], abs=1e-10 * mu_n)
         assert c.Fy == pytest.approx(ref.ty[0], abs=1e-10 * mu_n)
-        assert c.dFx_dxi_x == 0.0 and c.dMz_dphi == 0.0
         forces.append(-c.Fx / mu_n)
     assert forces[2] < forces[1] * 0.9                       # past the peak: it falls
     c.creepage_longitudinal, c.creepage_lateral, c.spin = 1e308, 0.0, 0.0
     assert slave.do_step(0.0, 1e-3) is True
     assert math.hypot(c.Fx, c.Fy) == pytest.approx(0.15 * c.normal_force, rel=1e-12)
+
+
+_JACOBIAN_NAMES = ("dFx_dxi_x", "dFx_dxi_y", "dFx_dphi", "dFy_dxi_x", "dFy_dxi_y", "dFy_dphi",
+                   "dMz_dxi_x", "dMz_dxi_y", "dMz_dphi")
+
+
+def _falling_slave(kappa=None):
+    """The falling-friction scene's slave (its kappa replaced), and the value references of
+    its Jacobian outputs (as an importer reads them)."""
+    text = (_SCENES / "creep_exact_table_falling.toml").read_text()
+    if kappa is not None:
+        text = text.replace("kappa = 300.0", f"kappa = {kappa!r}")
+    slave = _slave()
+    slave.scene_toml = text
+    slave._contact.normal_force = 8e4
+    slave.exit_initialization_mode()
+    refs = {var.name: vr for vr, var in slave.vars.items()}
+    return slave, [refs[name] for name in _JACOBIAN_NAMES]
+
+
+_FALLING_CASES = ((1e-3, 2e-4, 0.05), (4e-3, 1e-3, 0.3), (-6e-3, 2e-3, -0.8), (2e-4, -3e-3, 1.5))
+
+
+def test_falling_friction_jacobian_is_the_table_spline_s_in_the_coulomb_limit():
+    """kappa = 0 makes the smooth law Coulomb's (mu = mu_0 at every slip): the fast path is
+    then the Coulomb table, and the Jacobian outputs, by central differences of it when read,
+    equal the spline's own derivatives (ExactCreepTable.step, analytic) to 1e-7 of the
+    largest."""
+    slave, refs = _falling_slave(kappa=0.0)
+    c = slave._contact
+    table = slave._pipeline.effects["creep"]._table
+    e_mod, nu = 210e9, 0.28
+    for xi, eta, phi in _FALLING_CASES:
+        c.creepage_longitudinal, c.creepage_lateral, c.spin = xi, eta, phi
+        assert slave.do_step(0.0, 1e-3) is True
+        got = np.array(slave.get_real(refs)).reshape(3, 3)
+        want = table.step(xi, eta, phi, c.normal_force, c.a0, c.b0, e_mod, nu, 0.3)[5]
+        for row in range(3):
+            assert got[row] == pytest.approx(want[row], abs=1e-7 * np.abs(want[row]).max())
+
+
+def test_falling_friction_jacobian_is_the_slope_of_the_public_fast_path():
+    """A falling law (the scene's kappa = 300): the Jacobian outputs against a fourth-order
+    difference of the public creep_force_3d(..., method="exact_table", law) (its array path,
+    another step: 1e-3 of the creepage scale) to 1e-5 of mu N per unit scale; each read
+    after a step gives that step's slopes; a step without load gives zeros."""
+    from railcontact.friction import SmoothFriction
+
+    slave, refs = _falling_slave()
+    c = slave._contact
+    law = SmoothFriction(0.3, 0.15, 300.0)
+    e_mod, nu = 210e9, 0.28
+    for xi, eta, phi in _FALLING_CASES:
+        c.creepage_longitudinal, c.creepage_lateral, c.spin = xi, eta, phi
+        assert slave.do_step(0.0, 1e-3) is True
+        got = np.array(slave.get_real(refs)).reshape(3, 3)
+        args = [xi, eta, phi, c.normal_force, c.a0, c.b0]
+        scale = 0.3 * (1.5 * c.normal_force / (math.pi * c.a0 * c.b0)) * 2 * (1 + nu) / e_mod
+        for col, h in enumerate((1e-3 * scale, 1e-3 * scale,
+                                 1e-3 * scale / math.sqrt(c.a0 * c.b0))):
+            def forces(d):
+                a = list(args)
+                a[col] = a[col] + d
+                sol = creep3d.creep_solution_3d(np.array([a[0]]), *a[1:], e_mod, nu, law,
+                                                method="exact_table")
+                return np.array([sol.tx[0], sol.ty[0], sol.spin_moment[0]])
+            slope = (8 * (forces(h) - forces(-h)) - (forces(2 * h) - forces(-2 * h))) / (12 * h)
+            unit = 0.3 * c.normal_force / (scale if col < 2 else scale / math.sqrt(c.a0 * c.b0))
+            for row in range(2):     # (forces: Mz is the table's at mu_e, not corrected)
+                assert got[row, col] == pytest.approx(slope[row], abs=1e-5 * unit)
+        assert abs(got[1, 2]) > 0.0 and got[0, 0] != 0.0
+    c.normal_force = 0.0
+    assert slave.do_step(0.0, 1e-3) is True
+    assert slave.get_real(refs) == [0.0] * 9
+
+
+def test_a_lifted_wheel_reads_a_zero_jacobian_not_the_last_steps():
+    """The exact-table scene: a step with N = 0 after one in contact gives zero forces and a
+    zero Jacobian (it kept the previous step's before)."""
+    slave = _scene_slave("creep_exact_table")
+    refs = {var.name: vr for vr, var in slave.vars.items()}
+    refs = [refs[name] for name in _JACOBIAN_NAMES]
+    c = slave._contact
+    c.creepage_longitudinal, c.creepage_lateral, c.spin = 1e-3, 2e-4, 0.1
+    assert slave.do_step(0.0, 1e-3) is True
+    assert slave.get_real(refs)[0] < 0.0            # dFx/dxi_x: the force opposes xi
+    c.normal_force = 0.0
+    assert slave.do_step(0.0, 1e-3) is True
+    assert (c.Fx, c.Fy, c.Mz) == (0.0, 0.0, 0.0)
+    assert slave.get_real(refs) == [0.0] * 9
 
 
 def test_a_scenes_unit_ellipse_is_hertz_3d_without_scipy(tmp_path):

@@ -14,7 +14,7 @@ from .._scalar import (carter_scalar, creep_force_3d_scalar, creep_stick_3d_scal
 from ..falling_table import (falling_friction_table,
                              falling_friction_table_smooth)
 from ..scene import POLACH_KEYS, SceneError
-from .base import NOT_ESTIMATED, Effect, EffectUnavailable
+from .base import JACOBIAN_FIELDS, NOT_ESTIMATED, Effect, EffectUnavailable
 
 __all__ = ["Creep3D", "Creep2D", "table_error_estimate"]
 
@@ -115,7 +115,8 @@ class Creep3D(Effect):
     compiled smooth-law path, one call per step; against the exact theory with the law 0.9 %
     of mu_0 N without spin or with spin coordinate |tau| <= 1, up to 5.5 % with larger spin;
     the numpy path where the table has no buffer for the contact). ``Mz``, the stick
-    measures and z are the table's at the effective coefficient; the Jacobian outputs are 0.
+    measures and z are the table's at the effective coefficient; the Jacobian outputs are
+    the fast path's own slopes, by central differences when they are read (:meth:`jacobian`).
 
     FASTSIM, Polach, FaStrip (``method = "fastsim" | "polach" | "fastrip"``, analytic source
     only): the public :func:`~railcontact.creep3d.creep_solution_3d` each step (no scalar path;
@@ -135,6 +136,7 @@ class Creep3D(Effect):
         self._e, self._nu = scene.youngs_modulus, scene.poisson_ratio
         self._warn = warn if warn is not None else (lambda key, msg: None)
         self._aux_args = None
+        self._jac_args = None     # falling friction: the step's arguments (jacobian, on demand)
         self._table = None
         # the forces of the analytic theories and of the modified-strip table, (tx, ty) from
         # the step's arguments; their stick measures are set when read (auxiliary)
@@ -217,6 +219,9 @@ class Creep3D(Effect):
         c.stick_area_fraction = c.stick_width_ratio = c.r_a0 = 1.0
         c.creep_within_validity = True
         c.Mz = 0.0
+        self._jac_args = None
+        for name in JACOBIAN_FIELDS:       # (no forces, none of their slopes: not the last
+            setattr(c, name, 0.0)          # step's)
         self._aux_args = None
 
     def _comparison(self, c, args):
@@ -258,9 +263,9 @@ class Creep3D(Effect):
             return self._table.step(*args[:8], mu, False)[:5]
         return values[:5]
 
-    def _exact_table_falling(self, c, args):
-        # falling friction (smooth law (5.16), mu_0 the step's friction coefficient) on the
-        # Coulomb table: railcontact.falling_table, three table calls plus one
+    def _falling_forces(self, args):
+        """``(tx, ty, mz, stick, z, mu_e)`` of the fast path with the scene's smooth law at
+        the arguments ``args`` (mu_0 = ``args[8]``)."""
         mu0 = args[8]
         mu_k, kappa = self._smooth_law
         cap = _SLIP_CAP / max(kappa, 1.0)        # kappa s stays finite (any creepage)
@@ -273,15 +278,20 @@ class Creep3D(Effect):
         if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
             got = falling_friction_table(lambda mu: self._falling_values(args, mu), *args[:6],
                                          law, mu0)
-        tx, ty, mz, stick, z, _ = got
+        return got
+
+    def _exact_table_falling(self, c, args):
+        # falling friction (smooth law (5.16), mu_0 the step's friction coefficient) on the
+        # Coulomb table: railcontact.falling_table, three table calls plus one; the Jacobian
+        # outputs when read (jacobian)
+        tx, ty, mz, stick, z, _ = self._falling_forces(args)
         c.Fx, c.Fy, c.Mz = float(tx), float(ty), float(mz)
         zc = z if z < 1.0 else 1.0
         c.stick_area_fraction = float(stick)
         c.stick_width_ratio = math.sqrt(1.0 - zc * zc)       # b*/b0, Eq. (2.84)
         c.r_a0 = 1.0 - zc                                    # a*(0)/a0, Eq. (2.83)
         c.creep_within_validity = True
-        (c.dFx_dxi_x, c.dFx_dxi_y, c.dFx_dphi, c.dFy_dxi_x, c.dFy_dxi_y, c.dFy_dphi,
-         c.dMz_dxi_x, c.dMz_dxi_y, c.dMz_dphi) = (0.0,) * 9    # no Jacobian with a law
+        self._jac_args = args
         self._aux_args = None
 
     def _exact_table(self, c, args):
@@ -320,6 +330,31 @@ class Creep3D(Effect):
             return
         self._stick_measures(c, args)
 
+    def jacobian(self, c):
+        """The Jacobian outputs of the last step where they are computed only when read:
+        falling friction, whose fast path (:mod:`railcontact.falling_table`) has no spline
+        derivative. Central differences of the same fast path, the step ``h`` = 1e-5 of the
+        creepage scale ``mu_0 p0 / G`` over which the creep curve bends (``h / sqrt(a0 b0)``
+        in the spin): truncation ``(h / scale)^2`` and round-off ``eps scale / h``, both about
+        1e-10 of the slope; six more calls of the fast path (some 50 us) on the steps whose
+        Jacobian is read (tests/test_effects.py checks them against the spline's own
+        derivatives in the Coulomb limit and against differences of the public API)."""
+        args, self._jac_args = self._jac_args, None
+        if args is None:
+            return
+        xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0 = args
+        p0 = 1.5 * n_load / (math.pi * a0 * b0)
+        h = 1e-5 * mu0 * p0 * 2.0 * (1.0 + nu) / e_mod
+        rows = []
+        for k, step in enumerate((h, h, h / math.sqrt(a0 * b0))):
+            plus, minus = list(args), list(args)
+            plus[k] += step
+            minus[k] -= step
+            up, down = self._falling_forces(plus), self._falling_forces(minus)
+            rows.append([(float(up[i]) - float(down[i])) / (2.0 * step) for i in range(3)])
+        (c.dFx_dxi_x, c.dFy_dxi_x, c.dMz_dxi_x), (c.dFx_dxi_y, c.dFy_dxi_y, c.dMz_dxi_y), \
+            (c.dFx_dphi, c.dFy_dphi, c.dMz_dphi) = rows
+
     def _table_stick(self, c, args):
         # the modified-strip table reader's scalar path (inputs as checked for the step)
         stick, z = self._stick(*args)
@@ -338,12 +373,15 @@ class Creep3D(Effect):
     def get_state(self):
         return {"calls": self.calls,
                 "aux_args": None if self._aux_args is None else list(self._aux_args),
+                "jac_args": None if self._jac_args is None else list(self._jac_args),
                 "solution": list(self._solution)}
 
     def set_state(self, state):
         self.calls = int(state["calls"])
         args = state.get("aux_args")
         self._aux_args = None if args is None else tuple(args)
+        args = state.get("jac_args")
+        self._jac_args = None if args is None else tuple(args)
         self._solution = tuple(state.get("solution", (0.0, 0.0, 0.0)))
 
 

@@ -46,6 +46,7 @@ class Pipeline:
         #: Every step function in evaluation order (what :meth:`step` calls).
         self.steps = self._steps
         self._auxiliary = tuple(e for e in effects.values() if hasattr(e, "auxiliary"))
+        self._jacobian = tuple(e for e in effects.values() if hasattr(e, "jacobian"))
         #: ``checked_step(contact) -> bool``: :meth:`step` behind a cheap validity check of the
         #: inputs (see :func:`checked_steps`).
         self.checked_step = checked_steps(self._steps)
@@ -59,6 +60,11 @@ class Pipeline:
         """Evaluate the outputs effects compute only on demand (after a step)."""
         for e in self._auxiliary:
             e.auxiliary(contact)
+
+    def jacobian(self, contact):
+        """Evaluate the Jacobian outputs effects compute only on demand (after a step)."""
+        for e in self._jacobian:
+            e.jacobian(contact)
 
     def fmu_step(self, contact, otherwise, on_error):
         """The FMU's ``do_step(current_time, step_size)`` for this pipeline, in one Python frame.

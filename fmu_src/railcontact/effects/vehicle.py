@@ -403,6 +403,17 @@ class Vehicle:
         for p, c in zip(self.pipelines, self.contacts):
             p.auxiliary(c)
 
+    def jacobian(self, contact=None):
+        """The Jacobian outputs where an effect computes them only when read (falling
+        friction), of ``contact`` or of every contact (None), as :meth:`auxiliary`."""
+        if not self._lazy:      # (the array path set every output)
+            return
+        if contact is not None:
+            self._pipeline_of[id(contact)].jacobian(contact)
+            return
+        for p, c in zip(self.pipelines, self.contacts):
+            p.jacobian(c)
+
     def get_state(self):
         return [p.get_state() for p in self.pipelines]
 
