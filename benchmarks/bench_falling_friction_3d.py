@@ -22,6 +22,10 @@ at <= 20 us per scalar call):
 * ``sliding ratio``: the table at mu_0 times |T_fs(law)| / |T_fs(mu_0)|, T_fs the full-sliding
   force with the rigid slip field (8 x 16 Gauss points over the ellipse), which carries the
   spread of the slip over the patch that large spin makes;
+* ``coarse MXxMY`` (e.g. ``"coarse 12x8"``, only on request: milliseconds per call): the
+  table at the package's effective coefficient mu_e plus the difference of the exact solver
+  (``solve_rolling_3d``) with the law and with mu_e on one coarse grid, whose discretisation
+  error largely cancels;
 * ``dissipation``: the table at mu_eff = mu(s_eff), s_eff the traction-weighted mean slip of
   the table's own Coulomb solution at mu_eff: the frictional power of steady rolling over V,
   |Tx xi + Ty eta + Mz phi|, divided by mu_eff N (1 - stick area fraction) (the load on the
@@ -139,9 +143,33 @@ def effective_mu_spread(table, args, law, steps=6):
     return mu, table.step_values(*args[:8], mu, False) or table.step(*args[:8], mu, False)
 
 
+def package_mu_effective(table, args, law):
+    """The package's effective coefficient mu_e (railcontact.falling_table) of one case."""
+    from railcontact.falling_table import falling_friction_table  # noqa: PLC0415
+
+    def values(mu):
+        sol = table.creep_solution_3d(*args[:8], float(np.asarray(mu)))
+        return sol.tx, sol.ty, sol.spin_moment, sol.stick_area_fraction, 0.0
+
+    return float(falling_friction_table(values, *(np.asarray(v) for v in args[:6]), law,
+                                        np.asarray(args[8]))[5])
+
+
 def candidate(name, table, args, law):
     if name == "package":
         return creep_force_3d(*args[:8], law, method="exact_table")
+    if name.startswith("coarse"):
+        # "coarse MXxMY": the table at the package's mu_e plus the exact solver's difference
+        # between the law and mu_e on one coarse grid (milliseconds: not a table's speed)
+        from railcontact.reference.rolling3d import solve_rolling_3d  # noqa: PLC0415
+
+        mx, my = (int(v) for v in name.split()[1].split("x"))
+        mue = package_mu_effective(table, args, law)
+        base = table.creep_force_3d(*args[:8], mue)
+        with_law = solve_rolling_3d(*args[:8], law, mx=mx, my=my, tolerance=1e-4)
+        with_mue = solve_rolling_3d(*args[:8], mue, mx=mx, my=my, tolerance=1e-4)
+        return type(base)(base.tx + with_law.tx - with_mue.tx,
+                          base.ty + with_law.ty - with_mue.ty)
     if name.startswith("spread+vec"):
         mu, v = effective_mu_spread(table, args, law)
         xi, eta, phi, n_load, a0, b0 = args[:6]
@@ -268,10 +296,15 @@ def main(argv=None):
 
     one = (2e-3, 1e-3, 0.5, 1e5, 6e-3, 9e-3, 210e9, 0.28)
     smooth, polach = SmoothFriction(0.3, 0.15, 300.0), PolachFriction(0.3, 0.4, 0.6)
+
+    def own_law(s):     # a law of the user's (the smooth law's form): its tabulated path
+        return 0.15 / (1.0 + 300.0 * np.asarray(s, dtype=float)) + 0.15
+
     calls = {"coulomb exact table": lambda: creep_force_3d(*one, 0.3, method="exact_table"),
              "SmoothFriction": lambda: creep_force_3d(*one, smooth, method="exact_table"),
              "PolachFriction": lambda: creep_force_3d(*one, polach, method="exact_table",
-                                                      rolling_speed=30.0)}
+                                                      rolling_speed=30.0),
+             "a user's function": lambda: creep_force_3d(*one, own_law, method="exact_table")}
     for fun in calls.values():
         for _ in range(1000):        # past the table's ski rental: the contact's buffer
             fun()

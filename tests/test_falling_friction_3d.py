@@ -357,6 +357,89 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
 
 
+class _SlipVelocityLaw:
+    """A law in the slip velocity that is not the package's (Polach's form, 30 m/s below)."""
+
+    needs_rolling_speed = True
+
+    def __call__(self, w):
+        return 0.3 * (0.6 * np.exp(-0.6 * np.asarray(w, dtype=float)) + 0.4)
+
+
+@pytest.mark.parametrize("case", [
+    (1e-3, 0.0, 0.0), (4e-3, 1e-3, 0.3), (2e-2, 0.0, 0.0), (0.0, 0.0, 2.0),
+    (-3e-3, 2e-3, -0.8), (3e-4, -1e-4, 1.0)])
+def test_any_law_takes_the_compiled_path_on_its_table(case, monkeypatch):
+    """A law other than the package's two (a plain function of the smooth law's form; a
+    callable in the slip velocity): the public scalar call runs the compiled fast path on the
+    law tabulated at LAW_TABLE_SLIPS (linear between them, as the exact solver takes a law).
+    Against the numpy function with the law itself: within 2e-4 of mu_0 N (the tabulation's
+    own error, estimated (ds)^2/8 |mu''| <= 1e-4 mu_0; measured 2e-5); once the contact has
+    its buffer the numpy function is not called."""
+    from railcontact import falling_table
+    from railcontact.creep3d import load_exact_table
+
+    table = load_exact_table()
+    args = (*case, N, 6e-3, 9e-3, E, NU)
+    kappa = 0.8 / SAT
+
+    def smooth_like(s):
+        return (0.3 - 0.1) / (1.0 + kappa * np.asarray(s, dtype=float)) + 0.1
+
+    def values(mu):
+        got = table.step_values(*args, float(mu), False)
+        return (got or table.step(*args, float(mu), False))[:5]
+
+    for _ in range(SLAB_CALLS):     # (the contact's buffer: the table's ski rental)
+        rc.creep_force_3d(*args, 0.3, method="exact_table")
+    for law, speed, law_s in ((smooth_like, None, smooth_like),
+                              (_SlipVelocityLaw(), 30.0, lambda s: _SlipVelocityLaw()(s * 30.0))):
+        ref = falling_table.falling_friction_table(values, *args[:6], law_s, 0.3)
+        kw = {} if speed is None else {"rolling_speed": speed}
+        first = rc.creep_force_3d(*args, law, method="exact_table", **kw)   # (tabulates it)
+        with monkeypatch.context() as m:
+            m.setattr(falling_table, "falling_friction_table", _unavailable)
+            again = rc.creep_force_3d(*args, law, method="exact_table", **kw)
+        assert (again.tx, again.ty) == (first.tx, first.ty)
+        assert again.tx == pytest.approx(ref[0], abs=2e-4 * 0.3 * N)
+        assert again.ty == pytest.approx(ref[1], abs=2e-4 * 0.3 * N)
+    # the kernel itself: the tabulated law against the closed form of the same law
+    tab = falling_table.law_table(smooth_like)
+    got = falling_table.falling_friction_table_compiled(table, *args, 2, 0.3, 0.0, 0.0, 0.0,
+                                                        eager=True, tabulated=tab)
+    closed = falling_table.falling_friction_table_smooth(table, *args, 0.3, 0.1, kappa,
+                                                         eager=True)
+    np.testing.assert_allclose(got[:2], closed[:2], rtol=0.0, atol=2e-4 * 0.3 * N)
+
+
+def _unavailable(*_args, **_kwargs):
+    raise AssertionError("the numpy path was taken")
+
+
+#: Scalar calls after which the exact table keeps a contact's buffer (its ski rental:
+#: railcontact.exact_table.SLAB_AFTER_POINTS points, one per Coulomb call), with a margin.
+SLAB_CALLS = 5000
+
+
+def test_a_law_the_table_cannot_hold_takes_the_numpy_path():
+    """law_table refuses a law that fails on its slips or is negative somewhere (None); the
+    public call then takes the numpy path, which evaluates the law where it needs it (here:
+    negative only beyond any slip the case reaches)."""
+    from railcontact import falling_table
+
+    def negative_far_out(s):
+        s = np.asarray(s, dtype=float)
+        return np.where(s > 100.0, -1.0, 0.3 - 0.1 * np.minimum(s, 1.0))
+
+    assert falling_table.law_table(negative_far_out) is None
+    assert falling_table.law_table(lambda s: "no") is None
+    f = rc.creep_force_3d(1e-3, 0.0, 0.0, **ROUND, friction_coefficient=negative_far_out,
+                          method="exact_table")
+    g = rc.creep_force_3d(np.array([1e-3]), 0.0, 0.0, **ROUND,
+                          friction_coefficient=negative_far_out, method="exact_table")
+    assert f.tx == pytest.approx(g.tx[0], rel=1e-12) and f.tx < 0.0
+
+
 def test_exact_table_with_a_law_refuses_bad_input():
     with pytest.raises(ValueError, match="must give a finite mu >= 0"):
         _table(SAT, 0.0, 0.0, lambda s: 0.3 - 10.0 * s)

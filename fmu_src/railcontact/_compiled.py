@@ -59,10 +59,10 @@ EXPORTS = (
     ("superposed_response", "_response_kernels",
      "b1(f8[::1], i8[::1], f8[::1], f8, f8, f8, f8[::1])"),
     # falling friction on one exact-table contact (railcontact.falling_table: the FMU's step
-    # and the public scalar call with SmoothFriction or PolachFriction)
+    # and the public scalar call with SmoothFriction, PolachFriction or a tabulated law)
     ("falling_contact", "_falling_kernels",
-     "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], i8, f8, "
-     "f8[::1])"),
+     "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], f8[:, ::1], "
+     "i8, f8, f8[::1])"),
     # the Hertz ellipses of changing curvatures (railcontact.effects.normal.unit_ellipses)
     ("unit_ellipses_kernel", "_hertz_kernels",
      "i8(f8[::1], f8[::1], f8, f8[::1], f8[:, ::1], f8[:, ::1])"),

@@ -474,11 +474,9 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
         return table.creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load,
                                     a0, b0, youngs_modulus, poisson_ratio, friction_coefficient)
-    if (method == "exact_table" and type(friction_coefficient) in (SmoothFriction,
-                                                                   PolachFriction)
-            and not method_options):
-        # one contact in plain floats: the compiled path of the package's laws (None: the
-        # general one)
+    if method == "exact_table" and callable(friction_coefficient) and not method_options:
+        # one contact in plain floats: the compiled path of the package's laws, or of a law
+        # the general path has tabulated already (None: the general one)
         got = _falling_compiled_scalar(creepage_longitudinal, creepage_lateral, spin,
                                        normal_load, a0, b0, youngs_modulus, poisson_ratio,
                                        friction_coefficient, rolling_speed)
@@ -571,27 +569,80 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
 
 def _falling_compiled_scalar(*args):
     """``CreepForce3D`` of the exact table with a :class:`SmoothFriction` or
-    :class:`PolachFriction` (with a float ``rolling_speed`` > 0) for one contact in plain
-    floats by :func:`railcontact.falling_table.falling_friction_table_compiled`, or None (other
-    inputs, mu_0 = 0, no contact buffer yet, or a case the table's kernel hands to its array
-    path: the caller takes the general path, which checks the inputs)."""
+    :class:`PolachFriction` (with a float ``rolling_speed`` > 0), or any other law the general
+    path has tabulated (:func:`_falling_tabulated`), for one contact in plain floats by
+    :func:`railcontact.falling_table.falling_friction_table_compiled`, or None (other inputs,
+    mu_0 = 0, a law not tabulated yet, no contact buffer yet, or a case the table's kernel
+    hands to its array path: the caller takes the general path, which checks the inputs)."""
     law, speed = args[8], args[9]
-    if not (all(type(v) is float for v in args[:8]) and law.mu_static > 0.0):
+    if not all(type(v) is float for v in args[:8]):
         return None
+    tab = None
     if type(law) is SmoothFriction:
         params = (0, law.mu_static, law.mu_kinetic, law.kappa, 0.0)
-    elif type(speed) is float and 0.0 < speed < math.inf:
+    elif type(law) is PolachFriction:
+        if not (type(speed) is float and 0.0 < speed < math.inf):
+            return None
         params = (1, law.mu_static, law.friction_ratio_limit, law.friction_decay, speed)
-    else:
+    else:       # any other law: its table, once the general path has made and checked it
+        if getattr(law, "needs_rolling_speed", False):
+            if not (type(speed) is float and 0.0 < speed < math.inf):
+                return None
+        else:
+            speed = None
+        entry = _LAW_TABLES.get((id(law), speed))
+        if entry is None or entry[0] is not law or entry[1] is None:
+            return None
+        tab = entry[1]
+        params = (2, float(tab[1, 0]), 0.0, 0.0, 0.0)
+    if not params[1] > 0.0:
         return None
     from .falling_table import falling_friction_table_compiled  # noqa: PLC0415
 
     table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
     try:
-        got = falling_friction_table_compiled(table, *args[:8], *params)
+        got = (falling_friction_table_compiled(table, *args[:8], *params) if tab is None else
+               falling_friction_table_compiled(table, *args[:8], *params, tabulated=tab))
     except (TypeError, ValueError, ArithmeticError):
         return None
     return None if got is None else _new_force(got[0] + 0.0, got[1] + 0.0)
+
+
+#: Tabulated laws of :func:`_falling_tabulated`, per (law object, rolling speed): the last few.
+_LAW_TABLES = {}
+
+
+def _falling_tabulated(table, plain, law_s, speed):
+    """The compiled fast path for one contact (``plain``: the nine checked inputs, floats) with
+    any law, on its :func:`railcontact.falling_table.law_table` (made once per law object and
+    rolling speed; a law is taken as fixed once passed), or None (the numpy path)."""
+    from .falling_table import falling_friction_table_compiled, law_table  # noqa: PLC0415
+
+    law = getattr(law_s, "__wrapped_law__", None)
+    if not plain[8] > 0.0:
+        return None
+    if type(law) is SmoothFriction:        # (the package's laws in closed form, as with
+        params, tab = (0, law.mu_static, law.mu_kinetic, law.kappa, 0.0), None   # floats)
+    elif type(law) is PolachFriction and speed is not None:
+        params = (1, law.mu_static, law.friction_ratio_limit, law.friction_decay,
+                  float(speed))
+        tab = None
+    else:
+        key = (id(law), None if speed is None else float(speed))
+        entry = _LAW_TABLES.get(key)
+        if entry is None or entry[0] is not law:
+            if len(_LAW_TABLES) >= 8:
+                _LAW_TABLES.pop(next(iter(_LAW_TABLES)))
+            entry = _LAW_TABLES[key] = (law, law_table(law_s))
+        if entry[1] is None:
+            return None
+        params, tab = (2, plain[8], 0.0, 0.0, 0.0), entry[1]
+    try:
+        if tab is None:
+            return falling_friction_table_compiled(table, *plain[:8], *params)
+        return falling_friction_table_compiled(table, *plain[:8], *params, tabulated=tab)
+    except (TypeError, ValueError, ArithmeticError):
+        return None
 
 
 def _new_force(tx, ty):
@@ -633,8 +684,13 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
 
     def law_s(slip):    # (a slip velocity s V kept finite at any creepage)
         return law(slip if factor is None else np.minimum(slip, cap) * factor)
+    law_s.__wrapped_law__ = law
 
-    tx, ty, mz, stick, z, _ = falling_friction_table(values, *args[:6], law_s, args[8])
+    got = (_falling_tabulated(table, plain + [float(args[8])], law_s, speed) if scalar
+           else None)
+    if got is None:     # (arrays; a law the table cannot hold; slips beyond it; no buffer yet)
+        got = falling_friction_table(values, *args[:6], law_s, args[8])
+    tx, ty, mz, stick, z, _ = (np.asarray(v, dtype=float) for v in got)
     if not solution:
         return CreepForce3D(tx[()] + 0.0, ty[()] + 0.0)
     phi_c = np.broadcast_to(spin_coefficient(args[0], args[1], args[2], args[4], args[5]),

@@ -35,11 +35,24 @@ Gauss points (:data:`GAUSS_POINTS`: 5 radial Gauss-Legendre x 10 angular, weight
 Speed: this numpy function takes any Python law (about 200 us per scalar call: four table
 calls and some 60 numpy operations on the 50 Gauss points). For the package's laws (the
 smooth law (5.16), Polach's) :func:`falling_friction_table_compiled` runs the same steps in
-one compiled call (:mod:`railcontact._falling_kernels`; the public ``creep_force_3d`` with
-plain floats about 9 us with a :class:`railcontact.friction.SmoothFriction`, 10 us with a
-:class:`~railcontact.friction.PolachFriction`, against 1.5 us for the Coulomb table); the
-two agree to
-round-off (1e-15 of the force).
+one compiled call (:mod:`railcontact._falling_kernels`); the two agree to round-off (1e-15 of
+the force). Any other law runs the same compiled call on its :func:`law_table` (the law
+evaluated once on 562 slips per law object and rolling speed, then linear between them, as
+the exact solver takes a law: within 2e-4 of mu_0 N of the law itself). The public
+``creep_force_3d`` with plain floats, one contact (``benchmarks/bench_falling_friction_3d.py``,
+load 0.8): 12 us with a :class:`railcontact.friction.SmoothFriction`, 16 us with a
+:class:`~railcontact.friction.PolachFriction`, 17 us with a function of the user's, against
+2.5 us for the Coulomb table in the same run.
+
+Also measured, not adopted (too slow for a table's call): the Coulomb table at mu_e plus the
+difference between the exact solver with the law and with mu_e on one coarse grid
+(``solve_rolling_3d``; its discretisation error largely cancels in the difference): over the
+|tau| > 1 cases of the benchmark's first sample (seed 11) max 1.84 % of mu_0 N at 12 x 8
+elements, 1.17 % at 20 x 12, 0.99 % at 24 x 16, against 5.4 % here, at milliseconds per call.
+The same first-order correction with the exact Coulomb solution's own slip field (directions
+and sizes, 40 x 30 elements) still leaves up to 2 % on the worst cases: the error at large
+spin is not only the rigid-slip proxy of this model but the elastic feedback of the changed
+friction on the slip directions.
 
 This is not Nielsen's or Kalker's method: it is this package's own cheap model, chosen among
 the candidates of ``benchmarks/bench_falling_friction_3d.py`` (the law at the rigid slip,
@@ -53,8 +66,8 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["falling_friction_table", "falling_friction_table_smooth",
-           "falling_friction_table_compiled",
-           "EFFECTIVE_MU_STEPS", "GAUSS_POINTS"]
+           "falling_friction_table_compiled", "law_table",
+           "EFFECTIVE_MU_STEPS", "GAUSS_POINTS", "LAW_TABLE_SLIPS"]
 
 #: Fixed-point steps for the effective friction coefficient (relaxed by 1/2 from the second).
 EFFECTIVE_MU_STEPS = 3
@@ -165,6 +178,41 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
 _OUT = np.zeros(6)
 _KERNEL = [None]
 _GAUSS = np.ascontiguousarray(np.stack([_CX, _SY, _W]))
+_NO_LAW_TABLE = np.zeros((2, 1))
+
+#: The slips a law other than the package's two is tabulated at for the compiled path
+#: (:func:`law_table`): 0 and 1e-10 .. 1e4, 40 per decade (the exact solver's spacing,
+#: :mod:`railcontact.reference.rolling3d`, over a wider range). A case whose slips go beyond
+#: the last takes the numpy path, which evaluates the law itself. [-]
+LAW_TABLE_SLIPS = np.concatenate([[0.0], np.logspace(-10.0, 4.0, 561)])
+
+
+def law_table(law_s):
+    """A friction law tabulated for the compiled fast path: rows :data:`LAW_TABLE_SLIPS` and
+    ``law_s`` there (linear between them in the kernel, as the exact solver takes a law;
+    against the law itself the fast path then differs by about 1e-4 of mu_0 N, far inside its
+    own error, ``tests/test_falling_friction_3d.py``), or None where the law fails on them or
+    gives a negative or non-finite mu (the numpy path then evaluates it and names the slip).
+
+    Parameters
+    ----------
+    law_s : callable
+        ``mu(s)`` of the slip s [-] (a law in the slip velocity already multiplied by the
+        rolling speed), taking an array. [-]
+
+    Returns
+    -------
+    ndarray of shape (2, 562) or None
+        Slips [-] and mu [-].
+    """
+    try:
+        mu = np.broadcast_to(np.asarray(law_s(LAW_TABLE_SLIPS), dtype=float),
+                             LAW_TABLE_SLIPS.shape)
+    except (TypeError, ValueError, ArithmeticError):
+        return None
+    if not (np.all(np.isfinite(mu)) and np.all(mu >= 0.0)):
+        return None
+    return np.ascontiguousarray(np.stack([LAW_TABLE_SLIPS, mu]))
 
 
 def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
@@ -178,10 +226,11 @@ def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, y
 
 def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
                                     youngs_modulus, poisson_ratio, kind, p0, p1, p2, p3,
-                                    eager=False):
-    """One contact (plain floats, checked), a closed-form law, compiled
+                                    eager=False, tabulated=_NO_LAW_TABLE):
+    """One contact (plain floats, checked), a closed-form or tabulated law, compiled
     (:func:`railcontact._falling_kernels.falling_contact`: ``kind`` 0 the smooth law with
-    ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with ``(mu_0, A, B [s/m], V [m/s])``):
+    ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with ``(mu_0, A, B [s/m], V [m/s])``,
+    2 the table ``tabulated`` of :func:`law_table` with ``p0`` = mu_0 and ``p1 .. p3`` 0):
     ``(tx, ty, mz, stick_area_fraction, normalised_creepage, mu_effective)`` as
     :func:`falling_friction_table`, or None where the table has no contact buffer for
     (a0/b0, nu) yet (its first points of a contact, a0/b0 beyond it) or hands the case to its
@@ -202,6 +251,6 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         kernel = _KERNEL[0] = _compiled.falling_contact()
     out = _OUT
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
-                  p1, p2, p3, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
+                  p1, p2, p3, tabulated, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
         return None
     return out[0], out[1], out[2], out[3], out[4], out[5]
