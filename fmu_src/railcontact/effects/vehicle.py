@@ -395,24 +395,22 @@ class Vehicle:
     def auxiliary(self, contact=None):
         """The outputs computed only when read: of ``contact`` (one of :attr:`contacts`), or of
         every contact (None)."""
-        if not self._lazy:      # (the array path set every output)
-            return
-        if contact is not None:
-            self._pipeline_of[id(contact)].auxiliary(contact)
-            return
-        for p, c in zip(self.pipelines, self.contacts):
-            p.auxiliary(c)
+        self._on_demand("auxiliary", contact)
 
     def jacobian(self, contact=None):
         """The Jacobian outputs where an effect computes them only when read (falling
         friction), of ``contact`` or of every contact (None), as :meth:`auxiliary`."""
+        self._on_demand("jacobian", contact)
+
+    def _on_demand(self, what, contact):
+        """The pipelines' ``what`` (auxiliary, jacobian) of ``contact`` or of every contact."""
         if not self._lazy:      # (the array path set every output)
             return
         if contact is not None:
-            self._pipeline_of[id(contact)].jacobian(contact)
+            getattr(self._pipeline_of[id(contact)], what)(contact)
             return
         for p, c in zip(self.pipelines, self.contacts):
-            p.jacobian(c)
+            getattr(p, what)(c)
 
     def get_state(self):
         return [p.get_state() for p in self.pipelines]
