@@ -157,37 +157,128 @@ def spline_point(coef, slab, use_slab, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x
     if use_slab:
         _slab_point(slab, t2, t3, t4, p2, p3, p4, x2, x3, x4, derivs, n_var, out, work)
         return
-    i2, i3, i4, b2, d2, b3, d3, b4, d4 = _contact_bases(t2, t3, t4, p2, p3, p4, x2, x3, x4,
-                                                        work)
-    b0 = work[36:40]
-    b1 = work[44:48]
-    db = work[52:56]
-    i0 = find_span(t0, t0.shape[0] - 4, x0)
-    _poly_basis(t0, p0, i0, x0, b0, db)
-    n_q = 4
+    _any_point(coef, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x0, x1, x2, x3, x4, derivs, out,
+               work, n_var)
+
+
+@njit(cache=True, inline="always")
+def _basis_at(t, poly, x, work, o):
+    """The span ``i`` of ``x`` on the knots ``t`` (returned), the four non-zero cubic B-splines
+    at ``x`` into ``work[o:o + 4]`` and their derivatives into ``work[o + 4:o + 8]``: as
+    :func:`_poly_basis`, written by index (a view of ``work`` per point costs two atomic
+    reference counts)."""
+    i = find_span(t, t.shape[0] - 4, x)
+    u = x - t[i]
+    for r in range(4):
+        p0 = poly[i, r, 0]
+        p1 = poly[i, r, 1]
+        p2 = poly[i, r, 2]
+        p3 = poly[i, r, 3]
+        work[o + r] = ((p3 * u + p2) * u + p1) * u + p0
+        work[o + 4 + r] = (3.0 * p3 * u + 2.0 * p2) * u + p1
+    return i
+
+
+@njit(cache=True, inline="always")
+def _column_sums(coef, i0, i1, n_q, j2, j3, j4, v, work):
+    """``sum_(p, q) b0[p] b1[q] coef[i0 - 3 + p, i1 - 3 + q, j2, j3, j4 + e, v + k]`` for e =
+    0..3 (the four values of each k = 0, 1: ``(r0, r1, r2, r3, q0, q1, q2, q3)``), the a0/b0
+    (and nu) axes contracted in registers; ``b0``, ``b1`` in ``work[36:40]``, ``work[44:48]``
+    (:func:`_any_point`). Summed in the order (p, q) from 0.0, as a scratch block was."""
+    r0 = 0.0
+    r1 = 0.0
+    r2 = 0.0
+    r3 = 0.0
+    q0 = 0.0
+    q1 = 0.0
+    q2 = 0.0
+    q3 = 0.0
+    for p in range(4):
+        j0 = i0 - 3 + p
+        for q in range(n_q):
+            w = work[36 + p] * work[44 + q]
+            k = i1 - 3 + q
+            r0 += w * coef[j0, k, j2, j3, j4, v]
+            q0 += w * coef[j0, k, j2, j3, j4, v + 1]
+            r1 += w * coef[j0, k, j2, j3, j4 + 1, v]
+            q1 += w * coef[j0, k, j2, j3, j4 + 1, v + 1]
+            r2 += w * coef[j0, k, j2, j3, j4 + 2, v]
+            q2 += w * coef[j0, k, j2, j3, j4 + 2, v + 1]
+            r3 += w * coef[j0, k, j2, j3, j4 + 3, v]
+            q3 += w * coef[j0, k, j2, j3, j4 + 3, v + 1]
+    return r0, r1, r2, r3, q0, q1, q2, q3
+
+
+@njit(cache=True, inline="always")
+def _any_point(coef, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, x0, x1, x2, x3, x4, derivs, out,
+               work, n_var):
+    """:func:`spline_point` on the five-dimensional coefficients (or those summed over nu):
+    for each (s, theta) pair of the 4 x 4 support the 4 (tau) x 2 (variables) coefficients
+    contracted over the a0/b0 (and nu) axes in registers (:func:`_column_sums`), then with the
+    tau bases: no scratch block, no views. Bases in ``work[12:52]`` (b at o, derivative at
+    o + 4; o = 12, 20, 28 for s, theta, tau, 36, 44 for a0/b0, nu). The same products, summed
+    in the same order, as the scratch block and :func:`_accumulate` did (the same bits)."""
+    i2 = _basis_at(t2, p2, x2, work, 12)
+    i3 = _basis_at(t3, p3, x3, work, 20)
+    i4 = _basis_at(t4, p4, x4, work, 28)
+    i0 = _basis_at(t0, p0, x0, work, 36)
     if coef.shape[1] == 1:  # the coefficients already summed over nu at the contact's nu
-        n_q = 1             # (ExactCreepTable._nu_slab): the one "span" weighs 1
-        i1 = 3
-        b1[0] = 1.0
+        work[44] = 1.0      # (ExactCreepTable.prepare): the one "span" weighs 1
+        _contract(coef, i0, 3, 1, i2, i3, i4, derivs, n_var, out, work)
     else:
-        i1 = find_span(t1, t1.shape[0] - 4, x1)
-        _poly_basis(t1, p1, i1, x1, b1, db)
-    block = work[64:320].reshape((4, 4, 4, 4))
+        i1 = _basis_at(t1, p1, x1, work, 44)
+        # n_q = 4 (a cubic axis has at least 4 coefficients) as a run-time value: the (p, q)
+        # loop unrolled 16-fold made the kernels take minutes more to compile
+        _contract(coef, i0, i1, min(coef.shape[1], 4), i2, i3, i4, derivs, n_var, out, work)
+
+
+@njit(cache=True, inline="always")
+def _contract(coef, i0, i1, n_q, i2, i3, i4, derivs, n_var, out, work):
+    """``out`` of :func:`_any_point` from the spans and the bases in ``work`` (``n_q`` 1, a
+    constant there, or 4)."""
+    for k in range(4):
+        for v in range(4):
+            out[k, v] = 0.0
     for a in range(4):
         for c in range(4):
-            for e in range(4):
-                for v in range(4):
-                    block[a, c, e, v] = 0.0
-    for p in range(4):
-        for q in range(n_q):
-            w = b0[p] * b1[q]
-            for a in range(4):
-                for c in range(4):
-                    for e in range(4):
-                        for v in range(n_var):
-                            block[a, c, e, v] += w * coef[i0 - 3 + p, i1 - 3 + q, i2 - 3 + a,
-                                                          i3 - 3 + c, i4 - 3 + e, v]
-    _accumulate(block, b2, d2, b3, d3, b4, d4, derivs, n_var, out)
+            w23 = work[12 + a] * work[20 + c]
+            w2d = work[16 + a] * work[20 + c]
+            w3d = work[12 + a] * work[24 + c]
+            for v in range(0, n_var, 2):     # two variables at a time (the pair shares lines)
+                r0, r1, r2, r3, q0, q1, q2, q3 = _column_sums(
+                    coef, i0, i1, n_q, i2 - 3 + a, i3 - 3 + c, i4 - 3, v, work)
+                s_e = 0.0
+                s_e += work[28] * r0
+                s_e += work[29] * r1
+                s_e += work[30] * r2
+                s_e += work[31] * r3
+                t_e = 0.0
+                t_e += work[28] * q0
+                t_e += work[29] * q1
+                t_e += work[30] * q2
+                t_e += work[31] * q3
+                pair = v + 1 < n_var
+                out[0, v] += w23 * s_e
+                if pair:
+                    out[0, v + 1] += w23 * t_e
+                if derivs:
+                    ds_e = 0.0
+                    ds_e += work[32] * r0
+                    ds_e += work[33] * r1
+                    ds_e += work[34] * r2
+                    ds_e += work[35] * r3
+                    out[1, v] += w2d * s_e
+                    out[2, v] += w3d * s_e
+                    out[3, v] += w23 * ds_e
+                    if pair:
+                        dt_e = 0.0
+                        dt_e += work[32] * q0
+                        dt_e += work[33] * q1
+                        dt_e += work[34] * q2
+                        dt_e += work[35] * q3
+                        out[1, v + 1] += w2d * t_e
+                        out[2, v + 1] += w3d * t_e
+                        out[3, v + 1] += w23 * dt_e
 
 
 @njit(cache=True, inline="always")
@@ -506,8 +597,8 @@ _NO_SLAB = np.zeros((1, 1, 1, 4))
 
 
 @njit(cache=True, inline="always")
-def _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, out):
-    """``out`` <- Kalker's (C11, C22, C23) within his table's a0/b0 range, from the
+def _kalker_coefficients(kx, kc, nu_nodes, log_g, nu):
+    """Kalker's ``(C11, C22, C23)`` within his table's a0/b0 range, from the
     interpolant of :func:`railcontact.kalker.kalker_coefficients` (its ``_table_log``):
     ``1 / C_k = sum_j L_j(nu) exp(-S_kj(ln g))``, ``S_kj`` the not-a-knot cubic spline of
     ln C_kj at nu_j as scipy's CubicSpline holds it (breakpoints ``kx``, coefficients ``kc``
@@ -529,14 +620,27 @@ def _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, out):
     l0 = (nu - n1) * (nu - n2) / ((n0 - n1) * (n0 - n2))
     l1 = (nu - n0) * (nu - n2) / ((n1 - n0) * (n1 - n2))
     l2 = (nu - n0) * (nu - n1) / ((n2 - n0) * (n2 - n1))
-    for k in range(3):
-        u = 0.0
-        for j in range(3):
-            sp = ((kc[0, lo, k, j] * d + kc[1, lo, k, j]) * d + kc[2, lo, k, j]) * d \
-                + kc[3, lo, k, j]
-            lj = l0 if j == 0 else (l1 if j == 1 else l2)
-            u += lj * math.exp(-sp)
-        out[k] = 1.0 / u
+    return (1.0 / _kalker_sum(kc, lo, 0, d, l0, l1, l2),
+            1.0 / _kalker_sum(kc, lo, 1, d, l0, l1, l2),
+            1.0 / _kalker_sum(kc, lo, 2, d, l0, l1, l2))
+
+
+@njit(cache=True, inline="always")
+def _kalker_sum(kc, lo, k, d, l0, l1, l2):
+    """``sum_j L_j(nu) exp(-S_kj(ln g))`` of :func:`_kalker_coefficients`."""
+    u = 0.0
+    for j in range(3):
+        sp = ((kc[0, lo, k, j] * d + kc[1, lo, k, j]) * d + kc[2, lo, k, j]) * d \
+            + kc[3, lo, k, j]
+        lj = l0 if j == 0 else (l1 if j == 1 else l2)
+        u += lj * math.exp(-sp)
+    return u
+
+
+@njit(cache=True, inline="always")
+def _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, out):
+    """``out`` <- :func:`_kalker_coefficients` (the tests' entry)."""
+    out[0], out[1], out[2] = _kalker_coefficients(kx, kc, nu_nodes, log_g, nu)
 
 
 @njit(cache=True, inline="always")
@@ -571,7 +675,7 @@ def creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
                       poisson_ratio, friction_coefficient, want_jacobian):
     """The scalar path of any contact, without a contact buffer: the five-dimensional spline
     ``coef`` (n0, .., n4, 4) at one point, with Kalker's coefficients of a0/b0 and nu from
-    their interpolant (:func:`_kalker_table_coefficients`); everything else the table needs
+    their interpolant (:func:`_kalker_coefficients`); everything else the table needs
     is in ``tbuf`` (:data:`TABLE_HEAD`). ``coef`` may also be the coefficients summed over nu
     at ``poisson_ratio`` (float64, n1 = 1:
     :meth:`railcontact.exact_table.ExactCreepTable.prepare`), a quarter of the products. Writes ``res`` inside ``tbuf`` (as :func:`creep_contact`);
@@ -600,11 +704,7 @@ def _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, tau_m
     log_g = math.log(a0 / b0)
     if not (log_g_min <= log_g <= log_g_max):
         return False
-    c = work[:3]
-    _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, c)
-    c11 = c[0]
-    c22 = c[1]
-    c23 = c[2]
+    c11, c22, c23 = _kalker_coefficients(kx, kc, nu_nodes, log_g, nu)
     done = _creep_point(coef, _NO_SLAB, False, t0, t1, t2, t3, t4, p0, p1, p2, p3, p4,
                         tau_max, xi_x, xi_y, phi, friction_coefficient * normal_load, a0, b0,
                         w_sat, c11, c22, c23, log_g, nu, want_jacobian, res, work, n_var)
@@ -627,10 +727,9 @@ def creep_table_force(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
     log_g = math.log(a0 / b0) if w_sat != 0.0 else 0.0
     if w_sat == 0.0 or not (tbuf[6] <= log_g <= tbuf[7]):
         raise ArithmeticError("creep_table_force: the array path")
-    c = work[:3]
-    _kalker_table_coefficients(kx, kc, nu_nodes, log_g, nu, c)
+    c11, c22, c23 = _kalker_coefficients(kx, kc, nu_nodes, log_g, nu)
     root_ab, h, v_x, v_y, tau, rho, w2, w, s, theta = _table_coordinates(
-        xi_x, xi_y, phi, a0, b0, w_sat, c[0], c[1], c[2])
+        xi_x, xi_y, phi, a0, b0, w_sat, c11, c22, c23)
     if not abs(tau) <= tbuf[5]:
         raise ArithmeticError("creep_table_force: the array path")
     out = work[320:336].reshape((4, 4))
@@ -648,7 +747,25 @@ def creep_table_force(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_m
 def _table_points(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                   poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok, lo, hi,
                   work):
-    """:func:`creep_table_point` at the points ``lo`` .. ``hi - 1`` (every input an array)."""
+    """:func:`creep_table_point` at the points ``lo`` .. ``hi - 1`` (every input an array).
+    The forces alone (no Jacobian, ``n_var`` 2: the public call's arrays) have their own copy
+    of the loop with the flags constant in it: as run-time values they kept the Jacobian's
+    branches in the innermost loops, about a fifth more time per point. (A copy for each
+    case made the kernels take minutes more to compile.)"""
+    if not want_jacobian and n_var == 2:
+        _table_loop(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                    poisson_ratio, friction_coefficient, False, 2, res, ok, lo, hi, work)
+    else:
+        _table_loop(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                    poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok, lo,
+                    hi, work)
+
+
+@njit(cache=True, inline="always")
+def _table_loop(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                poisson_ratio, friction_coefficient, want_jacobian, n_var, res, ok, lo, hi,
+                work):
+    """The loop of :func:`_table_points`."""
     t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes, _, _ = _table_views(tbuf)
     for i in range(lo, hi):
         ok[i] = _table_point(t0, t1, t2, t3, t4, p0, p1, p2, p3, p4, kx, kc, nu_nodes,
