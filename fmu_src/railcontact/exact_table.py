@@ -736,8 +736,12 @@ class ExactCreepTable:
                 if idx.size >= SORT_AFTER_POINTS:
                     # in the order of a0/b0, the coefficients' outermost axis: neighbouring
                     # points read neighbouring planes (each point's values are its own: the
-                    # same bits in any order)
-                    idx = idx[np.argsort(log_g[idx], kind="stable")]
+                    # same bits in any order); grouped into 256 bins of ln(a0/b0) across the
+                    # table's range, which numpy sorts by radix (10,001 points: 44 us against
+                    # 700 us for a sort of the floats, 70 ns a point)
+                    lo, hi = self._log_g
+                    bins = ((log_g[idx] - lo) * (255.0 / (hi - lo))).astype(np.uint8)
+                    idx = idx[np.argsort(bins, kind="stable")]
                 with np.errstate(all="ignore"):
                     _batch(_table_batch(coef), idx.size, self._tbuf, coef, xi_x[idx],
                            xi_y[idx], phi[idx], n_load[idx], a0[idx], b0[idx], e_mod[idx],
