@@ -570,77 +570,64 @@ def _friction_input(friction_coefficient, rolling_speed, method, method_options)
 def _falling_compiled_scalar(*args):
     """``CreepForce3D`` of the exact table with a :class:`SmoothFriction` or
     :class:`PolachFriction` (with a float ``rolling_speed`` > 0), or any other law the general
-    path has tabulated (:func:`_falling_tabulated`), for one contact in plain floats by
+    path has tabulated (:func:`_falling_kernel_law`), for one contact in plain floats by
     :func:`railcontact.falling_table.falling_friction_table_compiled`, or None (other inputs,
     mu_0 = 0, a law not tabulated yet, no contact buffer yet, or a case the table's kernel
     hands to its array path: the caller takes the general path, which checks the inputs)."""
     law, speed = args[8], args[9]
     if not all(type(v) is float for v in args[:8]):
         return None
-    tab = None
-    if type(law) is SmoothFriction:
-        params = (0, law.mu_static, law.mu_kinetic, law.kappa, 0.0)
-    elif type(law) is PolachFriction:
+    if type(law) is PolachFriction or getattr(law, "needs_rolling_speed", False):
         if not (type(speed) is float and 0.0 < speed < math.inf):
             return None
-        params = (1, law.mu_static, law.friction_ratio_limit, law.friction_decay, speed)
-    else:       # any other law: its table, once the general path has made and checked it
-        if getattr(law, "needs_rolling_speed", False):
-            if not (type(speed) is float and 0.0 < speed < math.inf):
-                return None
-        else:
-            speed = None
-        entry = _LAW_TABLES.get((id(law), speed))
-        if entry is None or entry[0] is not law or entry[1] is None:
-            return None
-        tab = entry[1]
-        params = (2, float(tab[1, 0]), 0.0, 0.0, 0.0)
-    if not params[1] > 0.0:
-        return None
-    from .falling_table import falling_friction_table_compiled  # noqa: PLC0415
-
-    table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
-    try:
-        got = (falling_friction_table_compiled(table, *args[:8], *params) if tab is None else
-               falling_friction_table_compiled(table, *args[:8], *params, tabulated=tab))
-    except (TypeError, ValueError, ArithmeticError):
-        return None
+    else:
+        speed = None
+    got = _falling_kernel_call(_EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table(),
+                               args[:8], law, speed)
     return None if got is None else _new_force(got[0] + 0.0, got[1] + 0.0)
 
 
-#: Tabulated laws of :func:`_falling_tabulated`, per (law object, rolling speed): the last few.
+#: Tabulated laws of :func:`_falling_kernel_law`, per (law object, rolling speed): the last few.
 _LAW_TABLES = {}
 
 
-def _falling_tabulated(table, plain, law_s, speed):
-    """The compiled fast path for one contact (``plain``: the nine checked inputs, floats) with
-    any law, on its :func:`railcontact.falling_table.law_table` (made once per law object and
-    rolling speed; a law is taken as fixed once passed), or None (the numpy path)."""
-    from .falling_table import falling_friction_table_compiled, law_table  # noqa: PLC0415
+def _falling_kernel_law(law, speed, law_s=None):
+    """The law as the compiled fast path takes it, ``(kind, p0, p1, p2, p3, table)``
+    (:func:`railcontact.falling_table.falling_friction_table_compiled`): the package's laws in
+    closed form, any other on its :func:`railcontact.falling_table.law_table` (made here once
+    per law object and rolling speed ``speed``, a float or None, when the general path passes
+    ``law_s``, the law in the slip; a law is taken as fixed once passed), or None (a law the
+    table cannot hold, or not tabulated yet)."""
+    if type(law) is SmoothFriction:
+        return 0, law.mu_static, law.mu_kinetic, law.kappa, 0.0, None
+    if type(law) is PolachFriction:
+        return None if speed is None else (1, law.mu_static, law.friction_ratio_limit,
+                                           law.friction_decay, speed, None)
+    key = (id(law), speed)
+    entry = _LAW_TABLES.get(key)
+    if (entry is None or entry[0] is not law) and law_s is not None:
+        from .falling_table import law_table  # noqa: PLC0415
 
-    law = getattr(law_s, "__wrapped_law__", None)
-    if not plain[8] > 0.0:
+        if len(_LAW_TABLES) >= 8:
+            _LAW_TABLES.pop(next(iter(_LAW_TABLES)))
+        entry = _LAW_TABLES[key] = (law, law_table(law_s))
+    if entry is None or entry[0] is not law or entry[1] is None:
         return None
-    if type(law) is SmoothFriction:        # (the package's laws in closed form, as with
-        params, tab = (0, law.mu_static, law.mu_kinetic, law.kappa, 0.0), None   # floats)
-    elif type(law) is PolachFriction and speed is not None:
-        params = (1, law.mu_static, law.friction_ratio_limit, law.friction_decay,
-                  float(speed))
-        tab = None
-    else:
-        key = (id(law), None if speed is None else float(speed))
-        entry = _LAW_TABLES.get(key)
-        if entry is None or entry[0] is not law:
-            if len(_LAW_TABLES) >= 8:
-                _LAW_TABLES.pop(next(iter(_LAW_TABLES)))
-            entry = _LAW_TABLES[key] = (law, law_table(law_s))
-        if entry[1] is None:
-            return None
-        params, tab = (2, plain[8], 0.0, 0.0, 0.0), entry[1]
+    return 2, float(entry[1][1, 0]), 0.0, 0.0, 0.0, entry[1]
+
+
+def _falling_kernel_call(table, plain, law, speed, law_s=None):
+    """The compiled fast path for one contact (``plain``: the eight checked inputs before the
+    friction, floats) with the law of :func:`_falling_kernel_law`: ``(tx, ty, mz, stick, z,
+    mu_e)``, or None (the caller's other path)."""
+    from .falling_table import falling_friction_table_compiled  # noqa: PLC0415
+
+    kernel_law = _falling_kernel_law(law, speed, law_s)
+    if kernel_law is None or not kernel_law[1] > 0.0:
+        return None
     try:
-        if tab is None:
-            return falling_friction_table_compiled(table, *plain[:8], *params)
-        return falling_friction_table_compiled(table, *plain[:8], *params, tabulated=tab)
+        return falling_friction_table_compiled(table, *plain, *kernel_law[:5],
+                                               tabulated=kernel_law[5])
     except (TypeError, ValueError, ArithmeticError):
         return None
 
@@ -684,10 +671,9 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
 
     def law_s(slip):    # (a slip velocity s V kept finite at any creepage)
         return law(slip if factor is None else np.minimum(slip, cap) * factor)
-    law_s.__wrapped_law__ = law
 
-    got = (_falling_tabulated(table, plain + [float(args[8])], law_s, speed) if scalar
-           else None)
+    got = (_falling_kernel_call(table, plain, law, None if speed is None else float(speed),
+                                law_s) if scalar else None)
     if got is None:     # (arrays; a law the table cannot hold; slips beyond it; no buffer yet)
         got = falling_friction_table(values, *args[:6], law_s, args[8])
     tx, ty, mz, stick, z, _ = (np.asarray(v, dtype=float) for v in got)

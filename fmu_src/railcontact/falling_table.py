@@ -226,11 +226,12 @@ def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, y
 
 def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
                                     youngs_modulus, poisson_ratio, kind, p0, p1, p2, p3,
-                                    eager=False, tabulated=_NO_LAW_TABLE):
+                                    eager=False, tabulated=None):
     """One contact (plain floats, checked), a closed-form or tabulated law, compiled
     (:func:`railcontact._falling_kernels.falling_contact`: ``kind`` 0 the smooth law with
     ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with ``(mu_0, A, B [s/m], V [m/s])``,
-    2 the table ``tabulated`` of :func:`law_table` with ``p0`` = mu_0 and ``p1 .. p3`` 0):
+    2 the table ``tabulated`` of :func:`law_table` (None for the others) with ``p0`` = mu_0 and
+    ``p1 .. p3`` 0):
     ``(tx, ty, mz, stick_area_fraction, normalised_creepage, mu_effective)`` as
     :func:`falling_friction_table`, or None where the table has no contact buffer for
     (a0/b0, nu) yet (its first points of a contact, a0/b0 beyond it) or hands the case to its
@@ -251,6 +252,7 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         kernel = _KERNEL[0] = _compiled.falling_contact()
     out = _OUT
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
-                  p1, p2, p3, tabulated, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
+                  p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, _GAUSS,
+                  EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
         return None
     return out[0], out[1], out[2], out[3], out[4], out[5]
