@@ -528,7 +528,9 @@ class WheelRailContact(Fmi2Slave):
             self._pipeline = self._vehicle.pipelines[0]
             # (bound to the vehicle, not to self: no reference cycle through the slave)
             self._auxiliary_all = self._vehicle.auxiliary
-            self._jacobian_all = self._vehicle.jacobian
+            self._jacobian_all = (self._vehicle.jacobian
+                                  if self._vehicle.pipelines[0].jacobian_on_demand
+                                  else _no_auxiliary)
             summary = self._vehicle.summary
             # the whole step without the slave's frames (as for one contact, below)
             self.do_step = self._vehicle.fmu_step(self._do_step_full, self._log_step_failure)
@@ -538,7 +540,8 @@ class WheelRailContact(Fmi2Slave):
             self._steps = self._pipeline.steps
             self._checked_step = self._pipeline.checked_step
             self._auxiliary_all = self._pipeline.auxiliary
-            self._jacobian_all = self._pipeline.jacobian
+            self._jacobian_all = (self._pipeline.jacobian if self._pipeline.jacobian_on_demand
+                                  else _no_auxiliary)     # (a no-op: the step set them)
             # the whole step in one Python frame (an instance attribute shadows the do_step
             # method; PythonFMU looks the method up by name on each step)
             self.do_step = self._pipeline.fmu_step(self._contact, self._do_step_full,
@@ -703,6 +706,7 @@ class WheelRailContact(Fmi2Slave):
         if CONTACTS > 1:
             lazy, jac = _on_demand([f for _, f in fields])
             aux, jac_all = self._auxiliary_all, self._jacobian_all
+            jac = jac and jac_all is not _no_auxiliary
 
             read = _reader(fields)
             if not (lazy or jac):
@@ -717,7 +721,7 @@ class WheelRailContact(Fmi2Slave):
             return get
         c, get = self._contact, operator.attrgetter(*fields)
         lazy, jac = _on_demand(fields)
-        if jac:
+        if jac and self._jacobian_all is not _no_auxiliary:
             aux, jac_all = self._auxiliary_all, self._jacobian_all
 
             def get_on_demand():
@@ -751,6 +755,7 @@ class WheelRailContact(Fmi2Slave):
             else:
                 return lambda: Fmi2Slave.get_real(self, list(vrs))
         aux, jac_all, contacts = self._auxiliary_all, self._jacobian_all, self._contacts
+        jac = jac and jac_all is not _no_auxiliary
 
         def get():
             if lazy:

@@ -147,6 +147,9 @@ class Creep3D(Effect):
         # falling friction on the exact table (friction_law = "smooth"): (mu_k, kappa)
         self._smooth_law = ((float(opts["kinetic_friction_coefficient"]), float(opts["kappa"]))
                             if opts.get("friction_law", "coulomb") == "smooth" else None)
+        #: Whether :meth:`jacobian` computes the Jacobian outputs when read (falling friction
+        #: on the exact table; every other source sets them in its step).
+        self.jacobian_on_demand = self._smooth_law is not None
         self._polach = {kw: float(opts.get(key, default)) for key, (kw, *_, default)
                         in POLACH_KEYS.items()}
         #: Output ``creep_table_error_estimate``: :func:`table_error_estimate` of the table in

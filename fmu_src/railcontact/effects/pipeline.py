@@ -46,7 +46,12 @@ class Pipeline:
         #: Every step function in evaluation order (what :meth:`step` calls).
         self.steps = self._steps
         self._auxiliary = tuple(e for e in effects.values() if hasattr(e, "auxiliary"))
-        self._jacobian = tuple(e for e in effects.values() if hasattr(e, "jacobian"))
+        # effects that compute the Jacobian outputs only when read (Creep3D with falling
+        # friction); without any, a read of them calls nothing (jacobian_on_demand False)
+        self._jacobian = tuple(e for e in effects.values()
+                               if getattr(e, "jacobian_on_demand", False))
+        #: Whether :meth:`jacobian` has anything to compute.
+        self.jacobian_on_demand = bool(self._jacobian)
         #: ``checked_step(contact) -> bool``: :meth:`step` behind a cheap validity check of the
         #: inputs (see :func:`checked_steps`).
         self.checked_step = checked_steps(self._steps)
