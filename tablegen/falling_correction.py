@@ -1,0 +1,242 @@
+"""The falling-friction correction table: Kalker's exact theory with the smooth law (5.16)
+minus the package's fast model on the Coulomb exact table, over the law's normalised
+parameters (issue 38; read by :mod:`railcontact.falling_table`).
+
+    python -m tablegen.falling_correction build [--workers 2] [--workdir DIR] [--output F]
+
+What is tabulated, at every node of (ln(a0/b0), nu, s, theta, tau, mu_k/mu_0, kappa mu_0 p0/G)
+(the exact table's coordinates of :func:`railcontact.exact_table.exact_table_coordinates`,
+at the law's mu_0, and the law's two numbers):
+
+* ``(T_exact - T_model) / (mu_0 N)`` for T_x and T_y, and ``(M_exact - M_model) /
+  (mu_0 N sqrt(a0 b0))`` for the spin moment, where ``T_exact`` is
+  ``creep_solution_3d(..., SmoothFriction(mu_0, mu_k, kappa), method="exact")`` (the public
+  default grid) and ``T_model`` is :func:`railcontact.falling_table.falling_friction_table`
+  (uncorrected) on the same inputs of the reference contact
+  (:data:`railcontact.creep3d.REFERENCE_CONTACT`, as the Coulomb table).
+
+Only the nodes that are not known are solved: mu_k/mu_0 = 1 and kappa = 0 are Coulomb
+friction, where the model is the Coulomb table (its correction is taken as 0: the table is
+within 0.3 % of the exact theory); s = 1 is infinite creepage (full sliding without spin's
+share: the model's limit is exact, 0); at s = 0 theta is void (one solve per theta row);
+negative tau are the mirror images (y -> -y: theta -> -theta, tau -> -tau, T_y and M_z change
+sign), made by the reader. A case the exact solver does not converge on is stored as NaN and
+filled by the reader's fit from its neighbours along theta (the table records how many).
+
+Resumable: each (ln(a0/b0), nu, tau) block of nodes is one chunk, saved under the work
+directory as soon as it is done (``<workdir>/falling_correction-<hash>/``); running the same
+command again computes only the missing chunks. The hash covers the nodes and the solver.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import math
+import os
+import sys
+import time
+import warnings
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["NODES", "AXES", "residual_block", "build"]
+
+#: Nodes of the computed grid (tau >= 0; the reader mirrors tau < 0). Along s the creepage
+#: coordinate (2/pi) atan(rho / w), denser at small s, where spin dominates and the model's
+#: error is largest; tau graded where the spin's force develops (the model's error rises there
+#: within 0.5 of tau, see the pilot lines in the docstring of railcontact.falling_table);
+#: kappa in squares (the correction rises fast from kappa = 0).
+NODES = {
+    "log_aspect_ratio": np.log(5.0) * np.linspace(-1.0, 1.0, 5),
+    "poisson_ratio": np.array([0.0, 0.5]),
+    "creepage_coordinate": np.array([0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
+    "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
+    "spin_coordinate": np.array([0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.5, 7.5, 10.0, 14.0,
+                                 20.0]),
+    "friction_ratio": np.array([0.3, 0.65, 1.0]),
+    "friction_decay_number": np.array([0.0, 0.125, 0.5, 1.125, 2.0]),
+}
+AXES = tuple(NODES)
+VARIABLES = ("force_correction_longitudinal", "force_correction_lateral",
+             "spin_moment_correction")
+SOLVER = "creep_solution_3d(method='exact'), default grid; model falling_friction_table"
+
+
+def _case(lg, nu, s, th, tau, m, kn):
+    from railcontact.creep3d import REFERENCE_CONTACT
+    from railcontact.exact_table import exact_table_inverse
+
+    keys = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
+            "youngs_modulus", "poisson_ratio", "friction_coefficient")
+    ph = exact_table_inverse(lg, nu, s, th, tau, REFERENCE_CONTACT)
+    a = [float(ph[k]) for k in keys]
+    shear = a[6] / (2.0 * (1.0 + nu))
+    p0 = 1.5 * a[3] / (math.pi * a[4] * a[5])
+    mu0 = a[8]
+    return a, mu0, m * mu0, kn / (mu0 * p0 / shear)
+
+
+def residual_point(lg, nu, s, th, tau, m, kn):
+    """``(dT_x, dT_y) / (mu_0 N)`` and ``dM_z / (mu_0 N sqrt(a0 b0))`` (exact minus model) at
+    one node; NaN where the exact solver does not converge."""
+    from railcontact import creep_solution_3d
+    from railcontact.creep3d import load_exact_table
+    from railcontact.errors import RollingConvergenceError
+    from railcontact.falling_table import falling_friction_table
+    from railcontact.friction import SmoothFriction
+
+    a, mu0, mu_k, kappa = _case(lg, nu, s, th, tau, m, kn)
+    law = SmoothFriction(mu0, mu_k, kappa)
+    try:
+        ex = creep_solution_3d(*a[:8], law, method="exact")
+    except (RollingConvergenceError, ValueError):
+        return np.full(3, np.nan)
+    table = load_exact_table()
+    plain = a[:8]
+
+    def values(mu):
+        mu = float(mu)
+        v = table.step_values(*plain, mu, False)
+        return v[:5] if v is not None else table.step(*plain, mu, False)[:5]
+
+    tx, ty, mz = falling_friction_table(values, *plain[:6], law, mu0)[:3]
+    scale = mu0 * a[3]
+    return np.array([(ex.tx - float(tx)) / scale, (ex.ty - float(ty)) / scale,
+                     (ex.spin_moment - float(mz)) / (scale * math.sqrt(a[4] * a[5]))])
+
+
+def residual_block(i_g, i_nu, i_tau):
+    """The residuals of one (ln(a0/b0), nu, tau) block: array (3, n_s, n_theta, n_m, n_kn)
+    (the known nodes filled: m = 1, kappa = 0, s = 1 zero; s = 0 one solve per theta row)."""
+    warnings.simplefilter("ignore")
+    n = NODES
+    lg, nu, tau = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
+                   n["spin_coordinate"][i_tau])
+    out = np.zeros((3, n["creepage_coordinate"].size, n["creepage_angle"].size,
+                    n["friction_ratio"].size, n["friction_decay_number"].size))
+    for i_s, s in enumerate(n["creepage_coordinate"]):
+        if s >= 1.0:
+            continue
+        for i_t, th in enumerate(n["creepage_angle"]):
+            if s == 0.0 and i_t > 0:
+                out[:, i_s, i_t] = out[:, i_s, 0]
+                continue
+            for i_m, m in enumerate(n["friction_ratio"]):
+                for i_k, kn in enumerate(n["friction_decay_number"]):
+                    if m >= 1.0 or kn == 0.0:
+                        continue
+                    out[:, i_s, i_t, i_m, i_k] = residual_point(lg, nu, s, th, tau, m, kn)
+    return out
+
+
+def _hash():
+    h = hashlib.sha256(SOLVER.encode())
+    for k, v in NODES.items():
+        h.update(k.encode())
+        h.update(np.asarray(v, dtype=float).tobytes())
+    return h.hexdigest()[:12]
+
+
+def _work(workdir, i_g, i_nu, i_tau):
+    path = Path(workdir) / f"block_{i_g}_{i_nu}_{i_tau}.npy"
+    if not path.exists():
+        t = time.perf_counter()
+        vals = residual_block(i_g, i_nu, i_tau)
+        tmp = path.with_suffix(".tmp.npy")
+        np.save(tmp, vals)
+        os.replace(tmp, path)
+        return path.name, time.perf_counter() - t
+    return path.name, 0.0
+
+
+def assemble(workdir):
+    """The whole computed grid (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn) from the
+    chunks, or None while any is missing."""
+    n = NODES
+    shape = tuple(n[k].size for k in AXES)
+    out = np.empty((3,) + shape)
+    for i_g in range(shape[0]):
+        for i_nu in range(shape[1]):
+            for i_tau in range(shape[4]):
+                path = Path(workdir) / f"block_{i_g}_{i_nu}_{i_tau}.npy"
+                if not path.exists():
+                    return None
+                out[:, i_g, i_nu, :, :, i_tau] = np.load(path)
+    return out
+
+
+def write(values, path, seconds=None):
+    """The table file (netCDF-4: the axes, the three variables on the computed grid)."""
+    import xarray as xr  # noqa: PLC0415
+
+    coords = {k: (k, np.asarray(v, dtype=float)) for k, v in NODES.items()}
+    ds = xr.Dataset({name: (AXES, values[i].astype(np.float32)) for i, name in
+                     enumerate(VARIABLES)}, coords=coords)
+    ds.attrs.update(
+        title="railcontact falling-friction correction: exact theory with the smooth law "
+              "(5.16) minus the fast model on the Coulomb exact table",
+        method=SOLVER, grid_hash=_hash(), n_unconverged=int(np.isnan(values[0]).sum()),
+        references="J.B. Nielsen 1998, Eq. (5.16); J.J. Kalker 1990 (exact theory); "
+                   "railcontact.falling_table (the model)",
+        spin_coordinate_symmetry="tau < 0: mirror y -> -y (theta -> -theta, tau -> -tau; "
+                                 "the lateral force and spin moment corrections change sign)")
+    if seconds is not None:
+        ds.attrs["build_seconds"] = float(seconds)
+    enc = {name: dict(zlib=True, complevel=6) for name in VARIABLES}
+    ds.to_netcdf(path, encoding=enc)
+
+
+def build(workdir=None, workers=2, output=None, limit=None):
+    """Compute the missing chunks (``limit``: at most that many in this run) and, once all
+    are there, write the file. Returns (n_done, n_missing, path or None)."""
+    workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
+    workdir.mkdir(parents=True, exist_ok=True)
+    n = NODES
+    todo = [(i, j, k) for k in range(n["spin_coordinate"].size)
+            for i in range(n["log_aspect_ratio"].size) for j in range(n["poisson_ratio"].size)
+            if not (workdir / f"block_{i}_{j}_{k}.npy").exists()]
+    if limit is not None:
+        todo = todo[:limit]
+    t0 = time.perf_counter()
+    done = 0
+    if todo:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futs = [pool.submit(_work, workdir, *ijk) for ijk in todo]
+            for f in as_completed(futs):
+                name, sec = f.result()
+                done += 1
+                print(f"{name} {sec:.1f} s ({done}/{len(todo)}, "
+                      f"{time.perf_counter() - t0:.0f} s)", flush=True)
+    values = assemble(workdir)
+    if values is None:
+        missing = sum(not (workdir / f"block_{i}_{j}_{k}.npy").exists()
+                      for i in range(n["log_aspect_ratio"].size)
+                      for j in range(n["poisson_ratio"].size)
+                      for k in range(n["spin_coordinate"].size))
+        return done, missing, None
+    output = Path(output or Path.cwd() / "tables-build" / "falling_correction.nc")
+    output.parent.mkdir(parents=True, exist_ok=True)
+    write(values, output)
+    (workdir / "done.json").write_text(json.dumps({"output": str(output)}))
+    return done, 0, output
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="python -m tablegen.falling_correction")
+    p.add_argument("command", choices=["build"])
+    p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--workdir", default=None)
+    p.add_argument("--output", default=None)
+    p.add_argument("--limit", type=int, default=None, help="at most this many chunks now")
+    a = p.parse_args(argv)
+    done, missing, path = build(a.workdir, a.workers, a.output, a.limit)
+    print(f"{done} chunks computed; {missing} missing" + (f"; wrote {path}" if path else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
