@@ -57,7 +57,19 @@ KEYS = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0"
         "youngs_modulus", "poisson_ratio", "friction_coefficient")
 
 
-def cases(n, rng):
+#: Keywords of every call with the law (``--law polach``: its rolling speed).
+LAW_KW = {}
+#: Rolling speed of the ``--law polach`` sample. [m/s]
+POLACH_SPEED = 30.0
+
+
+def cases(n, rng, law_kind="smooth"):
+    """The random cases: ``(args, law, tau, m, kn)``. ``law_kind="polach"``: Polach's law
+    ``mu_0 ((1 - A) exp(-B w) + A)`` in the slip velocity w at :data:`POLACH_SPEED`, with
+    ``A = m`` and ``B V = kn ln 2 / (mu_0 p0 / G)`` (its half-way slip that of the smooth law
+    with the same m and kn)."""
+    from railcontact.friction import PolachFriction  # noqa: PLC0415
+
     out = []
     for _ in range(n):
         g = math.exp(rng.uniform(math.log(0.2), math.log(5.0)))
@@ -75,6 +87,8 @@ def cases(n, rng):
         p0 = 1.5 * args[3] / (math.pi * args[4] * args[5])
         m, kn = rng.uniform(0.3, 1.0), rng.uniform(0.0, 2.0)
         law = SmoothFriction(args[8], m * args[8], kn / (args[8] * p0 / shear))
+        if law_kind == "polach":
+            law = PolachFriction(args[8], m, law.kappa * math.log(2.0) / POLACH_SPEED)
         out.append((args, law, tau, m, kn))
     return out
 
@@ -157,7 +171,7 @@ def package_mu_effective(table, args, law):
 
 def candidate(name, table, args, law):
     if name == "package":
-        return creep_force_3d(*args[:8], law, method="exact_table")
+        return creep_force_3d(*args[:8], law, method="exact_table", **LAW_KW)
     if name.startswith("coarse"):
         # "coarse MXxMY": the table at the package's mu_e plus the exact solver's difference
         # between the law and mu_e on one coarse grid (milliseconds: not a table's speed)
@@ -227,11 +241,16 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=11)
     ap.add_argument("--cache", default="", help="npz file keeping the exact forces between runs")
     ap.add_argument("--candidates", nargs="*", default=None)
+    ap.add_argument("--law", choices=("smooth", "polach"), default="smooth",
+                    help="the sample's law (polach: only the candidates 'package' and "
+                         "'coulomb' take it)")
     opts = ap.parse_args(argv)
+    if opts.law == "polach":
+        LAW_KW["rolling_speed"] = POLACH_SPEED
     warnings.simplefilter("ignore", RuntimeWarning)
     table = load_exact_table()
     rng = np.random.default_rng(opts.seed)
-    data = cases(opts.n, rng)
+    data = cases(opts.n, rng, opts.law)
     ref, kept, failed, t0 = [], [], 0, time.perf_counter()
     cache = {}
     if opts.cache and Path(opts.cache).is_file():
@@ -245,7 +264,7 @@ def main(argv=None):
             f = type("F", (), {"tx": cache[key][0], "ty": cache[key][1]})
         else:
             try:
-                f = creep_force_3d(*args[:8], law, method="exact")
+                f = creep_force_3d(*args[:8], law, method="exact", **LAW_KW)
             except RollingConvergenceError:
                 failed += 1
                 cache[key] = np.array([np.nan, np.nan])

@@ -60,9 +60,10 @@ NODES = {
     "friction_ratio": np.array([0.3, 0.65, 1.0]),
     "friction_decay_number": np.array([0.0, 0.125, 0.5, 1.125, 2.0]),
 }
-AXES = tuple(NODES)
-VARIABLES = ("force_correction_longitudinal", "force_correction_lateral",
-             "spin_moment_correction")
+from railcontact.falling_table import CORRECTION_AXES as AXES  # noqa: E402
+from railcontact.falling_table import CORRECTION_VARIABLES as VARIABLES  # noqa: E402
+
+assert tuple(NODES) == AXES
 SOLVER = "creep_solution_3d(method='exact'), default grid; model falling_friction_table"
 
 
@@ -170,12 +171,32 @@ def assemble(workdir):
 
 
 def write(values, path, seconds=None):
-    """The table file (netCDF-4: the axes, the three variables on the computed grid)."""
+    """The table file (netCDF-4): the axes, the three variables on the computed grid
+    (float32), and ``packed_bspline``, the fitted spline the reader evaluates
+    (:func:`railcontact.falling_table.pack_correction`: its layout in the attribute)."""
     import xarray as xr  # noqa: PLC0415
 
+    from railcontact.falling_table import pack_correction  # noqa: PLC0415
+
+    packed = pack_correction(values, NODES)
     coords = {k: (k, np.asarray(v, dtype=float)) for k, v in NODES.items()}
     ds = xr.Dataset({name: (AXES, values[i].astype(np.float32)) for i, name in
                      enumerate(VARIABLES)}, coords=coords)
+    from railcontact.falling_table import CORRECTION_HEADER  # noqa: PLC0415
+
+    counts = packed[:CORRECTION_HEADER].astype(int)
+    n_head = CORRECTION_HEADER + int(sum(counts[:5]) + 20 + counts[5] + counts[6])
+    ds["packed_bspline"] = ("packed", packed[:n_head])
+    # (the coefficients in float32: 6e-8 of a correction of at most ~0.1 mu_0 N)
+    ds["packed_bspline_coefficients"] = ("packed_coefficients",
+                                         packed[n_head:].astype(np.float32))
+    ds["packed_bspline"].attrs["layout"] = (
+        "header (7): coefficient counts of the cubic axes ln(a0/b0), s, theta, tau, kappa "
+        "number; node counts of the linear axes nu, mu_k/mu_0; then the five knot vectors "
+        "(count + 4 each), the nu and mu_k/mu_0 nodes, and the coefficients (n_nu, n_m, n_g, "
+        "n_s, n_theta, n_tau, n_kn, 3) in C order (variables last: dT_x, dT_y over mu_0 N, "
+        "dM_z over mu_0 N sqrt(a0 b0)), these in packed_bspline_coefficients (float32); tau "
+        "mirrored to [-20, 20], theta periodic")
     ds.attrs.update(
         title="railcontact falling-friction correction: exact theory with the smooth law "
               "(5.16) minus the fast model on the Coulomb exact table",
@@ -186,7 +207,8 @@ def write(values, path, seconds=None):
                                  "the lateral force and spin moment corrections change sign)")
     if seconds is not None:
         ds.attrs["build_seconds"] = float(seconds)
-    enc = {name: dict(zlib=True, complevel=6) for name in VARIABLES}
+    enc = {name: dict(zlib=True, complevel=6) for name in VARIABLES + ("packed_bspline",
+                                                                  "packed_bspline_coefficients")}
     ds.to_netcdf(path, encoding=enc)
 
 

@@ -330,7 +330,8 @@ def test_exact_table_with_a_law_slides_at_mu_of_the_creepage_and_vectorises():
 def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     """The two implementations of railcontact.falling_table (numpy for any law; compiled for
     the smooth and Polach's laws: the FMU's step and the public scalar call) agree to
-    round-off."""
+    round-off, the correction table included (the numpy path sums its nu and mu_k/mu_0 axes
+    per point, the compiled one takes them summed out once: correction_at)."""
     from railcontact.creep3d import load_exact_table
     from railcontact.falling_table import (falling_friction_table,
                                            falling_friction_table_compiled,
@@ -344,17 +345,119 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
         got = table.step_values(*args, float(mu), False)
         return (got or table.step(*args, float(mu), False))[:5]
 
-    ref = falling_friction_table(values, *args[:6], law, 0.3)
+    ref = falling_friction_table(values, *args[:6], law, 0.3, (E, NU, 0.1 / 0.3, 0.8 / SAT))
     got = falling_friction_table_smooth(table, *args, 0.3, 0.1, 0.8 / SAT, eager=True)
     assert got is not None
     np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
     np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
     polach = PolachFriction(0.3, 0.4, 0.6)       # at 30 m/s: the law in s is polach(30 s)
     ref = falling_friction_table(values, *args[:6],
-                                 lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3)
+                                 lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
+                                 (E, NU, 0.4, 0.6 * 30.0 / np.log(2.0)))
     got = falling_friction_table_compiled(table, *args, 1, 0.3, 0.4, 0.6, 30.0, eager=True)
     np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
     np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
+
+
+#: Off-node cases with large spin where the model without its correction table missed most
+#: (benchmarks/bench_falling_friction_3d.py, seeds 11 and 12: 5.4, 5.0, 3.0, 2.6, 2.6, 5.3,
+#: 5.1, 4.5 % of mu_0 N): table coordinates (ln(a0/b0), nu, s, theta, tau) and the law's
+#: (mu_k/mu_0, kappa mu_0 p0 / G).
+LARGE_SPIN_CASES = (
+    (1.2469, 0.4646, 0.0715, -2.5986, 3.1056, 0.7643, 1.6184),
+    (1.0235, 0.4932, 0.0760, -0.8703, -8.4881, 0.3808, 0.3014),
+    (-0.1574, 0.2581, 0.0712, 0.8114, -5.6914, 0.4061, 1.6671),
+    (0.9957, 0.4596, 0.0518, 2.3016, 6.6770, 0.6333, 0.1603),
+    (0.6040, 0.2192, 0.0000, -1.5708, 3.3265, 0.8056, 1.3661),
+    (-0.7414, 0.4096, 0.0000, 3.1416, 3.5485, 0.4067, 0.6598),
+    (0.9483, 0.4298, 0.1476, -1.9534, 3.5562, 0.3050, 0.1424),
+    (-0.8425, 0.3738, 0.0000, 0.0000, 4.5096, 0.5254, 0.8164),
+)
+
+
+def _case_of(lg, nu, s, theta, tau, m, kn):
+    from railcontact.creep3d import REFERENCE_CONTACT
+    from railcontact.exact_table import exact_table_inverse
+
+    ph = exact_table_inverse(lg, nu, s, theta, tau, REFERENCE_CONTACT)
+    args = [float(ph[k]) for k in ("creepage_longitudinal", "creepage_lateral", "spin",
+                                   "normal_load", "a0", "b0", "youngs_modulus",
+                                   "poisson_ratio", "friction_coefficient")]
+    p0 = 1.5 * args[3] / (np.pi * args[4] * args[5])
+    shear = args[6] / (2.0 * (1.0 + nu))
+    return args, SmoothFriction(args[8], m * args[8], kn / (args[8] * p0 / shear))
+
+
+@pytest.mark.parametrize("case", LARGE_SPIN_CASES)
+def test_exact_table_with_a_law_and_large_spin_within_1_percent(case):
+    """The fast path with its correction table (tablegen.falling_correction: the exact theory
+    minus the model on a grid of the law's normalised parameters, interpolated) against
+    Kalker's exact theory with the same law, off the table's nodes, where the model alone
+    missed by up to 5.4 % of mu_0 N; and the force is not trivially small."""
+    args, law = _case_of(*case)
+    fast = rc.creep_force_3d(*args[:8], law, method="exact_table")
+    exact = rc.creep_force_3d(*args[:8], law, method="exact")
+    mu_n = args[8] * args[3]
+    err = np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n
+    assert err < 0.01, err
+    assert np.hypot(exact.tx, exact.ty) > 0.1 * mu_n
+    polach = PolachFriction(law.mu_static, law.mu_kinetic / law.mu_static,
+                            law.kappa * np.log(2.0) / 30.0)   # (the same half-way slip)
+    fast = rc.creep_force_3d(*args[:8], polach, method="exact_table", rolling_speed=30.0)
+    exact = rc.creep_force_3d(*args[:8], polach, method="exact", rolling_speed=30.0)
+    assert np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n < 0.02
+
+
+def test_correction_table_takes_its_nodes_and_the_mirror_image():
+    """The shipped correction table's spline (packed when it was built) takes the file's node
+    values at its nodes (interpolation), the mirror image y -> -y at tau < 0 (theta -> -theta;
+    the lateral force and the moment change sign), and is C2 (no kink) across tau = 0 and a
+    node of the kappa number; it vanishes where the law does not fall (mu_k = mu_0, kappa = 0)."""
+    import netCDF4
+
+    from railcontact import falling_table as ft
+    from railcontact._compiled import falling_correction_batch
+    from railcontact.tables import default_table_path
+
+    with netCDF4.Dataset(default_table_path(ft.CORRECTION_TABLE)) as ds:
+        nodes = [np.asarray(ds.variables[k][:], dtype=float) for k in ft.CORRECTION_AXES]
+        vals = np.stack([np.asarray(ds.variables[v][:], dtype=float)
+                         for v in ft.CORRECTION_VARIABLES])
+    corr = ft.load_falling_correction()
+    rng = np.random.default_rng(5)
+    idx = [rng.integers(0, x.size, 300) for x in nodes]
+    pts = [x[i] for x, i in zip(nodes, idx)]
+    keep = np.all(np.isfinite(vals[(slice(None), *idx)]), axis=0)
+
+    def at(points):
+        out = np.zeros((points[0].size, 3))
+        falling_correction_batch()(corr, *(np.ascontiguousarray(p, dtype=float)
+                                           for p in points), out)
+        return out
+
+    got = at(pts)
+    ref = vals[(slice(None), *idx)].T
+    np.testing.assert_allclose(got[keep], ref[keep], rtol=0.0, atol=1e-6)
+    assert keep.sum() > 250
+    assert np.max(np.abs(ref[keep])) > 0.01           # a table of real corrections
+    mirror = [pts[0], pts[1], pts[2], -pts[3], -pts[4], pts[5], pts[6]]
+    np.testing.assert_allclose(at(mirror), got * [1.0, -1.0, -1.0], rtol=0.0, atol=1e-12)
+    none = at([pts[0], pts[1], pts[2], pts[3], pts[4], np.ones(300), pts[6]])
+    assert np.all(none == 0.0)
+    none = at([pts[0], pts[1], pts[2], pts[3], pts[4], pts[5], np.zeros(300)])
+    np.testing.assert_allclose(none, 0.0, atol=1e-15)
+    # second differences across tau = 0 and kappa number 0.5 (a node): no kink
+    for axis, x0 in ((4, 0.0), (6, 0.5)):
+        h = 1e-3
+        p = [np.full(1, v) for v in (0.3, 0.2, 0.1, 0.7, 1.3, 0.5, 0.9)]
+        vals3 = []
+        for dx in (-h, 0.0, h):
+            q = list(p)
+            q[axis] = np.full(1, x0 + dx)
+            vals3.append(at(q)[0])
+        curvature = (vals3[0] - 2.0 * vals3[1] + vals3[2]) / h**2
+        slope_jump = np.abs((vals3[2] - vals3[1]) - (vals3[1] - vals3[0])) / h
+        assert np.all(slope_jump < 1e-4 + 2e-3 * np.abs(curvature)), (axis, slope_jump)
 
 
 class _SlipVelocityLaw:
@@ -394,7 +497,8 @@ def test_any_law_takes_the_compiled_path_on_its_table(case, monkeypatch):
         rc.creep_force_3d(*args, 0.3, method="exact_table")
     for law, speed, law_s in ((smooth_like, None, smooth_like),
                               (_SlipVelocityLaw(), 30.0, lambda s: _SlipVelocityLaw()(s * 30.0))):
-        ref = falling_table.falling_friction_table(values, *args[:6], law_s, 0.3)
+        ref = falling_table.falling_friction_table(
+            values, *args[:6], law_s, 0.3, (E, NU, *falling_table.law_shape(law, speed, law_s)))
         kw = {} if speed is None else {"rolling_speed": speed}
         first = rc.creep_force_3d(*args, law, method="exact_table", **kw)   # (tabulates it)
         with monkeypatch.context() as m:

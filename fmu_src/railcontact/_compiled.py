@@ -31,7 +31,7 @@ __all__ = ["EXPORTS", "BATCH_EXPORTS", "SOLVER_EXPORTS", "matches", "aot_kernel"
            "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
            "creep_contact", "creep_contact_force", "creep_table_point", "creep_table_force",
            "superposed_response", "exact_kernels", "unit_ellipses_kernel", "batch_kernel",
-           "falling_contact", "build_aot"]
+           "falling_contact", "falling_correction_batch", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -61,8 +61,12 @@ EXPORTS = (
     # falling friction on one exact-table contact (railcontact.falling_table: the FMU's step
     # and the public scalar call with SmoothFriction, PolachFriction or a tabulated law)
     ("falling_contact", "_falling_kernels",
-     "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], f8[:, ::1], "
-     "i8, f8, f8[::1])"),
+     "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], f8[::1], "
+     "f8[:, ::1], i8, f8, f8[::1])"),
+    # its correction table at many points (the array path of railcontact.falling_table)
+    ("falling_correction_batch", "_falling_kernels",
+     "void(f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
+     "f8[:, ::1])"),
     # the Hertz ellipses of changing curvatures (railcontact.effects.normal.unit_ellipses)
     ("unit_ellipses_kernel", "_hertz_kernels",
      "i8(f8[::1], f8[::1], f8, f8[::1], f8[:, ::1], f8[:, ::1])"),
@@ -338,6 +342,17 @@ def falling_contact():
     if aot is not None:
         return aot.falling_contact
     from ._falling_kernels import falling_contact as kernel  # noqa: PLC0415  (numba)
+
+    return kernel
+
+
+def falling_correction_batch():
+    """The falling-friction correction table at many points
+    (``_falling_kernels.falling_correction_batch``): the ahead-of-time copy, or numba's."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.falling_correction_batch
+    from ._falling_kernels import falling_correction_batch as kernel  # noqa: PLC0415
 
     return kernel
 

@@ -19,12 +19,16 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
-from ._exact_kernels import buffer_views, creep_contact
+from ._exact_kernels import (_saturation_creepage, _table_coordinates, buffer_views,
+                             creep_contact, cubic_basis)
+from ._spline_kernels import find_span
 
-__all__ = ["falling_contact", "LAW_SMOOTH", "LAW_POLACH", "LAW_TABLE"]
+__all__ = ["falling_contact", "falling_correction_batch", "LAW_SMOOTH", "LAW_POLACH",
+           "LAW_TABLE", "CORRECTION_HEADER"]
 
 #: Law kinds of :func:`falling_contact`.
 LAW_SMOOTH = 0
@@ -58,9 +62,145 @@ def _law(kind, p0, p1, p2, p3, tab, s):
     return tab[1, lo] + f * (tab[1, hi] - tab[1, lo])
 
 
+#: Length of the header of a packed correction table (:func:`_correction`): the coefficient
+#: counts of its five cubic axes (ln(a0/b0), s, theta, tau, kappa number), the node counts of
+#: its two linear axes (nu, mu_k/mu_0).
+CORRECTION_HEADER = 7
+
+
+@njit(cache=True)
+def _law_shape(kind, p0, p1, p2, p3, tab):
+    """``(mu_k / mu_0, kappa)`` of the smooth law (5.16) the correction table takes for the law
+    ``(kind, p0..p3, tab)`` of :func:`_law`: the smooth law's own; for another law its ratio
+    of the far to the zero-slip friction and ``kappa = 1 / s_half``, ``s_half`` the slip where
+    mu is half-way between the two (the smooth law's half-point is at 1 / kappa). Polach's:
+    ``(A, B V / ln 2)``. A law that does not fall gives ratio 1 (no correction)."""
+    if kind == 0:
+        return p1 / p0, p2
+    if kind == 1:
+        return p1, p2 * p3 / math.log(2.0)
+    ts = tab[0]
+    mus = tab[1]
+    n = ts.shape[0]
+    mu0 = mus[0]
+    mu_far = mus[n - 1]
+    if not (mu0 > 0.0 and mu_far < mu0):
+        return 1.0, 0.0
+    half = 0.5 * (mu0 + mu_far)
+    for i in range(1, n):
+        if mus[i] <= half:
+            f = (mus[i - 1] - half) / (mus[i - 1] - mus[i])
+            s_half = ts[i - 1] + f * (ts[i] - ts[i - 1])
+            return mu_far / mu0, 1.0 / s_half if s_half > 0.0 else 1e300
+    return 1.0, 0.0
+
+
+@njit(cache=True)
+def _linear_weight(nodes, x):
+    """Interval ``i`` and weight ``f`` of ``x`` (held at the ends) between ``nodes[i]`` and
+    ``nodes[i + 1]``."""
+    n = nodes.shape[0]
+    if n == 1 or not x > nodes[0]:
+        return 0, 0.0
+    if not x < nodes[n - 1]:
+        return n - 2, 1.0
+    i = 0
+    while x >= nodes[i + 1]:
+        i += 1
+    return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
+
+
+@njit(cache=True)
+def _correction(corr, lg, nu, s, theta, tau, m, kn, out):
+    """The correction table (:func:`railcontact.falling_table.load_falling_correction`) at one
+    point, into ``out[:3]`` (normalised: dT_x, dT_y over mu_0 N, dM_z over mu_0 N sqrt(a0 b0)).
+
+    ``corr``: the header (:data:`CORRECTION_HEADER`), the knots of the five cubic axes (each
+    its coefficient count plus 4), the nodes of the two linear axes, then the coefficients
+    (n_nu, n_m, n_g, n_s, n_theta, n_tau, n_kn, 3) in C order (the three variables last: the
+    innermost sum runs over 12 neighbouring numbers). Cubic along ln(a0/b0), s, theta
+    (periodic), tau and the kappa number (C2 B-splines), linear along nu and mu_k/mu_0 (a
+    law's and a material's constants); every coordinate is held at the ends of its axis
+    (theta is in [-pi, pi] as atan2 gives it)."""
+    nc0, nc1, nc2, nc3, nc4 = (int(corr[0]), int(corr[1]), int(corr[2]), int(corr[3]),
+                               int(corr[4]))
+    n_nu = int(corr[5])
+    n_m = int(corr[6])
+    pos = CORRECTION_HEADER
+    spans = np.empty(5, np.int64)
+    bas = np.empty((5, 4))
+    db = np.empty(4)
+    w = np.empty(12)
+    for a in range(5):
+        n = (nc0, nc1, nc2, nc3, nc4)[a]
+        t = corr[pos:pos + n + 4]
+        xa = min(max((lg, s, theta, tau, kn)[a], t[3]), t[n])
+        spans[a] = find_span(t, np.int64(n), xa)
+        cubic_basis(t, spans[a], xa, bas[a], db, w)
+        pos += n + 4
+    i_nu, f_nu = _linear_weight(corr[pos:pos + n_nu], nu)
+    pos += n_nu
+    i_m, f_m = _linear_weight(corr[pos:pos + n_m], m)
+    pos += n_m
+    st3 = nc4 * 3
+    st2 = nc3 * st3
+    st1 = nc2 * st2
+    st0 = nc1 * st1
+    st_m = nc0 * st0
+    st_nu = n_m * st_m
+    # 12 sums in registers (kappa number x variable; an array here would be reloaded)
+    c0 = c1 = c2 = c3 = c4 = c5 = c6 = c7 = c8 = c9 = c10 = c11 = 0.0
+    for jn in range(2):
+        wn = f_nu if jn == 1 else 1.0 - f_nu
+        if wn == 0.0:
+            continue
+        for jm in range(2):
+            wm = f_m if jm == 1 else 1.0 - f_m
+            if wm == 0.0:
+                continue
+            base = (pos + (i_nu + jn) * st_nu + (i_m + jm) * st_m
+                    + (spans[0] - 3) * st0 + (spans[1] - 3) * st1 + (spans[2] - 3) * st2
+                    + (spans[3] - 3) * st3 + (spans[4] - 3) * 3)
+            for j0 in range(4):
+                w0 = wn * wm * bas[0, j0]
+                b0 = base + j0 * st0
+                for j1 in range(4):
+                    w1 = w0 * bas[1, j1]
+                    b1 = b0 + j1 * st1
+                    for j2 in range(4):
+                        w2 = w1 * bas[2, j2]
+                        b2 = b1 + j2 * st2
+                        for j3 in range(4):
+                            w3 = w2 * bas[3, j3]
+                            b3 = b2 + j3 * st3
+                            c0 += w3 * corr[b3]
+                            c1 += w3 * corr[b3 + 1]
+                            c2 += w3 * corr[b3 + 2]
+                            c3 += w3 * corr[b3 + 3]
+                            c4 += w3 * corr[b3 + 4]
+                            c5 += w3 * corr[b3 + 5]
+                            c6 += w3 * corr[b3 + 6]
+                            c7 += w3 * corr[b3 + 7]
+                            c8 += w3 * corr[b3 + 8]
+                            c9 += w3 * corr[b3 + 9]
+                            c10 += w3 * corr[b3 + 10]
+                            c11 += w3 * corr[b3 + 11]
+    k0, k1, k2, k3 = bas[4, 0], bas[4, 1], bas[4, 2], bas[4, 3]
+    out[0] = k0 * c0 + k1 * c3 + k2 * c6 + k3 * c9
+    out[1] = k0 * c1 + k1 * c4 + k2 * c7 + k3 * c10
+    out[2] = k0 * c2 + k1 * c5 + k2 * c8 + k3 * c11
+
+
+@njit(cache=True)
+def falling_correction_batch(corr, lg, nu, s, theta, tau, m, kn, out):
+    """:func:`_correction` at each point of the flat arrays (``out`` (n, 3))."""
+    for i in range(lg.shape[0]):
+        _correction(corr, lg[i], nu[i], s[i], theta[i], tau[i], m[i], kn[i], out[i])
+
+
 @njit(cache=True)
 def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1,
-                    p2, p3, tab, gauss, steps, share_min, out):
+                    p2, p3, tab, corr, gauss, steps, share_min, out):
     """Falling friction on one contact buffer of the exact table, the law ``(kind, p0..p3,
     tab)`` of :func:`_law` (mu_0 = mu(0)); slips s are capped where ``p2 s`` would reach
     1e300.
@@ -71,7 +211,11 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     another module frozen at its old value). Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
     normalised_creepage, mu_effective)`` and returns True; False where the table's kernel
     hands the case to its array path, or a tabulated law is asked beyond its last slip (the
-    caller then takes the numpy function)."""
+    caller then takes the numpy function).
+
+    ``corr``: the packed correction table of :func:`_correction` (empty: none), added to the
+    model's force and moment at the table coordinates of the contact at mu_0 and the law's
+    :func:`_law_shape`."""
     res = buffer_views(buf)[7]
     gx, gy, gw = gauss[0], gauss[1], gauss[2]
     n = gw.shape[0]
@@ -128,6 +272,24 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     out[0] = res[0] - weight * cx
     out[1] = res[1] - weight * cy
     out[2] = res[2]
+    mu0 = _law(kind, p0, p1, p2, p3, tab, 0.0)
+    if corr.shape[0] > 0 and has_slip:
+        m_ratio, kappa = _law_shape(kind, p0, p1, p2, p3, tab)
+        nu = buf[7]
+        w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0,
+                                     nu)
+        if m_ratio < 1.0 and w_sat > 0.0:
+            root_ab, _, _, _, tau, _, _, _, s_c, theta = _table_coordinates(
+                xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
+            p_max = 1.5 * normal_load / (math.pi * a0 * b0)
+            shear = youngs_modulus / (2.0 * (1.0 + nu))
+            kn = min(kappa, 1e300) * mu0 * p_max / shear
+            d = np.empty(3)
+            _correction(corr, math.log(a0 / b0), nu, s_c, theta, tau, m_ratio, kn, d)
+            mu_n = mu0 * normal_load
+            out[0] += mu_n * d[0]
+            out[1] += mu_n * d[1]
+            out[2] += mu_n * root_ab * d[2]
     out[3] = res[3]
     out[4] = res[4]
     out[5] = mu

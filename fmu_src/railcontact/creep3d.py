@@ -641,7 +641,7 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
     """``method="exact_table"`` with a friction law: :mod:`railcontact.falling_table` on the
     Coulomb exact table (an approximation: 0.9 % of mu_0 N without spin or with |tau| <= 1,
     up to 5.5 % with larger spin). Plain floats take the table's scalar path."""
-    from .falling_table import falling_friction_table  # noqa: PLC0415
+    from .falling_table import falling_friction_table, law_shape  # noqa: PLC0415
 
     table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
     args = check_creep_inputs(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
@@ -675,7 +675,8 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
     got = (_falling_kernel_call(table, plain, law, None if speed is None else float(speed),
                                 law_s) if scalar else None)
     if got is None:     # (arrays; a law the table cannot hold; slips beyond it; no buffer yet)
-        got = falling_friction_table(values, *args[:6], law_s, args[8])
+        got = falling_friction_table(values, *args[:6], law_s, args[8],
+                                     (args[6], args[7], *law_shape(law, speed, law_s)))
     tx, ty, mz, stick, z, _ = (np.asarray(v, dtype=float) for v in got)
     if not solution:
         return CreepForce3D(tx[()] + 0.0, ty[()] + 0.0)

@@ -66,7 +66,8 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["falling_friction_table", "falling_friction_table_smooth",
-           "falling_friction_table_compiled", "law_table",
+           "falling_friction_table_compiled", "law_table", "law_shape",
+           "load_falling_correction", "falling_correction", "CORRECTION_TABLE",
            "EFFECTIVE_MU_STEPS", "GAUSS_POINTS", "LAW_TABLE_SLIPS"]
 
 #: Fixed-point steps for the effective friction coefficient (relaxed by 1/2 from the second).
@@ -100,7 +101,8 @@ def _law_at(law_s, slip):
     return mu
 
 
-def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, mu0):
+def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, mu0,
+                           correction=None):
     """Force and moment with a friction law from a Coulomb table (module docstring).
 
     Parameters
@@ -117,13 +119,17 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
         points). [-]
     mu0 : ndarray
         mu(0) per case, > 0. [-]
+    correction : tuple of ndarray, optional
+        ``(youngs_modulus, poisson_ratio, friction_ratio, kappa)`` [Pa, -, -, -] of the cases:
+        the correction table's value (:func:`falling_correction`) is added to the force and
+        the moment. None: the model alone (what the correction table is built against).
 
     Returns
     -------
     tuple of ndarray
         ``(tx, ty, mz, stick_area_fraction, normalised_creepage, mu_effective)``
-        [N, N, N m, -, -, -]; all but the forces are the Coulomb table's at mu_effective (no
-        spread correction).
+        [N, N, N m, -, -, -]; the stick area fraction and the normalised creepage are the
+        Coulomb table's at mu_effective.
 
     Raises
     ------
@@ -169,10 +175,273 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     weight = has_slip * n_load * slide * slide
     tx = v[0] - weight * ((dmu * wx) @ _W)
     ty = v[1] - weight * ((dmu * wy) @ _W)
+    mz = v[2]
+    if correction is not None:
+        d = falling_correction(xi_x, xi_y, phi, n_load, a0, b0, *correction[:2], mu0,
+                               *correction[2:])
+        on = has_slip
+        tx, ty, mz = tx + on * d[0], ty + on * d[1], mz + on * d[2]
     if not (np.all(np.isfinite(tx)) and np.all(np.isfinite(ty)) and np.all(np.isfinite(mu))):
         raise ValueError("friction_coefficient must give a finite mu >= 0 at every slip [-]; "
                          "the falling-friction table path got a non-finite force")
-    return tx, ty, v[2], v[3], v[4], mu
+    return tx, ty, mz, v[3], v[4], mu
+
+
+#: Name of the correction table's file (``tables/falling_correction.nc``, built by
+#: ``python -m tablegen.falling_correction build``).
+CORRECTION_TABLE = "falling_correction"
+#: Its axes (in the file's order) and variables.
+CORRECTION_AXES = ("log_aspect_ratio", "poisson_ratio", "creepage_coordinate",
+                   "creepage_angle", "spin_coordinate", "friction_ratio",
+                   "friction_decay_number")
+CORRECTION_VARIABLES = ("force_correction_longitudinal", "force_correction_lateral",
+                        "spin_moment_correction")
+_CORRECTION = {}
+
+
+def falling_correction(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                       mu0, friction_ratio, kappa):
+    """The correction table's force and moment (:func:`load_falling_correction`) for the
+    smooth law (5.16) ``(mu0, friction_ratio mu0, kappa)`` (or the smooth law a law is taken
+    as, :func:`law_shape`) on the given contacts: ``(dtx, dty, dmz)`` [N, N, N m], zero where
+    there is no table or ``friction_ratio >= 1``.
+
+    Parameters
+    ----------
+    xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio : array_like
+        The checked inputs ([-], [-], [1/m], [N], [m], [m], [Pa], [-]).
+    mu0, friction_ratio, kappa : array_like
+        mu_0 [-], mu_k / mu_0 [-] and kappa [-] of the smooth law.
+    """
+    from ._compiled import falling_correction_batch  # noqa: PLC0415
+    from .exact_table import exact_table_coordinates  # noqa: PLC0415
+    from .kalker import kalker_coefficients  # noqa: PLC0415
+
+    args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (
+        xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, mu0,
+        friction_ratio, kappa)))
+    shape = args[0].shape
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0, ratio, kappa = (a.ravel() for a in args)
+    corr = load_falling_correction()
+    out = np.zeros((xi_x.size, 3))
+    on = (ratio < 1.0) & (n_load > 0.0) & (mu0 > 0.0)
+    if corr.size and on.any():
+        i = np.flatnonzero(on)
+        g, nu_i = a0[i] / b0[i], nu[i]
+        c = kalker_coefficients(g, nu_i)
+        p_max = 1.5 * n_load[i] / (np.pi * a0[i] * b0[i])
+        w_sat = np.pi**2 * (1.0 + nu_i) * mu0[i] * p_max / e_mod[i]
+        lg, _, s, theta, tau = exact_table_coordinates(
+            xi_x[i], xi_y[i], phi[i], a0[i], b0[i], nu_i, w_sat,
+            tuple(np.asarray(getattr(c, k), dtype=float) for k in ("c11", "c22", "c23")))
+        kn = np.minimum(kappa[i], 1e300) * mu0[i] * p_max * 2.0 * (1.0 + nu_i) / e_mod[i]
+        d = np.zeros((i.size, 3))
+        falling_correction_batch()(corr, *(np.ascontiguousarray(v, dtype=float) for v in (
+            lg, nu_i, s, theta, tau, ratio[i], kn)), d)
+        mu_n = mu0[i] * n_load[i]
+        out[i] = d * np.stack([mu_n, mu_n, mu_n * np.sqrt(a0[i] * b0[i])], axis=1)
+    return tuple(out[:, k].reshape(shape) for k in range(3))
+
+
+def law_shape(law, speed, law_s):
+    """``(mu_k / mu_0, kappa)`` of the smooth law (5.16) the correction table takes for a law
+    (as the compiled kernel's ``_law_shape``): a
+    :class:`railcontact.friction.SmoothFriction`'s own; Polach's ``(A, B V / ln 2)`` (the same
+    half-way slip, ``ln 2 / (B V)``); any other law's far-to-zero-slip ratio on
+    :data:`LAW_TABLE_SLIPS` and ``kappa = 1 / s_half``, ``s_half`` the slip (linear between
+    those slips) where mu is half-way between its value at 0 and at the last slip; ratio 1
+    (no correction) for a law that does not fall.
+
+    Parameters
+    ----------
+    law : callable
+        The friction law object.
+    speed : array_like or None
+        Rolling speed where the law needs it. [m/s]
+    law_s : callable
+        The law in the slip, taking arrays of the cases' shape plus one axis. [-]
+
+    Returns
+    -------
+    tuple of ndarray or float
+    """
+    from .friction import PolachFriction, SmoothFriction  # noqa: PLC0415
+
+    if type(law) is SmoothFriction:
+        return law.mu_kinetic / law.mu_static, law.kappa
+    if type(law) is PolachFriction:
+        return law.friction_ratio_limit, law.friction_decay * np.asarray(speed) / np.log(2.0)
+    mus = np.asarray(law_s(LAW_TABLE_SLIPS), dtype=float)
+    mu0, far = mus[..., 0], mus[..., -1]
+    half = 0.5 * (mu0 + far)
+    below = mus <= half[..., None]
+    i = np.maximum(np.argmax(below[..., 1:], axis=-1) + 1, 1)
+    m_lo = np.take_along_axis(mus, (i - 1)[..., None], -1)[..., 0]
+    m_hi = np.take_along_axis(mus, i[..., None], -1)[..., 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = (m_lo - half) / (m_lo - m_hi)
+        s_half = LAW_TABLE_SLIPS[i - 1] + f * (LAW_TABLE_SLIPS[i] - LAW_TABLE_SLIPS[i - 1])
+        falls = (mu0 > 0.0) & (far < mu0) & below[..., 1:].any(axis=-1) & (s_half > 0.0)
+        ratio = np.where(falls, far / np.where(mu0 > 0.0, mu0, 1.0), 1.0)
+        kappa = np.where(falls, 1.0 / np.where(s_half > 0.0, s_half, 1.0), 0.0)
+    return ratio, kappa
+
+
+#: Length of a packed correction table's header (as
+#: :data:`railcontact._falling_kernels.CORRECTION_HEADER`, which is numba's).
+CORRECTION_HEADER = 7
+_EMPTY = np.zeros(0)
+_AT = {}
+#: Correction tables kept per (nu, mu_k / mu_0) by :func:`correction_at`.
+CORRECTION_AT_KEPT = 16
+
+
+def correction_at(poisson_ratio, friction_ratio):
+    """The correction table at one nu and one ``mu_k / mu_0`` (its two linear axes summed
+    out: a quarter of the numbers left for each call of the compiled kernel), packed as
+    :func:`load_falling_correction`; made once per pair and kept (the last
+    :data:`CORRECTION_AT_KEPT`: a contact's nu and its law's ratio seldom change). Empty where
+    there is no table or the law does not fall (``friction_ratio >= 1``)."""
+    key = (poisson_ratio, friction_ratio)
+    got = _AT.get(key)
+    if got is None:
+        corr = load_falling_correction()
+        if not (corr.size and friction_ratio < 1.0):
+            return _EMPTY
+        if len(_AT) >= CORRECTION_AT_KEPT:
+            _AT.pop(next(iter(_AT)))
+        got = _AT[key] = _collapsed(corr, poisson_ratio, friction_ratio)
+    return got
+
+
+def _linear_weight(nodes, x):
+    # as railcontact._falling_kernels._linear_weight
+    n = nodes.size
+    if n == 1 or not x > nodes[0]:
+        return 0, 0.0
+    if not x < nodes[-1]:
+        return n - 2, 1.0
+    i = 0
+    while x >= nodes[i + 1]:
+        i += 1
+    return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
+
+
+def _collapsed(corr, nu, ratio):
+    head = CORRECTION_HEADER
+    counts = [int(v) for v in corr[:head]]
+    pos = head + sum(n + 4 for n in counts[:5])
+    n_nu, n_m = counts[5], counts[6]
+    i_nu, f_nu = _linear_weight(corr[pos:pos + n_nu], nu)
+    i_m, f_m = _linear_weight(corr[pos + n_nu:pos + n_nu + n_m], ratio)
+    coef = corr[pos + n_nu + n_m:].reshape(n_nu, n_m, -1)
+    block = ((1.0 - f_nu) * ((1.0 - f_m) * coef[i_nu, i_m] + f_m * coef[i_nu, i_m + 1])
+             + f_nu * ((1.0 - f_m) * coef[i_nu + 1, i_m] + f_m * coef[i_nu + 1, i_m + 1]))
+    return np.ascontiguousarray(np.concatenate(
+        [corr[:5], [1.0, 1.0], corr[head:pos], [nu, ratio], block]))
+
+
+def _filled(vals):
+    """Nodes the exact solver did not converge on (NaN) filled with the mean of their
+    neighbours along theta (repeated while any is left; 0 where a whole row is NaN)."""
+    vals = vals.copy()
+    for _ in range(12):
+        bad = np.isnan(vals)
+        if not bad.any():
+            break
+        nb = np.stack([np.roll(vals, 1, axis=4), np.roll(vals, -1, axis=4)])
+        with np.errstate(invalid="ignore"):
+            mean = np.nanmean(nb, axis=0)
+        vals = np.where(bad, mean, vals)
+    return np.nan_to_num(vals, nan=0.0)
+
+
+def _mirrored(vals, nodes):
+    """The values on tau < 0 too (y -> -y: theta -> -theta, tau -> -tau, the lateral force
+    and the moment change sign): (values, tau nodes)."""
+    tau = nodes["spin_coordinate"]
+    theta = nodes["creepage_angle"]
+    n_th = theta.size
+    flip = (n_th - np.arange(n_th)) % n_th          # the node at -theta (theta = -pi + k dth)
+    if not np.allclose(theta[flip], np.where(theta > -np.pi, -theta, -np.pi)):
+        raise ValueError("the correction table's theta nodes must be uniform from -pi")
+    neg = vals[:, :, :, :, flip][:, :, :, :, :, :0:-1]
+    neg = neg * np.array([1.0, -1.0, -1.0]).reshape(3, 1, 1, 1, 1, 1, 1, 1)
+    return (np.concatenate([neg, vals], axis=5),
+            np.concatenate([-tau[:0:-1], tau]))
+
+
+def load_falling_correction(path=None):
+    """The correction table, packed for :func:`railcontact._falling_kernels._correction`
+    (read once per path and kept; the file's ``packed_bspline``, made by
+    :func:`pack_correction` when the table was built): the exact theory with the smooth law
+    (5.16) minus this module's model (``tablegen.falling_correction``). An empty array where
+    there is no such file (the model alone).
+
+    Parameters
+    ----------
+    path : str or path-like, optional
+        The file; default :func:`railcontact.tables.default_table_path` of
+        :data:`CORRECTION_TABLE`.
+
+    Returns
+    -------
+    ndarray
+        The packed table (float64, 1-D).
+    """
+    key = None if path is None else str(path)
+    got = _CORRECTION.get(key)
+    if got is None:
+        from .tables import default_table_path  # noqa: PLC0415
+
+        if path is None:
+            try:
+                path = default_table_path(CORRECTION_TABLE)
+            except FileNotFoundError:
+                path = None
+        if path is None:
+            got = np.zeros(0)
+        else:
+            import netCDF4  # noqa: PLC0415
+
+            with netCDF4.Dataset(path) as ds:
+                got = np.concatenate([
+                    np.asarray(ds.variables["packed_bspline"][:], dtype=float),
+                    np.asarray(ds.variables["packed_bspline_coefficients"][:], dtype=float)])
+        _CORRECTION[key] = got
+    return got
+
+
+def pack_correction(values, nodes):
+    """The packed correction table (:func:`railcontact._falling_kernels._correction`) of the
+    node values ``values`` (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn) on ``nodes`` (a
+    dict of :data:`CORRECTION_AXES`, tau >= 0): unconverged nodes (NaN) filled along theta,
+    mirrored to tau < 0, and interpolated by C2 cubic B-splines (not-a-knot; periodic in
+    theta) along ln(a0/b0), s, theta, tau and the kappa number, linearly along nu and
+    mu_k/mu_0 (the build's step; needs scipy)."""
+    from scipy.interpolate import make_interp_spline  # noqa: PLC0415
+
+    nodes = {k: np.asarray(nodes[k], dtype=float) for k in CORRECTION_AXES}
+    vals, tau = _mirrored(_filled(np.asarray(values, dtype=float)), nodes)
+    # axes now (var, g, nu, s, theta, tau, m, kn) -> (var, nu, m, g, s, theta, tau, kn)
+    vals = np.ascontiguousarray(vals.transpose(0, 2, 6, 1, 3, 4, 5, 7))
+    theta = np.append(nodes["creepage_angle"], np.pi)       # (the seam: theta = pi is -pi)
+    knots = []
+    for axis, x in ((3, nodes["log_aspect_ratio"]), (4, nodes["creepage_coordinate"]),
+                    (5, theta), (6, tau), (7, nodes["friction_decay_number"])):
+        # the interpolating spline's coefficients are linear in the values: the spline of
+        # each unit vector gives the matrix, applied along the axis (one product)
+        unit = np.eye(vals.shape[axis])
+        sp = make_interp_spline(x, unit if axis != 5 else np.vstack([unit, unit[:1]]), k=3,
+                                bc_type="periodic" if axis == 5 else None)
+        vals = np.ascontiguousarray(np.moveaxis(
+            np.tensordot(np.asarray(sp.c, dtype=float), vals, axes=([1], [axis])), 0, axis))
+        knots.append(np.asarray(sp.t, dtype=float))
+    head = [float(t.size - 4) for t in knots] + [float(nodes["poisson_ratio"].size),
+                                                  float(nodes["friction_ratio"].size)]
+    return np.ascontiguousarray(np.concatenate(
+        [head, *knots, nodes["poisson_ratio"], nodes["friction_ratio"],
+         np.moveaxis(vals, 0, -1).ravel()]))
 
 
 _OUT = np.zeros(6)
@@ -251,8 +520,15 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         from . import _compiled  # noqa: PLC0415                 on the first call only)
         kernel = _KERNEL[0] = _compiled.falling_contact()
     out = _OUT
+    if kind == 0:
+        ratio = p1 / p0
+    elif kind == 1:
+        ratio = p1
+    else:
+        ratio = tabulated[1, -1] / tabulated[1, 0] if tabulated[1, 0] > 0.0 else 1.0
+    corr = correction_at(poisson_ratio, ratio)
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
-                  p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, _GAUSS,
+                  p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, corr, _GAUSS,
                   EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
         return None
     return out[0], out[1], out[2], out[3], out[4], out[5]

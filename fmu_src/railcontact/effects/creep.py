@@ -280,7 +280,7 @@ class Creep3D(Effect):
                                             eager=True)      # compiled, one call
         if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
             got = falling_friction_table(lambda mu: self._falling_values(args, mu), *args[:6],
-                                         law, mu0)
+                                         law, mu0, (args[6], args[7], mu_k / mu0, kappa))
         return got
 
     def _exact_table_falling(self, c, args):
