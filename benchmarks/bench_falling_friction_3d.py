@@ -66,8 +66,8 @@ POLACH_SPEED = 30.0
 def cases(n, rng, law_kind="smooth"):
     """The random cases: ``(args, law, tau, m, kn)``. ``law_kind="polach"``: Polach's law
     ``mu_0 ((1 - A) exp(-B w) + A)`` in the slip velocity w at :data:`POLACH_SPEED`, with
-    ``A = m`` and ``B V = kn ln 2 / (mu_0 p0 / G)`` (its half-way slip that of the smooth law
-    with the same m and kn)."""
+    ``A = m`` and ``B V = kn / (mu_0 p0 / G)`` (its slope at zero slip that of the smooth
+    law with the same m and kn)."""
     from railcontact.friction import PolachFriction  # noqa: PLC0415
 
     out = []
@@ -88,7 +88,7 @@ def cases(n, rng, law_kind="smooth"):
         m, kn = rng.uniform(0.3, 1.0), rng.uniform(0.0, 2.0)
         law = SmoothFriction(args[8], m * args[8], kn / (args[8] * p0 / shear))
         if law_kind == "polach":
-            law = PolachFriction(args[8], m, law.kappa * math.log(2.0) / POLACH_SPEED)
+            law = PolachFriction(args[8], m, law.kappa / POLACH_SPEED)
         out.append((args, law, tau, m, kn))
     return out
 

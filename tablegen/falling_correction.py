@@ -4,6 +4,14 @@ parameters (issue 38; read by :mod:`railcontact.falling_table`).
 
     python -m tablegen.falling_correction build [--workers 2] [--workdir DIR] [--output F]
 
+The shipped file is the package data ``fmu_src/railcontact/data/falling_correction.nc``
+(``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
+not one of the shipped ``tables/``: two of its axes are linear (nu and mu_k/mu_0, a material's
+and a law's constants, with 2 and 3 nodes), where the tables' format, which the C and Fortran
+readers take, is cubic along every axis. About 1 h on 2 cores (2026-11-28); most of it is the
+cases of the most strongly falling laws that the exact solver does not converge on (each runs
+to its iteration limit).
+
 What is tabulated, at every node of (ln(a0/b0), nu, s, theta, tau, mu_k/mu_0, kappa mu_0 p0/G)
 (the exact table's coordinates of :func:`railcontact.exact_table.exact_table_coordinates`,
 at the law's mu_0, and the law's two numbers):

@@ -353,7 +353,7 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     polach = PolachFriction(0.3, 0.4, 0.6)       # at 30 m/s: the law in s is polach(30 s)
     ref = falling_friction_table(values, *args[:6],
                                  lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
-                                 (E, NU, 0.4, 0.6 * 30.0 / np.log(2.0)))
+                                 (E, NU, 0.4, 0.6 * 30.0))
     got = falling_friction_table_compiled(table, *args, 1, 0.3, 0.4, 0.6, 30.0, eager=True)
     np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
     np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
@@ -402,7 +402,7 @@ def test_exact_table_with_a_law_and_large_spin_within_1_percent(case):
     assert err < 0.01, err
     assert np.hypot(exact.tx, exact.ty) > 0.1 * mu_n
     polach = PolachFriction(law.mu_static, law.mu_kinetic / law.mu_static,
-                            law.kappa * np.log(2.0) / 30.0)   # (the same half-way slip)
+                            law.kappa / 30.0)   # (the same slope at zero slip)
     fast = rc.creep_force_3d(*args[:8], polach, method="exact_table", rolling_speed=30.0)
     exact = rc.creep_force_3d(*args[:8], polach, method="exact", rolling_speed=30.0)
     assert np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n < 0.02
@@ -411,15 +411,17 @@ def test_exact_table_with_a_law_and_large_spin_within_1_percent(case):
 def test_correction_table_takes_its_nodes_and_the_mirror_image():
     """The shipped correction table's spline (packed when it was built) takes the file's node
     values at its nodes (interpolation), the mirror image y -> -y at tau < 0 (theta -> -theta;
-    the lateral force and the moment change sign), and is C2 (no kink) across tau = 0 and a
-    node of the kappa number; it vanishes where the law does not fall (mu_k = mu_0, kappa = 0)."""
+    the lateral force and the moment change sign; the table's tau = 0 nodes are the mean of
+    the solver's values and their mirror image, which agree to the solver's noise, 1e-3), and
+    is C2 (no kink) across tau = 0 and a node of the kappa number; it vanishes where the law
+    does not fall (mu_k = mu_0, kappa = 0)."""
     import netCDF4
 
     from railcontact import falling_table as ft
     from railcontact._compiled import falling_correction_batch
-    from railcontact.tables import default_table_path
 
-    with netCDF4.Dataset(default_table_path(ft.CORRECTION_TABLE)) as ds:
+    path = Path(ft.__file__).parent / "data" / f"{ft.CORRECTION_TABLE}.nc"
+    with netCDF4.Dataset(path) as ds:
         nodes = [np.asarray(ds.variables[k][:], dtype=float) for k in ft.CORRECTION_AXES]
         vals = np.stack([np.asarray(ds.variables[v][:], dtype=float)
                          for v in ft.CORRECTION_VARIABLES])
@@ -437,11 +439,13 @@ def test_correction_table_takes_its_nodes_and_the_mirror_image():
 
     got = at(pts)
     ref = vals[(slice(None), *idx)].T
-    np.testing.assert_allclose(got[keep], ref[keep], rtol=0.0, atol=1e-6)
+    at_zero = pts[4] == 0.0     # (tau = 0: the mean with its mirror image, see below)
+    np.testing.assert_allclose(got[keep & ~at_zero], ref[keep & ~at_zero], rtol=0.0, atol=1e-6)
+    np.testing.assert_allclose(got[keep & at_zero], ref[keep & at_zero], rtol=0.0, atol=1e-3)
     assert keep.sum() > 250
     assert np.max(np.abs(ref[keep])) > 0.01           # a table of real corrections
     mirror = [pts[0], pts[1], pts[2], -pts[3], -pts[4], pts[5], pts[6]]
-    np.testing.assert_allclose(at(mirror), got * [1.0, -1.0, -1.0], rtol=0.0, atol=1e-12)
+    np.testing.assert_allclose(at(mirror), got * [1.0, -1.0, -1.0], rtol=0.0, atol=1e-9)
     none = at([pts[0], pts[1], pts[2], pts[3], pts[4], np.ones(300), pts[6]])
     assert np.all(none == 0.0)
     none = at([pts[0], pts[1], pts[2], pts[3], pts[4], pts[5], np.zeros(300)])

@@ -74,11 +74,12 @@ def _law_shape(kind, p0, p1, p2, p3, tab):
     ``(kind, p0..p3, tab)`` of :func:`_law`: the smooth law's own; for another law its ratio
     of the far to the zero-slip friction and ``kappa = 1 / s_half``, ``s_half`` the slip where
     mu is half-way between the two (the smooth law's half-point is at 1 / kappa). Polach's:
-    ``(A, B V / ln 2)``. A law that does not fall gives ratio 1 (no correction)."""
+    ``(A, B V)``, the same slope at zero slip. A law that does not fall gives ratio 1 (no
+    correction)."""
     if kind == 0:
         return p1 / p0, p2
     if kind == 1:
-        return p1, p2 * p3 / math.log(2.0)
+        return p1, p2 * p3
     ts = tab[0]
     mus = tab[1]
     n = ts.shape[0]
