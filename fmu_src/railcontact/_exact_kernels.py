@@ -20,7 +20,8 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
 _TWO_OVER_PI = 2.0 / math.pi
 
-__all__ = ["buffer_views", "cubic_basis", "spline_point", "creep_contact", "creep_contact_force",
+__all__ = ["buffer_views", "saturation_creepage", "table_coordinates", "cubic_basis",
+           "spline_point", "creep_contact", "creep_contact_force",
            "creep_table_point", "creep_table_force", "creep_table_batch",
            "creep_table_batch_parallel",
            "creep_contact_batch",
@@ -893,3 +894,7 @@ def creep_batch_parallel(coef, slab, use_slab, knots, kstart, poly, tau_max, xi_
 #: The views of a contact buffer (:func:`_buffer_views`), for compiled callers in other
 #: modules (railcontact._falling_kernels).
 buffer_views = _buffer_views
+#: A contact's saturation creepage (:func:`_saturation_creepage`) and table coordinates
+#: (:func:`_table_coordinates`), for the same callers (the falling-friction correction table).
+saturation_creepage = _saturation_creepage
+table_coordinates = _table_coordinates

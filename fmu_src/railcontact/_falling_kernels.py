@@ -23,8 +23,8 @@ import numpy as np
 from numba import njit
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
-from ._exact_kernels import (_saturation_creepage, _table_coordinates, buffer_views,
-                             creep_contact, cubic_basis)
+from ._exact_kernels import (buffer_views, creep_contact, cubic_basis, saturation_creepage,
+                             table_coordinates)
 from ._spline_kernels import find_span
 
 __all__ = ["falling_contact", "falling_correction_batch", "LAW_SMOOTH", "LAW_POLACH",
@@ -277,10 +277,10 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     if corr.shape[0] > 0 and has_slip:
         m_ratio, kappa = _law_shape(kind, p0, p1, p2, p3, tab)
         nu = buf[7]
-        w_sat = _saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0,
+        w_sat = saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0,
                                      nu)
         if m_ratio < 1.0 and w_sat > 0.0:
-            root_ab, _, _, _, tau, _, _, _, s_c, theta = _table_coordinates(
+            root_ab, _, _, _, tau, _, _, _, s_c, theta = table_coordinates(
                 xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
             p_max = 1.5 * normal_load / (math.pi * a0 * b0)
             shear = youngs_modulus / (2.0 * (1.0 + nu))
