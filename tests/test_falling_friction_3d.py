@@ -468,6 +468,34 @@ def test_correction_table_takes_its_nodes_and_the_mirror_image():
         assert np.all(slope_jump < 1e-4 + 2e-3 * np.abs(curvature)), (axis, slope_jump)
 
 
+def test_correction_summed_out_for_one_contact_equals_the_whole_table():
+    """correction_at sums the table's nu and mu_k/mu_0 axes out for a pair, and after
+    CORRECTION_AT_ASPECT_AFTER calls with one a0/b0 its a0/b0 axis too (a quarter of the work
+    per call): the compiled kernel on each gives the whole table's value to round-off."""
+    from railcontact import falling_table as ft
+    from railcontact._compiled import falling_correction_batch
+
+    full = ft.load_falling_correction()
+    pair = ft.correction_at(0.28, 0.5)
+    assert ft.correction_at(0.28, 0.5, 1.7) is not None
+    for _ in range(ft.CORRECTION_AT_ASPECT_AFTER):
+        one = ft.correction_at(0.28, 0.5, 1.7)
+    assert one.size < pair.size < full.size
+    rng = np.random.default_rng(8)
+    n = 400
+    pts = [np.full(n, np.log(1.7)), np.full(n, 0.28), rng.uniform(0.0, 1.0, n),
+           rng.uniform(-np.pi, np.pi, n), rng.uniform(-20.0, 20.0, n), np.full(n, 0.5),
+           rng.uniform(0.0, 2.5, n)]
+    outs = []
+    for corr in (full, pair, one):
+        out = np.zeros((n, 3))
+        falling_correction_batch()(corr, *pts, out)
+        outs.append(out)
+    assert np.max(np.abs(outs[0])) > 1e-3
+    np.testing.assert_allclose(outs[1], outs[0], rtol=0.0, atol=1e-15)
+    np.testing.assert_allclose(outs[2], outs[0], rtol=0.0, atol=1e-15)
+
+
 class _SlipVelocityLaw:
     """A law in the slip velocity that is not the package's (Polach's form, 30 m/s below)."""
 

@@ -112,33 +112,42 @@ def _linear_weight(nodes, x):
 
 
 @njit(cache=True)
-def _correction(corr, lg, nu, s, theta, tau, m, kn, out):
+def _correction(corr, lg, nu, s, theta, tau, m, kn, out, sc):
     """The correction table (:func:`railcontact.falling_table.load_falling_correction`) at one
     point, into ``out[:3]`` (normalised: dT_x, dT_y over mu_0 N, dM_z over mu_0 N sqrt(a0 b0)).
 
     ``corr``: the header (:data:`CORRECTION_HEADER`), the knots of the five cubic axes (each
-    its coefficient count plus 4), the nodes of the two linear axes, then the coefficients
+    its coefficient count plus 4; a count of 1: the axis summed out, 5 placeholder knots; the
+    first axis only), the nodes of the two linear axes, then the coefficients
     (n_nu, n_m, n_g, n_s, n_theta, n_tau, n_kn, 3) in C order (the three variables last: the
     innermost sum runs over 12 neighbouring numbers). Cubic along ln(a0/b0), s, theta
     (periodic), tau and the kappa number (C2 B-splines), linear along nu and mu_k/mu_0 (a
     law's and a material's constants); every coordinate is held at the ends of its axis
-    (theta is in [-pi, pi] as atan2 gives it)."""
+    (theta is in [-pi, pi] as atan2 gives it). ``sc``: scratch of at least 41 numbers (no
+    allocation per call)."""
     nc0, nc1, nc2, nc3, nc4 = (int(corr[0]), int(corr[1]), int(corr[2]), int(corr[3]),
                                int(corr[4]))
     n_nu = int(corr[5])
     n_m = int(corr[6])
     pos = CORRECTION_HEADER
-    spans = np.empty(5, np.int64)
-    bas = np.empty((5, 4))
-    db = np.empty(4)
-    w = np.empty(12)
+    bas = sc[:20].reshape((5, 4))
+    db = sc[20:24]
+    w = sc[24:36]
+    spans = sc[36:41]
     for a in range(5):
         n = (nc0, nc1, nc2, nc3, nc4)[a]
+        if n == 1:      # an axis summed out for one value (correction_at): weight 1
+            bas[a, 0] = 1.0
+            spans[a] = 3.0
+            pos += 5
+            continue
         t = corr[pos:pos + n + 4]
         xa = min(max((lg, s, theta, tau, kn)[a], t[3]), t[n])
-        spans[a] = find_span(t, np.int64(n), xa)
-        cubic_basis(t, spans[a], xa, bas[a], db, w)
+        span = find_span(t, np.int64(n), xa)
+        spans[a] = span
+        cubic_basis(t, span, xa, bas[a], db, w)
         pos += n + 4
+    k0 = 1 if nc0 == 1 else 4
     i_nu, f_nu = _linear_weight(corr[pos:pos + n_nu], nu)
     pos += n_nu
     i_m, f_m = _linear_weight(corr[pos:pos + n_m], m)
@@ -160,9 +169,10 @@ def _correction(corr, lg, nu, s, theta, tau, m, kn, out):
             if wm == 0.0:
                 continue
             base = (pos + (i_nu + jn) * st_nu + (i_m + jm) * st_m
-                    + (spans[0] - 3) * st0 + (spans[1] - 3) * st1 + (spans[2] - 3) * st2
-                    + (spans[3] - 3) * st3 + (spans[4] - 3) * 3)
-            for j0 in range(4):
+                    + (int(spans[0]) - 3) * st0 + (int(spans[1]) - 3) * st1
+                    + (int(spans[2]) - 3) * st2 + (int(spans[3]) - 3) * st3
+                    + (int(spans[4]) - 3) * 3)
+            for j0 in range(k0):
                 w0 = wn * wm * bas[0, j0]
                 b0 = base + j0 * st0
                 for j1 in range(4):
@@ -174,18 +184,20 @@ def _correction(corr, lg, nu, s, theta, tau, m, kn, out):
                         for j3 in range(4):
                             w3 = w2 * bas[3, j3]
                             b3 = b2 + j3 * st3
-                            c0 += w3 * corr[b3]
-                            c1 += w3 * corr[b3 + 1]
-                            c2 += w3 * corr[b3 + 2]
-                            c3 += w3 * corr[b3 + 3]
-                            c4 += w3 * corr[b3 + 4]
-                            c5 += w3 * corr[b3 + 5]
-                            c6 += w3 * corr[b3 + 6]
-                            c7 += w3 * corr[b3 + 7]
-                            c8 += w3 * corr[b3 + 8]
-                            c9 += w3 * corr[b3 + 9]
-                            c10 += w3 * corr[b3 + 10]
-                            c11 += w3 * corr[b3 + 11]
+                            # (a view: constant indices, no negative-index check per load)
+                            r = corr[b3:b3 + 12]
+                            c0 += w3 * r[0]
+                            c1 += w3 * r[1]
+                            c2 += w3 * r[2]
+                            c3 += w3 * r[3]
+                            c4 += w3 * r[4]
+                            c5 += w3 * r[5]
+                            c6 += w3 * r[6]
+                            c7 += w3 * r[7]
+                            c8 += w3 * r[8]
+                            c9 += w3 * r[9]
+                            c10 += w3 * r[10]
+                            c11 += w3 * r[11]
     k0, k1, k2, k3 = bas[4, 0], bas[4, 1], bas[4, 2], bas[4, 3]
     out[0] = k0 * c0 + k1 * c3 + k2 * c6 + k3 * c9
     out[1] = k0 * c1 + k1 * c4 + k2 * c7 + k3 * c10
@@ -195,8 +207,9 @@ def _correction(corr, lg, nu, s, theta, tau, m, kn, out):
 @njit(cache=True)
 def falling_correction_batch(corr, lg, nu, s, theta, tau, m, kn, out):
     """:func:`_correction` at each point of the flat arrays (``out`` (n, 3))."""
+    sc = np.empty(41)
     for i in range(lg.shape[0]):
-        _correction(corr, lg[i], nu[i], s[i], theta[i], tau[i], m[i], kn[i], out[i])
+        _correction(corr, lg[i], nu[i], s[i], theta[i], tau[i], m[i], kn[i], out[i], sc)
 
 
 @njit(cache=True)
@@ -217,7 +230,8 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     ``corr``: the packed correction table of :func:`_correction` (empty: none), added to the
     model's force and moment at the table coordinates of the contact at mu_0 and the law's
     :func:`_law_shape`."""
-    res = buffer_views(buf)[7]
+    views = buffer_views(buf)
+    res, work = views[7], views[8]
     gx, gy, gw = gauss[0], gauss[1], gauss[2]
     n = gw.shape[0]
     fmax = 1.7976931348623157e308
@@ -285,8 +299,9 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
             p_max = 1.5 * normal_load / (math.pi * a0 * b0)
             shear = youngs_modulus / (2.0 * (1.0 + nu))
             kn = min(kappa, 1e300) * mu0 * p_max / shear
-            d = np.empty(3)
-            _correction(corr, math.log(a0 / b0), nu, s_c, theta, tau, m_ratio, kn, d)
+            d = work[41:44]     # (the table kernel's scratch: its calls are done)
+            _correction(corr, math.log(a0 / b0), nu, s_c, theta, tau, m_ratio, kn, d,
+                        work[:41])
             mu_n = mu0 * normal_load
             out[0] += mu_n * d[0]
             out[1] += mu_n * d[1]

@@ -64,12 +64,13 @@ one compiled call (:mod:`railcontact._falling_kernels`); the two agree to round-
 the force). Any other law runs the same compiled call on its :func:`law_table` (the law
 evaluated once on 562 slips per law object and rolling speed, then linear between them, as
 the exact solver takes a law: within 2e-4 of mu_0 N of the law itself). The correction table
-adds one compiled evaluation (its nu and mu_k/mu_0 axes summed out once per pair,
-:func:`correction_at`: 4 x 4 x 4 x 4 x 4 coefficients per call). The public
-``creep_force_3d`` with plain floats, one contact (best of 9 rounds, load 0.9, 2026-11-28):
-10.6 us with a :class:`railcontact.friction.SmoothFriction`, 11.5 us with a
-:class:`~railcontact.friction.PolachFriction`, 13.6 us with a function of the user's (the
-model alone 8.3, 10.1, 11.2 us), against 1.4 us for the Coulomb table in the same run.
+adds one compiled evaluation (its nu and mu_k/mu_0 axes summed out once per pair, and its
+a0/b0 axis once a contact's a0/b0 has come back :data:`CORRECTION_AT_ASPECT_AFTER` times,
+:func:`correction_at`: 4 x 4 x 4 x 4 (x 4) x 3 coefficients per call). The public
+``creep_force_3d`` with plain floats, one contact (best of 9 rounds, load 1.6, 2026-11-28):
+9.3 us with a :class:`railcontact.friction.SmoothFriction`, 10.2 us with a
+:class:`~railcontact.friction.PolachFriction`, 12.5 us with a function of the user's (the
+model alone 8.7, 10.0, 11.7 us), against 1.4 us for the Coulomb table in the same run.
 
 Also measured, not adopted (too slow for a table's call): the Coulomb table at mu_e plus the
 difference between the exact solver with the law and with mu_e on one coarse grid
@@ -90,6 +91,8 @@ Polach's approach: 8.3 %; a full-sliding ratio: 6.4 %; the effective coefficient
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -326,12 +329,39 @@ _AT = {}
 CORRECTION_AT_KEPT = 16
 
 
-def correction_at(poisson_ratio, friction_ratio):
+#: Calls with one (nu, mu_k / mu_0, a0/b0) after which :func:`correction_at` sums out the
+#: a0/b0 axis too for them (a ski rental: about 0.2 ms once, then a quarter of the work per
+#: call; a contact whose a0/b0 changes at every call never pays it).
+CORRECTION_AT_ASPECT_AFTER = 64
+_SEEN = {}
+
+
+def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None):
     """The correction table at one nu and one ``mu_k / mu_0`` (its two linear axes summed
     out: a quarter of the numbers left for each call of the compiled kernel), packed as
     :func:`load_falling_correction`; made once per pair and kept (the last
-    :data:`CORRECTION_AT_KEPT`: a contact's nu and its law's ratio seldom change). Empty where
-    there is no table or the law does not fall (``friction_ratio >= 1``)."""
+    :data:`CORRECTION_AT_KEPT`: a contact's nu and its law's ratio seldom change). With
+    ``aspect_ratio`` (a0/b0) seen in :data:`CORRECTION_AT_ASPECT_AFTER` calls, its a0/b0 axis
+    summed out at that value too (a contact of fixed shape, as a scene's). Empty where there
+    is no table or the law does not fall (``friction_ratio >= 1``)."""
+    if aspect_ratio is not None:
+        key = (poisson_ratio, friction_ratio, aspect_ratio)
+        got = _AT.get(key)
+        if got is not None:
+            return got
+        seen = _SEEN.get(key, 0) + 1
+        if seen < CORRECTION_AT_ASPECT_AFTER:
+            if len(_SEEN) >= 4 * CORRECTION_AT_KEPT:
+                _SEEN.clear()
+            _SEEN[key] = seen
+        else:
+            base = correction_at(poisson_ratio, friction_ratio)
+            if not base.size:
+                return base
+            if len(_AT) >= CORRECTION_AT_KEPT:
+                _AT.pop(next(iter(_AT)))
+            got = _AT[key] = _aspect_collapsed(base, math.log(aspect_ratio))
+            return got
     key = (poisson_ratio, friction_ratio)
     got = _AT.get(key)
     if got is None:
@@ -342,6 +372,41 @@ def correction_at(poisson_ratio, friction_ratio):
             _AT.pop(next(iter(_AT)))
         got = _AT[key] = _collapsed(corr, poisson_ratio, friction_ratio)
     return got
+
+
+def _cubic_weights(t, n, x):
+    """Span and the four cubic B-splines at x (held in [t[3], t[n]]) of knots t (Cox-de Boor,
+    as the kernel's cubic_basis)."""
+    x = min(max(x, t[3]), t[n])
+    i = int(np.searchsorted(t, x, side="right")) - 1
+    i = min(max(i, 3), n - 1)
+    b = [1.0, 0.0, 0.0, 0.0]
+    left, right = [0.0] * 4, [0.0] * 4
+    for j in range(1, 4):
+        left[j] = x - t[i + 1 - j]
+        right[j] = t[i + j] - x
+        saved = 0.0
+        for r in range(j):
+            temp = b[r] / (right[r + 1] + left[j - r])
+            b[r] = saved + right[r + 1] * temp
+            saved = left[j - r] * temp
+        b[j] = saved
+    return i, b
+
+
+def _aspect_collapsed(corr, log_g):
+    # the a0/b0 axis (the first cubic one) of a (nu, ratio)-collapsed table summed out at
+    # ln(a0/b0) = log_g: count 1 and five placeholder knots
+    head = CORRECTION_HEADER
+    counts = [int(v) for v in corr[:head]]
+    n_g = counts[0]
+    t = corr[head:head + n_g + 4]
+    i, b = _cubic_weights(t, n_g, log_g)
+    pos = head + sum(n + 4 for n in counts[:5]) + counts[5] + counts[6]
+    coef = corr[pos:].reshape(n_g, -1)
+    block = (b[0] * coef[i - 3] + b[1] * coef[i - 2]) + (b[2] * coef[i - 1] + b[3] * coef[i])
+    return np.ascontiguousarray(np.concatenate(
+        [[1.0], corr[1:head], np.zeros(5), corr[head + n_g + 4:pos], block]))
 
 
 def _linear_weight(nodes, x):
@@ -560,7 +625,7 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         ratio = p1
     else:
         ratio = tabulated[1, -1] / tabulated[1, 0] if tabulated[1, 0] > 0.0 else 1.0
-    corr = correction_at(poisson_ratio, ratio)
+    corr = correction_at(poisson_ratio, ratio, a0 / b0)
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
                   p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, corr, _GAUSS,
                   EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
