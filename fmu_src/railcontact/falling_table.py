@@ -76,7 +76,8 @@ Also measured, not adopted (too slow for a table's call): the Coulomb table at m
 difference between the exact solver with the law and with mu_e on one coarse grid
 (``solve_rolling_3d``; its discretisation error largely cancels in the difference): over the
 |tau| > 1 cases of the benchmark's first sample (seed 11) max 1.84 % of mu_0 N at 12 x 8
-elements, 1.17 % at 20 x 12, 0.99 % at 24 x 16, against 5.4 % here, at milliseconds per call.
+elements, 1.17 % at 20 x 12, 0.99 % at 24 x 16, against 5.4 % for steps 1-3, at
+milliseconds per call.
 The same first-order correction with the exact Coulomb solution's own slip field (directions
 and sizes, 40 x 30 elements) still leaves up to 2 % on the worst cases: the error at large
 spin is not only the rigid-slip proxy of this model but the elastic feedback of the changed
