@@ -337,20 +337,22 @@ CORRECTION_AT_ASPECT_AFTER = 64
 _SEEN = {}
 
 
-def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None):
+def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
     """The correction table at one nu and one ``mu_k / mu_0`` (its two linear axes summed
     out: a quarter of the numbers left for each call of the compiled kernel), packed as
     :func:`load_falling_correction`; made once per pair and kept (the last
     :data:`CORRECTION_AT_KEPT`: a contact's nu and its law's ratio seldom change). With
     ``aspect_ratio`` (a0/b0) seen in :data:`CORRECTION_AT_ASPECT_AFTER` calls, its a0/b0 axis
-    summed out at that value too (a contact of fixed shape, as a scene's). Empty where there
-    is no table or the law does not fall (``friction_ratio >= 1``)."""
+    summed out at that value too (a contact of fixed shape, as a scene's), or at once with
+    ``now`` (the FMU's eager path: its steps then take the same numbers from the first one,
+    so that a restored state replays bit for bit). Empty where there is no table or the law
+    does not fall (``friction_ratio >= 1``)."""
     if aspect_ratio is not None:
         key = (poisson_ratio, friction_ratio, aspect_ratio)
         got = _AT.get(key)
         if got is not None:
             return got
-        seen = _SEEN.get(key, 0) + 1
+        seen = CORRECTION_AT_ASPECT_AFTER if now else _SEEN.get(key, 0) + 1
         if seen < CORRECTION_AT_ASPECT_AFTER:
             if len(_SEEN) >= 4 * CORRECTION_AT_KEPT:
                 _SEEN.clear()
@@ -626,7 +628,7 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         ratio = p1
     else:
         ratio = tabulated[1, -1] / tabulated[1, 0] if tabulated[1, 0] > 0.0 else 1.0
-    corr = correction_at(poisson_ratio, ratio, a0 / b0)
+    corr = correction_at(poisson_ratio, ratio, a0 / b0, eager)
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
                   p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, corr, _GAUSS,
                   EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, out):
