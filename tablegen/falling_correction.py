@@ -8,9 +8,10 @@ The shipped file is the package data ``fmu_src/railcontact/data/falling_correcti
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
 not one of the shipped ``tables/``: two of its axes are linear (nu and mu_k/mu_0, a material's
 and a law's constants, with 2 and 3 nodes), where the tables' format, which the C and Fortran
-readers take, is cubic along every axis. About 1 h on 2 cores (2026-11-28); most of it is the
-cases of the most strongly falling laws that the exact solver does not converge on (each runs
-to its iteration limit).
+readers take, is cubic along every axis. About 1.5 h of exact solves on 2 cores (2026-11-28:
+65 min for 13 tau nodes, 20 min for the two added later), most of it the cases of the most
+strongly falling laws that the exact solver does not converge on (each runs to its iteration
+limit), then some 15 min for the model at the nodes.
 
 What is tabulated, at every node of (ln(a0/b0), nu, s, theta, tau, mu_k/mu_0, kappa mu_0 p0/G)
 (the exact table's coordinates of :func:`railcontact.exact_table.exact_table_coordinates`,
@@ -31,11 +32,23 @@ negative tau are the mirror images (y -> -y: theta -> -theta, tau -> -tau, T_y a
 sign), made by the reader. A case the exact solver does not converge on is stored as NaN and
 filled by the reader's fit from its neighbours along theta (the table records how many).
 
-Resumable: each (ln(a0/b0), nu, tau) block of nodes is one chunk, saved under the work
-directory as soon as it is done (``<workdir>/falling_correction-<hash>/``); running the same
-command again computes only the missing chunks. The hash covers the solver and the nodes of
-every axis but tau; a chunk's file is named by its tau node, so that a tau node added to
-:data:`NODES` costs only its own chunks.
+Resumable, in two stages under the work directory (``<workdir>/falling_correction-<hash>/``),
+each file saved as soon as it is done; running the same command again computes only what is
+missing:
+
+1. the exact solves (the hours): each (ln(a0/b0), nu, tau) block of nodes is one chunk
+   ``exact_<i_g>_<i_nu>_tau<tau>.npy``. The hash covers the solver and the nodes of every axis
+   but tau; a chunk's file is named by its tau node, so that a tau node added to
+   :data:`NODES` costs only its own chunks;
+2. the model at the nodes (some 15 min on 2 cores: the nodes of large spin where mu_e is low
+   are beyond the Coulomb table's spin axis, where it answers with the solver), one file per
+   tau node named by the model's hash (the code of
+   :func:`railcontact.falling_table.falling_friction_table` and its constants): a changed
+   model costs this stage only, not the exact solves.
+
+The table is the difference of the two. (The shipped file's exact solves were made by an
+earlier builder that kept the difference to the model of the time; they were recovered as
+that difference plus that model at the nodes, 2026-11-28.)
 """
 
 from __future__ import annotations
@@ -53,7 +66,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["NODES", "AXES", "residual_block", "build"]
+__all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
 
 #: Nodes of the computed grid (tau >= 0; the reader mirrors tau < 0). Along s the creepage
 #: coordinate (2/pi) atan(rho / w), denser at small s, where spin dominates and the model's
@@ -76,58 +89,54 @@ from railcontact.falling_table import CORRECTION_AXES as AXES  # noqa: E402
 from railcontact.falling_table import CORRECTION_VARIABLES as VARIABLES  # noqa: E402
 
 assert tuple(NODES) == AXES
-SOLVER = "creep_solution_3d(method='exact'), default grid; model falling_friction_table"
+SOLVER = "creep_solution_3d(method='exact'), default grid"
 
 
 def _case(lg, nu, s, th, tau, m, kn):
+    """The inputs on the reference contact of table coordinates (arrays or floats):
+    ``(args, mu_0, mu_k, kappa)``."""
     from railcontact.creep3d import REFERENCE_CONTACT
     from railcontact.exact_table import exact_table_inverse
 
     keys = ("creepage_longitudinal", "creepage_lateral", "spin", "normal_load", "a0", "b0",
             "youngs_modulus", "poisson_ratio", "friction_coefficient")
     ph = exact_table_inverse(lg, nu, s, th, tau, REFERENCE_CONTACT)
-    a = [float(ph[k]) for k in keys]
+    ones = np.ones(np.shape(lg))
+    a = [np.asarray(ph[k], dtype=float) * ones for k in keys]
+    a = [float(v) for v in a] if not np.ndim(lg) else a
     shear = a[6] / (2.0 * (1.0 + nu))
-    p0 = 1.5 * a[3] / (math.pi * a[4] * a[5])
+    p0 = 1.5 * a[3] / (np.pi * a[4] * a[5])
     mu0 = a[8]
     return a, mu0, m * mu0, kn / (mu0 * p0 / shear)
 
 
-def residual_point(lg, nu, s, th, tau, m, kn):
-    """``(dT_x, dT_y) / (mu_0 N)`` and ``dM_z / (mu_0 N sqrt(a0 b0))`` (exact minus model) at
-    one node; NaN where the exact solver does not converge."""
+def exact_point(lg, nu, s, th, tau, m, kn):
+    """``(T_x, T_y) / (mu_0 N)`` and ``M_z / (mu_0 N sqrt(a0 b0))`` of the exact theory with
+    the smooth law at one node; NaN where the exact solver does not converge or the node is
+    beyond its domain."""
     from railcontact import creep_solution_3d
-    from railcontact.creep3d import load_exact_table
     from railcontact.errors import RollingConvergenceError
-    from railcontact.falling_table import falling_friction_table
     from railcontact.friction import SmoothFriction
 
     a, mu0, mu_k, kappa = _case(lg, nu, s, th, tau, m, kn)
-    law = SmoothFriction(mu0, mu_k, kappa)
     try:
-        ex = creep_solution_3d(*a[:8], law, method="exact")
-    except (RollingConvergenceError, ValueError):
-        return np.full(3, np.nan)
-    table = load_exact_table()
-    plain = a[:8]
-
-    def values(mu):
-        mu = float(mu)
-        v = table.step_values(*plain, mu, False)
-        return v[:5] if v is not None else table.step(*plain, mu, False)[:5]
-
-    try:    # (a case beyond the exact table's own domain: none for the fast path either)
-        tx, ty, mz = falling_friction_table(values, *plain[:6], law, mu0)[:3]
+        ex = creep_solution_3d(*a[:8], SmoothFriction(mu0, mu_k, kappa), method="exact")
     except (RollingConvergenceError, ValueError):
         return np.full(3, np.nan)
     scale = mu0 * a[3]
-    return np.array([(ex.tx - float(tx)) / scale, (ex.ty - float(ty)) / scale,
-                     (ex.spin_moment - float(mz)) / (scale * math.sqrt(a[4] * a[5]))])
+    return np.array([ex.tx / scale, ex.ty / scale,
+                     ex.spin_moment / (scale * math.sqrt(a[4] * a[5]))])
 
 
-def residual_block(i_g, i_nu, i_tau):
-    """The residuals of one (ln(a0/b0), nu, tau) block: array (3, n_s, n_theta, n_m, n_kn)
-    (the known nodes filled: m = 1, kappa = 0, s = 1 zero; s = 0 one solve per theta row)."""
+def _known(m, kn, s):
+    """The nodes whose correction is known (0): Coulomb friction and s = 1."""
+    return (np.asarray(m) >= 1.0) | (np.asarray(kn) == 0.0) | (np.asarray(s) >= 1.0)
+
+
+def exact_block(i_g, i_nu, i_tau):
+    """The exact theory on one (ln(a0/b0), nu, tau) block of nodes: array (3, n_s, n_theta,
+    n_m, n_kn) as :func:`exact_point` (0 at the known nodes; s = 0 one solve per theta
+    row)."""
     warnings.simplefilter("ignore")
     n = NODES
     lg, nu, tau = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
@@ -135,18 +144,73 @@ def residual_block(i_g, i_nu, i_tau):
     out = np.zeros((3, n["creepage_coordinate"].size, n["creepage_angle"].size,
                     n["friction_ratio"].size, n["friction_decay_number"].size))
     for i_s, s in enumerate(n["creepage_coordinate"]):
-        if s >= 1.0:
-            continue
         for i_t, th in enumerate(n["creepage_angle"]):
             if s == 0.0 and i_t > 0:
                 out[:, i_s, i_t] = out[:, i_s, 0]
                 continue
             for i_m, m in enumerate(n["friction_ratio"]):
                 for i_k, kn in enumerate(n["friction_decay_number"]):
-                    if m >= 1.0 or kn == 0.0:
-                        continue
-                    out[:, i_s, i_t, i_m, i_k] = residual_point(lg, nu, s, th, tau, m, kn)
+                    if not _known(m, kn, s):
+                        out[:, i_s, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
     return out
+
+
+def model_points(lg, nu, s, th, tau, m, kn):
+    """The model (:func:`railcontact.falling_table.falling_friction_table`, uncorrected) at
+    table coordinates (1-D arrays), normalised as :func:`exact_point`: array (3, n). One
+    vectorised call; where that raises (a point beyond the table's or the solver's domain),
+    point by point, NaN for the points that raise."""
+    from railcontact.creep3d import load_exact_table
+    from railcontact.errors import RollingConvergenceError
+    from railcontact.falling_table import falling_friction_table
+
+    warnings.simplefilter("ignore")
+    table = load_exact_table()
+    a, mu0, mu_k, kappa = _case(lg, nu, s, th, tau, m, kn)
+
+    def one(sel):
+        args = [v[sel] for v in a[:8]]
+
+        def values(mu):
+            sol = table.creep_solution_3d(*args, mu, sensitivities=False)
+            return tuple(np.asarray(getattr(sol, k), dtype=float) for k in (
+                "tx", "ty", "spin_moment", "stick_area_fraction", "normalised_creepage"))
+
+        m0, mk, kp = (v[sel][:, None] for v in (mu0, mu_k, kappa))
+
+        def law_s(slip):   # the smooth law (5.16), one per point
+            return (m0 - mk) / (1.0 + kp * np.abs(slip)) + mk
+
+        tx, ty, mz = falling_friction_table(values, *args[:6], law_s, mu0[sel])[:3]
+        scale = mu0[sel] * args[3]
+        return np.stack([tx / scale, ty / scale, mz / (scale * np.sqrt(args[4] * args[5]))])
+
+    out = np.full((3, np.size(lg)), np.nan)
+    try:
+        out[:] = one(slice(None))
+    except (RollingConvergenceError, ValueError):
+        for i in range(np.size(lg)):
+            try:
+                out[:, i] = one(slice(i, i + 1))[:, 0]
+            except (RollingConvergenceError, ValueError):
+                pass
+    return out
+
+
+def _model_hash():
+    """The model's hash: the source of its function and its constants (a model changed later
+    costs only its evaluation at the nodes, some 15 min on 2 cores, not the exact solves)."""
+    import ast
+    import inspect
+
+    from railcontact import falling_table as ft
+
+    fun = ast.parse(inspect.getsource(ft.falling_friction_table)).body[0]
+    fun.body = fun.body[1:]     # (its code: neither the docstring nor comments count)
+    h = hashlib.sha256(ast.unparse(fun).encode())
+    h.update(repr((ft.EFFECTIVE_MU_STEPS, ft.GAUSS_POINTS, ft.SLIP_SHARE_MIN,
+                   ft.SPIN_POLE_SMOOTHING)).encode())
+    return h.hexdigest()[:12]
 
 
 def _hash():
@@ -161,36 +225,76 @@ def _hash():
 
 
 def _chunk(workdir, i_g, i_nu, i_tau):
-    """The file of one chunk: named by its tau node's value."""
+    """The file of one chunk of exact solves: named by its tau node's value."""
     tau = float(NODES["spin_coordinate"][i_tau])
-    return Path(workdir) / f"block_{i_g}_{i_nu}_tau{tau!r}.npy"
+    return Path(workdir) / f"exact_{i_g}_{i_nu}_tau{tau!r}.npy"
+
+
+def _model_chunk(workdir, i_tau):
+    """The file of the model at one tau node's nodes (named by the model's hash too)."""
+    tau = float(NODES["spin_coordinate"][i_tau])
+    return Path(workdir) / f"model_{_model_hash()}_tau{tau!r}.npy"
+
+
+def _save(path, vals):
+    tmp = path.with_suffix(".tmp.npy")
+    np.save(tmp, vals)
+    os.replace(tmp, path)
 
 
 def _work(workdir, i_g, i_nu, i_tau):
     path = _chunk(workdir, i_g, i_nu, i_tau)
     if not path.exists():
         t = time.perf_counter()
-        vals = residual_block(i_g, i_nu, i_tau)
-        tmp = path.with_suffix(".tmp.npy")
-        np.save(tmp, vals)
-        os.replace(tmp, path)
+        _save(path, exact_block(i_g, i_nu, i_tau))
+        return path.name, time.perf_counter() - t
+    return path.name, 0.0
+
+
+def _exact_tau(workdir, i_tau):
+    """The exact solves of one tau node: (3, n_g, n_nu, n_s, n_theta, n_m, n_kn)."""
+    n = NODES
+    return np.stack([np.stack([np.load(_chunk(workdir, i, j, i_tau))
+                               for j in range(n["poisson_ratio"].size)], axis=1)
+                     for i in range(n["log_aspect_ratio"].size)], axis=1)
+
+
+def _model_work(workdir, i_tau):
+    """The model at one tau node's nodes where the exact theory is known (NaN elsewhere)."""
+    path = _model_chunk(workdir, i_tau)
+    if not path.exists():
+        t = time.perf_counter()
+        ex = _exact_tau(workdir, i_tau)
+        n = NODES
+        tau = n["spin_coordinate"][i_tau]
+        lg, nu, s, th, m, kn = (g.ravel() for g in np.meshgrid(
+            *(n[k] for k in AXES if k != "spin_coordinate"), indexing="ij"))
+        on = ~_known(m, kn, s) & np.isfinite(ex[0].ravel())
+        out = np.full((3, lg.size), np.nan)
+        i = np.flatnonzero(on)
+        for k in range(0, i.size, 2000):    # (bounded memory: 50 Gauss points a node)
+            j = i[k:k + 2000]
+            out[:, j] = model_points(lg[j], nu[j], s[j], th[j], np.full(j.size, tau), m[j],
+                                     kn[j])
+        _save(path, out.reshape(ex.shape))
         return path.name, time.perf_counter() - t
     return path.name, 0.0
 
 
 def assemble(workdir):
-    """The whole computed grid (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn) from the
-    chunks, or None while any is missing."""
+    """The whole grid of corrections (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn): the exact
+    solves minus the model (0 at the known nodes, NaN where either is missing), or None
+    while any chunk is missing."""
     n = NODES
     shape = tuple(n[k].size for k in AXES)
     out = np.empty((3,) + shape)
-    for i_g in range(shape[0]):
-        for i_nu in range(shape[1]):
-            for i_tau in range(shape[4]):
-                path = _chunk(workdir, i_g, i_nu, i_tau)
-                if not path.exists():
-                    return None
-                out[:, i_g, i_nu, :, :, i_tau] = np.load(path)
+    grids = np.meshgrid(*(n[k] for k in AXES if k != "spin_coordinate"), indexing="ij")
+    known = _known(grids[4], grids[5], grids[2])
+    for i_tau in range(shape[4]):
+        if not _model_chunk(workdir, i_tau).exists():
+            return None
+        res = _exact_tau(workdir, i_tau) - np.load(_model_chunk(workdir, i_tau))
+        out[:, :, :, :, :, i_tau] = np.where(known, 0.0, res)
     return out
 
 
@@ -224,7 +328,8 @@ def write(values, path, seconds=None):
     ds.attrs.update(
         title="railcontact falling-friction correction: exact theory with the smooth law "
               "(5.16) minus the fast model on the Coulomb exact table",
-        method=SOLVER, grid_hash=_hash(), n_unconverged=int(np.isnan(values[0]).sum()),
+        method=SOLVER + "; model falling_friction_table " + _model_hash(),
+        grid_hash=_hash(), n_unconverged=int(np.isnan(values[0]).sum()),
         references="J.B. Nielsen 1998, Eq. (5.16); J.J. Kalker 1990 (exact theory); "
                    "railcontact.falling_table (the model)",
         spin_coordinate_symmetry="tau < 0: mirror y -> -y (theta -> -theta, tau -> -tau; "
@@ -237,37 +342,47 @@ def write(values, path, seconds=None):
 
 
 def build(workdir=None, workers=2, output=None, limit=None):
-    """Compute the missing chunks (``limit``: at most that many in this run) and, once all
+    """Compute the missing chunks of exact solves (``limit``: at most that many in this run),
+    then the model at the nodes (per tau node, kept under the model's hash), and, once all
     are there, write the file. Returns (n_done, n_missing, path or None)."""
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
     workdir.mkdir(parents=True, exist_ok=True)
     n = NODES
-    todo = [(i, j, k) for k in range(n["spin_coordinate"].size)
+    n_tau = n["spin_coordinate"].size
+    todo = [(i, j, k) for k in range(n_tau)
             for i in range(n["log_aspect_ratio"].size) for j in range(n["poisson_ratio"].size)
             if not _chunk(workdir, i, j, k).exists()]
     if limit is not None:
         todo = todo[:limit]
     t0 = time.perf_counter()
     done = 0
-    if todo:
+
+    def run(fun, jobs):
+        nonlocal done
         with ProcessPoolExecutor(max_workers=workers) as pool:
-            futs = [pool.submit(_work, workdir, *ijk) for ijk in todo]
+            futs = [pool.submit(fun, workdir, *job) for job in jobs]
             for f in as_completed(futs):
                 name, sec = f.result()
                 done += 1
-                print(f"{name} {sec:.1f} s ({done}/{len(todo)}, "
-                      f"{time.perf_counter() - t0:.0f} s)", flush=True)
-    values = assemble(workdir)
-    if values is None:
-        missing = sum(not _chunk(workdir, i, j, k).exists()
-                      for i in range(n["log_aspect_ratio"].size)
-                      for j in range(n["poisson_ratio"].size)
-                      for k in range(n["spin_coordinate"].size))
+                print(f"{name} {sec:.1f} s ({done}, {time.perf_counter() - t0:.0f} s)",
+                      flush=True)
+
+    if todo:
+        run(_work, todo)
+    missing = sum(not _chunk(workdir, i, j, k).exists()
+                  for i in range(n["log_aspect_ratio"].size)
+                  for j in range(n["poisson_ratio"].size) for k in range(n_tau))
+    if missing:
         return done, missing, None
+    models = [(k,) for k in range(n_tau) if not _model_chunk(workdir, k).exists()]
+    if models:
+        run(_model_work, models)
+    values = assemble(workdir)
     output = Path(output or Path.cwd() / "tables-build" / "falling_correction.nc")
     output.parent.mkdir(parents=True, exist_ok=True)
     write(values, output)
-    (workdir / "done.json").write_text(json.dumps({"output": str(output)}))
+    (workdir / "done.json").write_text(json.dumps({"output": str(output),
+                                                   "model": _model_hash()}))
     return done, 0, output
 
 

@@ -214,15 +214,17 @@ def falling_correction_batch(corr, lg, nu, s, theta, tau, m, kn, out):
 
 @njit(cache=True)
 def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1,
-                    p2, p3, tab, corr, gauss, steps, share_min, out):
+                    p2, p3, tab, corr, gauss, steps, share_min, smoothing, out):
     """Falling friction on one contact buffer of the exact table, the law ``(kind, p0..p3,
     tab)`` of :func:`_law` (mu_0 = mu(0)); slips s are capped where ``p2 s`` would reach
     1e300.
 
     ``gauss``: rows x/a0, y/b0 and weight (summing to 1) of the Gauss points of
-    :mod:`railcontact.falling_table`; ``steps``, ``share_min`` its fixed-point steps and least
-    slip share (arguments, not module constants: numba's cache would keep a constant of
-    another module frozen at its old value). Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
+    :mod:`railcontact.falling_table`, then four rows of scratch (the rigid slip's components,
+    its magnitude and its magnitude smoothed over the spin pole: no allocation per call);
+    ``steps``, ``share_min``, ``smoothing`` its fixed-point steps, least slip share and
+    :data:`~railcontact.falling_table.SPIN_POLE_SMOOTHING` (arguments, not module constants:
+    numba's cache would keep a constant of another module frozen at its old value). Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
     normalised_creepage, mu_effective)`` and returns True; False where the table's kernel
     hands the case to its array path, or a tabulated law is asked beyond its last slip (the
     caller then takes the numpy function).
@@ -241,15 +243,17 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     if not has_slip:
         scale = 1.0
     rx, ry, rp = xi_x / scale, xi_y / scale, phi / scale
-    wx = gw.copy()
-    wy = gw.copy()
-    wn = gw.copy()
+    wx, wy, wn, w3 = gauss[3], gauss[4], gauss[5], gauss[6]
+    eps2 = (smoothing * rp) * (smoothing * rp) * (a0 * b0)
     w_mean = 0.0
+    w3_mean = 0.0
     for k in range(n):
         wx[k] = rx - rp * b0 * gy[k]
         wy[k] = ry + rp * a0 * gx[k]
         wn[k] = math.hypot(wx[k], wy[k])
+        w3[k] = math.sqrt(wx[k] * wx[k] + wy[k] * wy[k] + eps2)
         w_mean += wn[k] * gw[k]
+        w3_mean += w3[k] * gw[k]
     has_slip = has_slip and w_mean > 0.0
     inv = 1.0 / (normal_load * w_mean) if has_slip else 0.0
     s_cap = 0.5 * fmax / max(scale, 1.0)
@@ -276,12 +280,13 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     weight = normal_load * slide * slide if has_slip else 0.0
     cx = 0.0
     cy = 0.0
+    lam3 = lam * (w_mean / w3_mean) if has_slip else 0.0    # (step 3: the smoothed slip)
     for k in range(n):
-        s = min(min(lam * wn[k], s_cap) * scale, kap_cap)
+        s = min(min(lam3 * w3[k], s_cap) * scale, kap_cap)
         m = _law(kind, p0, p1, p2, p3, tab, s)
         if m < 0.0:
             return False
-        dmu = (m - mu) / (wn[k] if wn[k] > 0.0 else 1.0)
+        dmu = (m - mu) / (w3[k] if w3[k] > 0.0 else 1.0)
         cx += dmu * wx[k] * gw[k]
         cy += dmu * wy[k] * gw[k]
     out[0] = res[0] - weight * cx

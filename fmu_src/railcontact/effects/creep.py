@@ -271,14 +271,14 @@ class Creep3D(Effect):
         the arguments ``args`` (mu_0 = ``args[8]``)."""
         mu0 = args[8]
         mu_k, kappa = self._smooth_law
-        cap = _SLIP_CAP / max(kappa, 1.0)        # kappa s stays finite (any creepage)
-
-        def law(slip):
-            return (mu0 - mu_k) / (1.0 + kappa * np.minimum(slip, cap)) + mu_k
-
         got = falling_friction_table_smooth(self._table, *args[:8], mu0, mu_k, kappa,
                                             eager=True)      # compiled, one call
         if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
+            cap = _SLIP_CAP / max(kappa, 1.0)    # kappa s stays finite (any creepage)
+
+            def law(slip):
+                return (mu0 - mu_k) / (1.0 + kappa * np.minimum(slip, cap)) + mu_k
+
             got = falling_friction_table(lambda mu: self._falling_values(args, mu), *args[:6],
                                          law, mu0, (args[6], args[7], mu_k / mu0, kappa))
         return got
