@@ -788,7 +788,7 @@ def family_falling_3d(quick):
              lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="fastsim",
                                             rolling_speed=speed, n_strips=20,
                                             n_elements=20), False),
-            ("exact table, friction law", "falling_table (4 table calls + correction)",
+            ("exact table, friction law", "falling_table (3 table calls + correction)",
              lambda x, y, p: creep_force_3d(x, y, p, *contact, law, method="exact_table",
                                             rolling_speed=speed), False),
             ("exact table, Coulomb mu_0", "the law ignored",
@@ -808,9 +808,9 @@ def family_falling_3d(quick):
                      "effective coefficient and a spread correction on the Coulomb table plus "
                      "its correction table (the exact theory minus that model over the law's "
                      "normalised parameters); over 2 x 150 random cases with the smooth law "
-                     "0.28 % of mu_0 N without spin, 0.30 % at |tau| <= 1, 1.7 % beyond; with "
-                     "Polach's law 0.77, 0.53, 3.2 % (docs/reference_solvers.md; "
-                     "SmoothFriction and PolachFriction take a compiled path, 11-12 us a "
+                     "0.33 % of mu_0 N without spin, 0.29 % at |tau| <= 1, 1.02 % beyond; with "
+                     "Polach's law 0.79, 0.38, 2.5 % (docs/reference_solvers.md; "
+                     "SmoothFriction and PolachFriction take a compiled path, 9-10 us a "
                      "scalar call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
                      "the law: the local bound mu(q) p per element, a crude theory")
     return fam

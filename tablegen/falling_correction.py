@@ -43,7 +43,8 @@ missing:
 2. the model at the nodes (some 15 min on 2 cores: the nodes of large spin where mu_e is low
    are beyond the Coulomb table's spin axis, where it answers with the solver), one file per
    tau node named by the model's hash (the code of
-   :func:`railcontact.falling_table.falling_friction_table` and its constants): a changed
+   :func:`railcontact.falling_table.falling_friction_table`, ``spin_floor`` and ``table_mu``
+   and the module's constants): a changed
    model costs this stage only, not the exact solves.
 
 The table is the difference of the two. (The shipped file's exact solves were made by an
@@ -77,7 +78,7 @@ __all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
 #: kappa in squares (the correction rises fast from kappa = 0).
 NODES = {
     "log_aspect_ratio": np.log(5.0) * np.linspace(-1.0, 1.0, 5),
-    "poisson_ratio": np.array([0.0, 0.5]),
+    "poisson_ratio": np.array([0.0, 0.25, 0.5]),
     "creepage_coordinate": np.array([0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
     "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
     "spin_coordinate": np.array([0.0, 0.5, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5, 3.0, 4.0, 5.5, 7.5,
@@ -181,7 +182,8 @@ def model_points(lg, nu, s, th, tau, m, kn):
         def law_s(slip):   # the smooth law (5.16), one per point
             return (m0 - mk) / (1.0 + kp * np.abs(slip)) + mk
 
-        tx, ty, mz = falling_friction_table(values, *args[:6], law_s, mu0[sel])[:3]
+        tx, ty, mz = falling_friction_table(values, *args[:6], law_s, mu0[sel],
+                                             material=(args[6], args[7]))[:3]
         scale = mu0[sel] * args[3]
         return np.stack([tx / scale, ty / scale, mz / (scale * np.sqrt(args[4] * args[5]))])
 
@@ -205,11 +207,13 @@ def _model_hash():
 
     from railcontact import falling_table as ft
 
-    fun = ast.parse(inspect.getsource(ft.falling_friction_table)).body[0]
-    fun.body = fun.body[1:]     # (its code: neither the docstring nor comments count)
-    h = hashlib.sha256(ast.unparse(fun).encode())
+    h = hashlib.sha256()
+    for f in (ft.falling_friction_table, ft.spin_floor, ft.table_mu):
+        fun = ast.parse(inspect.getsource(f)).body[0]
+        fun.body = fun.body[1:]     # (its code: neither the docstring nor comments count)
+        h.update(ast.unparse(fun).encode())
     h.update(repr((ft.EFFECTIVE_MU_STEPS, ft.GAUSS_POINTS, ft.SLIP_SHARE_MIN,
-                   ft.SPIN_POLE_SMOOTHING)).encode())
+                   ft.SPIN_POLE_SMOOTHING, ft.SPIN_COORDINATE_EDGE, ft.TABLE_MU_BLEND)).encode())
     return h.hexdigest()[:12]
 
 

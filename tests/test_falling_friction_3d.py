@@ -284,10 +284,10 @@ def test_exact_table_coulomb_limit_is_the_coulomb_table():
 
 def test_exact_table_with_a_law_against_the_exact_theory():
     """The fast path is an approximation (railcontact.falling_table): measured over 2 x 150
-    random cases (benchmarks/bench_falling_friction_3d.py) max 0.28 % of mu_0 N without spin,
-    0.30 % with spin coordinate |tau| <= 1, 1.73 % beyond. Here a moderately and a strongly
-    falling law, through the peak and past it: measured 0.12, 0.10, 0.60, 0.72 % (the model
-    without its correction table: 0.69, 0.63, 0.95, 1.06 %)."""
+    random cases (benchmarks/bench_falling_friction_3d.py) max 0.33 % of mu_0 N without spin,
+    0.29 % with spin coordinate |tau| <= 1, 1.02 % beyond. Here a moderately and a strongly
+    falling law, through the peak and past it: measured 0.14, 0.14, 0.67, 0.88 % (the model
+    without its correction table, 2026-11-28 morning: 0.69, 0.63, 0.95, 1.06 %)."""
     narrow = dict(ROUND, a0=4e-3, b0=9e-3)
     laws = (SmoothFriction(0.3, 0.15, 1.0 / SAT), SmoothFriction(0.3, 0.09, 2.0 / SAT))
     xi = SAT * np.array([0.3, 0.8, 1.5, 4.0, 0.0])
@@ -393,23 +393,24 @@ def test_exact_table_with_a_law_and_large_spin_against_the_exact_theory(case):
     """The fast path with its correction table (tablegen.falling_correction: the exact theory
     minus the model on a grid of the law's normalised parameters, interpolated) against
     Kalker's exact theory with the same law, off the table's nodes, where the model alone
-    missed by 2.6-5.4 % of mu_0 N. Measured 0.73, 0.32, 0.55, 0.08, 0.01, 1.23, 0.15, 0.44 %:
-    within 1.25 % and at most 0.3 of the model's error (issue 38's 1 % is missed by the
-    sixth, pure spin on a0/b0 = 0.48 at tau = 3.5, whose force is 1.2 % of mu_0 N). Polach's
-    law with the same slope at zero slip (the smooth law the table takes for it): 2.14, 1.35,
-    0.56, 0.72, 0.63, 3.15, 0.97, 1.55 %, within 3.5 %."""
+    missed by 2.6-5.4 % of mu_0 N. Measured 0.65, 0.56, 0.14, 0.15, 0.06, 0.69, 0.12, 0.20 %
+    (before the model took the slip smoothed over the spin pole and the table its third nu
+    node: 0.73, 0.32, 0.55, 0.08, 0.01, 1.23, 0.15, 0.44 %): within issue 38's 1 % and at
+    most 0.3 of the model's error. Polach's law with the same slope at zero slip (the smooth
+    law the table takes for it): 2.11, 1.12, 0.35, 0.56, 0.70, 2.49, 1.05, 1.16 %, within
+    3 %."""
     args, law = _case_of(*case[:7])
     fast = rc.creep_force_3d(*args[:8], law, method="exact_table")
     exact = rc.creep_force_3d(*args[:8], law, method="exact")
     mu_n = args[8] * args[3]
     err = np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n
-    assert err < 0.0125, err
+    assert err < 0.01, err
     assert err < 0.3 * case[7] / 100.0, err
     polach = PolachFriction(law.mu_static, law.mu_kinetic / law.mu_static,
                             law.kappa / 30.0)   # (the same slope at zero slip)
     fast = rc.creep_force_3d(*args[:8], polach, method="exact_table", rolling_speed=30.0)
     exact = rc.creep_force_3d(*args[:8], polach, method="exact", rolling_speed=30.0)
-    assert np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n < 0.035
+    assert np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n < 0.03
 
 
 def test_correction_table_takes_its_nodes_and_the_mirror_image():
@@ -466,6 +467,92 @@ def test_correction_table_takes_its_nodes_and_the_mirror_image():
         curvature = (vals3[0] - 2.0 * vals3[1] + vals3[2]) / h**2
         slope_jump = np.abs((vals3[2] - vals3[1]) - (vals3[1] - vals3[0])) / h
         assert np.all(slope_jump < 1e-4 + 2e-3 * np.abs(curvature)), (axis, slope_jump)
+
+
+def test_table_mu_is_a_c2_floor_that_leaves_mu_above_it():
+    """falling_table.table_mu, the coefficient the model calls the Coulomb table at (kept
+    above the spin floor, so that the table's spin coordinate stays on its axis): at least
+    max(mu, floor), mu itself from 1.1 floor up (a law that does not fall gives the Coulomb
+    table exactly), and C2 across the blend's ends (finite differences: no jump in the
+    slope or the curvature); the floor is 0 without spin and beyond the table's spin axis."""
+    from railcontact.falling_table import SPIN_COORDINATE_EDGE, spin_floor, table_mu
+
+    f = 0.1
+    mu = np.linspace(0.0, 0.3, 3001)
+    got = table_mu(mu, f)
+    assert np.all(got >= np.maximum(mu, f) - 1e-15)
+    assert np.all(got[mu >= 1.1 * f] == mu[mu >= 1.1 * f])
+    assert np.all(got[mu <= 0.9 * f] == f)
+    np.testing.assert_array_equal(table_mu(mu, 0.0), mu)
+    h = 1e-5
+    for x0 in (0.9 * f, 1.1 * f):
+        left = table_mu(x0 - np.array([2 * h, h, 0.0]), f)
+        right = table_mu(x0 + np.array([0.0, h, 2 * h]), f)
+        assert abs((left[2] - left[1]) - (right[1] - right[0])) / h < 1e-3     # slope
+        curv_l = (left[0] - 2 * left[1] + left[2]) / h**2
+        curv_r = (right[0] - 2 * right[1] + right[2]) / h**2
+        assert abs(curv_l - curv_r) < 0.05 * 3.0 / (0.2 * f)   # (peak curvature 3 / (2 w f))
+    # the floor: mu_0 tau_0 / 20 (tau_0 the table's spin coordinate at mu_0)
+    from railcontact.exact_table import exact_table_coordinates
+    from railcontact.kalker import kalker_coefficients
+
+    c = kalker_coefficients(6e-3 / 9e-3, NU)
+    w_sat = 1.5 * np.pi * (1.0 + NU) * 0.3 * N / (6e-3 * 9e-3 * E)
+    for phi in (0.0, 2.0, 8.0, 80.0):
+        tau0 = exact_table_coordinates(1e-3, 0.0, phi, 6e-3, 9e-3, NU, w_sat,
+                                       (c.c11, c.c22, c.c23))[4]
+        floor = spin_floor(1e-3, 0.0, phi, N, 6e-3, 9e-3, E, NU, 0.3)
+        want = 0.3 * abs(tau0) / SPIN_COORDINATE_EDGE if abs(tau0) <= 20.0 else 0.0
+        np.testing.assert_allclose(floor, want, rtol=1e-8, atol=0.0)
+
+
+#: Two of the benchmark's cases (seed 11 case 92, seed 12 case 137; table coordinates and the
+#: law's numbers as LARGE_SPIN_CASES): strong spin, mu_k/mu_0 0.30 and 0.36
+POLE_CASE = (-1.3168, 0.3390, 0.2440, 0.3922, 1.6870, 0.3040, 1.7280)
+SPIN_EDGE_CASE = (0.4770, 0.2650, 0.1560, -2.0790, 9.9180, 0.3590, 1.4780)
+
+
+def test_fast_path_is_smooth_where_the_spin_pole_moves():
+    """Along the creepage at large spin the pole of the rigid slip (where creepage and spin
+    cancel) moves over the contact; the model's spread correction, a Gauss sum of the slip's
+    direction, rippled by up to 0.68 % of mu_0 N between creepages 0.005 of the saturation
+    apart before it took the slip smoothed over the pole (second differences; the exact
+    theory's own 0.01 %). The fast path now: 41 points of s in [0.1, 0.3], second
+    differences within 0.05 % of mu_0 N."""
+    forces = []
+    for s in np.linspace(0.1, 0.3, 41):
+        case = list(POLE_CASE)
+        case[2] = s
+        args, law = _case_of(*case)
+        f = rc.creep_force_3d(*args[:8], law, method="exact_table")
+        forces.append((f.tx / (args[8] * args[3]), f.ty / (args[8] * args[3])))
+    second = np.abs(np.diff(np.array(forces), 2, axis=0))
+    assert second.max() < 5e-4, second.max()
+    assert np.ptp(np.array(forces)[:, 0]) > 0.15        # (a force that does change)
+
+
+def test_large_spin_with_a_strong_law_stays_on_the_table(monkeypatch):
+    """At tau 9.9 with mu_k/mu_0 0.36 the effective coefficient (about 0.45 mu_0) puts the
+    Coulomb table's spin coordinate at some 22, beyond its axis (20), where it answered with
+    the exact solver (83 ms a call); the model now calls the table at falling_table.table_mu
+    and scales (spin_floor): no solver call, and within 1 % of mu_0 N of the exact theory
+    (measured 0.72 %)."""
+    from railcontact.creep3d import load_exact_table
+
+    args, law = _case_of(*SPIN_EDGE_CASE)
+    exact = rc.creep_force_3d(*args[:8], law, method="exact")
+    table = load_exact_table()
+
+    def no_solver(*a, **k):
+        raise AssertionError("the exact solver was called")
+
+    monkeypatch.setattr(table, "solver", no_solver)
+    for arrays in (False, True):     # the compiled scalar path and the numpy array path
+        a = [np.array([v]) for v in args[:8]] if arrays else args[:8]
+        fast = rc.creep_force_3d(*a, law, method="exact_table")
+        err = np.hypot(float(np.squeeze(fast.tx)) - exact.tx,
+                       float(np.squeeze(fast.ty)) - exact.ty) / (args[8] * args[3])
+        assert err < 0.01, err
 
 
 def test_correction_summed_out_for_one_contact_equals_the_whole_table():

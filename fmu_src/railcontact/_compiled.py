@@ -62,7 +62,7 @@ EXPORTS = (
     # and the public scalar call with SmoothFriction, PolachFriction or a tabulated law)
     ("falling_contact", "_falling_kernels",
      "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], f8[::1], "
-     "f8[:, ::1], i8, f8, f8, f8[::1])"),
+     "f8[:, ::1], i8, f8, f8[::1], f8[::1])"),
     # its correction table at many points (the array path of railcontact.falling_table)
     ("falling_correction_batch", "_falling_kernels",
      "void(f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "

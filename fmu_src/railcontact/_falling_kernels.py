@@ -213,8 +213,37 @@ def falling_correction_batch(corr, lg, nu, s, theta, tau, m, kn, out):
 
 
 @njit(cache=True)
+def _spin_floor(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0, nu, c11, c22,
+                spin_edge):
+    """mu_0 |tau_0| / spin_edge (less 1e-9), the coefficient at which the table's spin
+    coordinate reaches ``spin_edge`` (tau = tau_0 mu_0 / mu, tau_0 at mu_0), or 0 where
+    |tau_0| > spin_edge or it cannot be computed (as
+    :func:`railcontact.falling_table.spin_floor`)."""
+    w_sat = saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0, nu)
+    if not w_sat > 0.0:
+        return 0.0
+    tau0 = abs(phi) * math.hypot(b0 * c11, a0 * c22) / w_sat
+    if tau0 > spin_edge * (1.0 + 1e-9):
+        return 0.0
+    return mu0 * tau0 / (spin_edge * (1.0 - 1e-9))
+
+
+@njit(cache=True)
+def _table_mu(mu, mu_f, blend):
+    """The coefficient the table is called at: mu, kept above mu_f by a C2 smooth maximum of
+    half-width ``blend`` mu_f (as :func:`railcontact.falling_table.table_mu`)."""
+    if mu_f <= 0.0:
+        return mu
+    x = mu / mu_f
+    if x >= 1.0 + blend:
+        return mu
+    u = min(max((x - 1.0) / (2.0 * blend) + 0.5, 0.0), 1.0)
+    return mu_f * (1.0 + blend * (2.0 * u * u * u - u * u * u * u))
+
+
+@njit(cache=True)
 def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1,
-                    p2, p3, tab, corr, gauss, steps, share_min, smoothing, out):
+                    p2, p3, tab, corr, gauss, steps, share_min, model, out):
     """Falling friction on one contact buffer of the exact table, the law ``(kind, p0..p3,
     tab)`` of :func:`_law` (mu_0 = mu(0)); slips s are capped where ``p2 s`` would reach
     1e300.
@@ -222,9 +251,13 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     ``gauss``: rows x/a0, y/b0 and weight (summing to 1) of the Gauss points of
     :mod:`railcontact.falling_table`, then four rows of scratch (the rigid slip's components,
     its magnitude and its magnitude smoothed over the spin pole: no allocation per call);
-    ``steps``, ``share_min``, ``smoothing`` its fixed-point steps, least slip share and
-    :data:`~railcontact.falling_table.SPIN_POLE_SMOOTHING` (arguments, not module constants:
-    numba's cache would keep a constant of another module frozen at its old value). Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
+    ``steps``, ``share_min`` its fixed-point steps and least slip share, ``model`` its
+    :data:`~railcontact.falling_table.SPIN_POLE_SMOOTHING`,
+    :data:`~railcontact.falling_table.SPIN_COORDINATE_EDGE` and
+    :data:`~railcontact.falling_table.TABLE_MU_BLEND` (arguments, not module constants:
+    numba's cache would keep a constant of another module frozen at its old value); the
+    table is called at :func:`_table_mu` of mu, its force and moment scaled by mu over
+    that. Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
     normalised_creepage, mu_effective)`` and returns True; False where the table's kernel
     hands the case to its array path, or a tabulated law is asked beyond its last slip (the
     caller then takes the numpy function).
@@ -244,7 +277,7 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
         scale = 1.0
     rx, ry, rp = xi_x / scale, xi_y / scale, phi / scale
     wx, wy, wn, w3 = gauss[3], gauss[4], gauss[5], gauss[6]
-    eps2 = (smoothing * rp) * (smoothing * rp) * (a0 * b0)
+    eps2 = (model[0] * rp) * (model[0] * rp) * (a0 * b0)
     w_mean = 0.0
     w3_mean = 0.0
     for k in range(n):
@@ -259,10 +292,17 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     s_cap = 0.5 * fmax / max(scale, 1.0)
     kap_cap = 1e300 / max(p2, 1.0) / (max(p3, 1.0) if kind == 1 else 1.0)
     mu = _law(kind, p0, p1, p2, p3, tab, 0.0)
+    mu_f = _spin_floor(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu, buf[7],
+                       buf[4], buf[5], model[1])
     for step in range(steps + 1):
-        if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu,
+        mu_t = _table_mu(mu, mu_f, model[2])
+        if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu_t,
                              False):
             return False
+        q = mu / mu_t
+        res[0] *= q
+        res[1] *= q
+        res[2] *= q
         power = abs(res[0] * rx + res[1] * ry + res[2] * rp)
         share = min(max(1.0 - res[3], share_min), 1.0)
         lam = power * inv / (max(mu, tiny) * share)

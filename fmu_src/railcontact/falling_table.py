@@ -5,14 +5,13 @@ An approximation, measured against Kalker's exact theory with the same law
 (``method="exact"``; ``benchmarks/bench_falling_friction_3d.py``, 150 random cases over a0/b0
 0.2-5, nu 0-0.5, every creepage direction and size, spin coordinate |tau| 0-10,
 mu_k/mu_0 0.3-1, kappa mu_0 p0 / G 0-2 of Eq. (5.16), two samples, seeds 11 / 12): max error
-0.28 / 0.25 % of mu_0 N without spin, 0.19 / 0.30 % with spin coordinate |tau| <= 1,
-**1.56 / 1.73 % with |tau| > 1** (RMS 0.19 / 0.25 % over all), where the target of 1 % is not
-met; with Polach's law (:func:`law_shape`) 0.77 / 0.74, 0.53 / 0.44, 2.14 / 3.15 % (RMS 0.31 /
-0.42 %). What is left is the interpolation between the nodes where the correction rises
-steeply (pure spin with a strongly falling law: from 1 % to 13 % of mu_0 N between tau 1.25
-and 1.75) and the exact solver's own scatter with strongly falling laws, which no smooth table
-follows (mu_k/mu_0 0.3, kappa number 1.7, tau 1.7: the correction's x-component -0.44, +0.54,
--0.42 % of mu_0 N at s = 0.2, 0.244, 0.3).
+0.33 / 0.27 % of mu_0 N without spin, 0.20 / 0.29 % with spin coordinate |tau| <= 1,
+**0.88 / 1.02 % with |tau| > 1** (RMS 0.15 / 0.18 % over all): the target of 1 % is met but
+for one case of the second sample (pure spin at tau -1.35, a0/b0 3.5, mu_k/mu_0 0.30, kappa
+number 1.37: 1.02 %); with Polach's law (:func:`law_shape`) 0.76 / 0.79, 0.36 / 0.38,
+2.11 / 2.49 % (RMS 0.29 / 0.35 %). What is left is interpolation between the correction
+table's nodes (along ln(a0/b0), nu and s at small s, each up to some 0.3-0.7 % of mu_0 N on
+the worst cases), and for Polach's law its other shape.
 A model in three steps, each one call of the Coulomb table
 (:class:`railcontact.exact_table.ExactCreepTable`), and a table of what the model misses:
 
@@ -24,9 +23,13 @@ A model in three steps, each one call of the Coulomb table
    (``w = (xi_x - phi y, xi_y + phi x)``): ``s(x, y) = lambda |w(x, y)|`` with
    ``lambda = s_m / <|w|>``, ``<.>`` the Hertz-pressure-weighted mean over the ellipse. Then
    ``mu_e = <mu(lambda |w|)>``, a fixed point found by :data:`EFFECTIVE_MU_STEPS` steps,
-   relaxed by 1/2 from the second (3, 4, 6 or 10 steps: max errors within 0.03 % of mu_0 N, so 3;
-   the law at the mean slip instead, Jensen's inequality makes mu_e too low for a convex law
-   where spin spreads the slip).
+   relaxed by 1/2 from the second (with the correction table 1, 2 and 3 steps gave max errors
+   0.70 / 1.17, 0.67 / 1.20 and 0.65 / 1.22 % of mu_0 N at |tau| > 1 on the two samples, and
+   1 step 0.43 / 0.30 % without spin: so 2, three table calls in all; the law at the mean slip
+   instead, Jensen's inequality makes mu_e too low for a convex law where spin spreads the
+   slip). The table is called at :func:`table_mu` (mu kept above :func:`spin_floor`, its
+   force and moment scaled back to mu), so that a low mu_e never takes the table's spin
+   coordinate beyond its axis (where it would answer with the exact solver, 60-150 ms).
 2. **Coulomb force there**: ``T_c(mu_e)`` from the table.
 3. **Spread correction** for the spin: where friction varies over the contact, the parts with
    larger slip carry less traction: ``T = T_c(mu_e) - N (1 - A_stick)^2
@@ -41,7 +44,7 @@ A model in three steps, each one call of the Coulomb table
    ``railcontact/data/falling_correction.nc``, built by ``python -m
    tablegen.falling_correction build``): the exact theory with the smooth law minus steps
    1-3, tabulated on a grid of the exact table's coordinates at mu_0 (ln(a0/b0) 5 nodes in
-   [ln 0.2, ln 5], nu 0 and 0.5, the creepage coordinate s 8 nodes in [0, 1], the creepage
+   [ln 0.2, ln 5], nu 0, 0.25 and 0.5, the creepage coordinate s 8 nodes in [0, 1], the creepage
    angle every 30 degrees, tau 15 nodes in [0, 20], mirrored to [-20, 20]) and of the law's
    two numbers (mu_k/mu_0 0.3, 0.65, 1; kappa mu_0 p0 / G 0, 0.125, 0.5, 1.125, 2): the
    forces over mu_0 N and the moment over mu_0 N sqrt(a0 b0). Interpolated by C2 cubic
@@ -62,7 +65,7 @@ gives zero; in full sliding without spin |T| -> mu(|xi|) N. The means over the e
 Gauss points (:data:`GAUSS_POINTS`: 5 radial Gauss-Legendre x 10 angular, weights
 ``(3/(2 pi)) sqrt(1 - r^2)``).
 
-Speed: this numpy function takes any Python law (about 200 us per scalar call: four table
+Speed: this numpy function takes any Python law (about 200 us per scalar call: three table
 calls and some 60 numpy operations on the 50 Gauss points). For the package's laws (the
 smooth law (5.16), Polach's) :func:`falling_friction_table_compiled` runs the same steps in
 one compiled call (:mod:`railcontact._falling_kernels`); the two agree to round-off (1e-15 of
@@ -72,10 +75,12 @@ the exact solver takes a law: within 2e-4 of mu_0 N of the law itself). The corr
 adds one compiled evaluation (its nu and mu_k/mu_0 axes summed out once per pair, and its
 a0/b0 axis once a contact's a0/b0 has come back :data:`CORRECTION_AT_ASPECT_AFTER` times,
 :func:`correction_at`: 4 x 4 x 4 x 4 (x 4) x 3 coefficients per call). The public
-``creep_force_3d`` with plain floats, one contact (best of 9 rounds, load 1.6, 2026-11-28):
-9.3 us with a :class:`railcontact.friction.SmoothFriction`, 10.2 us with a
-:class:`~railcontact.friction.PolachFriction`, 12.5 us with a function of the user's (the
-model alone 8.7, 10.0, 11.7 us), against 1.4 us for the Coulomb table in the same run.
+``creep_force_3d`` with plain floats, one contact (best of 7 rounds, 2026-11-28 evening,
+``benchmarks/bench_falling_friction_3d.py``): 8.9 us with a
+:class:`railcontact.friction.SmoothFriction`, 10.0 us with a
+:class:`~railcontact.friction.PolachFriction`, 11.0 us with a function of the user's,
+against 1.4 us for the Coulomb table in the same run (with 3 fixed-point steps and no spin
+floor: 9.3, 10.2, 12.5 us).
 
 Also measured, not adopted (too slow for a table's call): the Coulomb table at mu_e plus the
 difference between the exact solver with the law and with mu_e on one coarse grid
@@ -102,13 +107,13 @@ import math
 
 import numpy as np
 
-__all__ = ["falling_friction_table", "falling_friction_table_smooth",
+__all__ = ["falling_friction_table", "falling_friction_table_smooth", "spin_floor", "table_mu",
            "falling_friction_table_compiled", "law_table", "law_shape",
            "load_falling_correction", "falling_correction", "CORRECTION_TABLE",
            "EFFECTIVE_MU_STEPS", "GAUSS_POINTS", "LAW_TABLE_SLIPS"]
 
 #: Fixed-point steps for the effective friction coefficient (relaxed by 1/2 from the second).
-EFFECTIVE_MU_STEPS = 3
+EFFECTIVE_MU_STEPS = 2
 #: Smoothing of the rigid slip over the spin pole in step 3 (the spread correction):
 #: ``|w|`` taken as ``sqrt(|w|^2 + (d phi)^2 a0 b0)`` with d this number (a pole region of
 #: some 0.3 of the semi-axes), its mean scaled back to that of ``|w|``. The direction
@@ -118,6 +123,9 @@ EFFECTIVE_MU_STEPS = 3
 #: kappa number 1.7), a ripple no table of the model's error can follow; smoothed, 0.01 %.
 #: 0 without spin (the rigid slip uniform: the limits unchanged). [-]
 SPIN_POLE_SMOOTHING = 0.3
+#: The model calls the Coulomb table at a spin coordinate at most this (:func:`spin_floor`):
+#: the end of the shipped exact table's spin axis. [-]
+SPIN_COORDINATE_EDGE = 20.0
 #: The slip load share (1 - A_stick) is kept >= this (the first step from mu_0 may be all
 #: stick, with no slip zone to dissipate in). [-]
 SLIP_SHARE_MIN = 1e-3
@@ -148,7 +156,7 @@ def _law_at(law_s, slip):
 
 
 def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, mu0,
-                           correction=None):
+                           correction=None, material=None):
     """Force and moment with a friction law from a Coulomb table (module docstring).
 
     Parameters
@@ -169,6 +177,9 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
         ``(youngs_modulus, poisson_ratio, friction_ratio, kappa)`` [Pa, -, -, -] of the cases:
         the correction table's value (:func:`falling_correction`) is added to the force and
         the moment. None: the model alone (what the correction table is built against).
+    material : tuple of ndarray, optional
+        ``(youngs_modulus, poisson_ratio)`` [Pa, -] of the cases, for the table's spin edge
+        (:func:`spin_floor`); default those of ``correction``; neither: no floor.
 
     Returns
     -------
@@ -208,11 +219,22 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
         lam = factor * power * inv / (np.maximum(mu, tiny) * share)
         return np.minimum(lam[ex] * w, s_cap[ex]) * scale[ex]
 
+    if material is None and correction is not None:
+        material = correction[:2]
+    mu_f = 0.0 if material is None else spin_floor(xi_x, xi_y, phi, n_load, a0, b0,
+                                                   *material, mu0)
+
+    def values_at(mu):      # the table at table_mu(mu), its force and moment scaled to mu
+        mu_t = table_mu(mu, mu_f)
+        v = values(mu_t)
+        q = mu / mu_t
+        return v[0] * q, v[1] * q, v[2] * q, v[3], v[4]
+
     mu = mu0
     for step in range(EFFECTIVE_MU_STEPS):
-        new = np.asarray(law_s(slips(values(mu), mu)), dtype=float) @ _W
+        new = np.asarray(law_s(slips(values_at(mu), mu)), dtype=float) @ _W
         mu = new if step == 0 else 0.5 * (mu + new)
-    v = values(mu)
+    v = values_at(mu)
     # step 3 on the rigid slip smoothed over the spin pole (SPIN_POLE_SMOOTHING), scaled to
     # the same mean slip
     eps2 = (SPIN_POLE_SMOOTHING * rp) ** 2 * (a0 * b0)
@@ -238,6 +260,55 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
         raise ValueError("friction_coefficient must give a finite mu >= 0 at every slip [-]; "
                          "the falling-friction table path got a non-finite force")
     return tx, ty, mz, v[3], v[4], mu
+
+
+def spin_floor(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, mu0):
+    """The least friction coefficient the model calls the Coulomb table at: ``mu_0 |tau_0| /``
+    :data:`SPIN_COORDINATE_EDGE` (less 1e-9: the table's spin coordinate ``tau = tau_0 mu_0 /
+    mu``, ``tau_0`` at mu_0 (:func:`railcontact.exact_table.exact_table_coordinates`), then
+    stays within its axis); 0 where ``|tau_0|`` is beyond the edge (beyond the table's own
+    domain, where it answers with the exact solver) or there is no load. [-]
+
+    A falling law's mu_e < mu_0 raises the spin coordinate: with mu_e = 0.3 mu_0 a contact
+    at tau_0 = 7 is at tau = 23, beyond the Coulomb table's axis (20), where the table
+    answers with the exact solver (60-150 ms a call: 2 or 3 cases in 150 of the benchmark's
+    samples). Spin that large leaves little stick (the contact slides nearly all over, its
+    force nearly proportional to mu), so the model calls the table at :func:`table_mu`
+    instead and scales its force and moment by mu over that: within 0.02-3.6 % of mu_0 N of
+    the exact Coulomb force at tau 22-45 (checked on 6 cases, the largest at small
+    creepage), what the correction table (built on the same model) then takes up within
+    |tau_0| <= 20.
+    """
+    from .kalker import kalker_coefficients  # noqa: PLC0415
+
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0 = (np.asarray(v, dtype=float) for v in (
+        xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, mu0))
+    c = kalker_coefficients(a0 / b0, nu)
+    den = a0 * b0 * e_mod
+    w_sat = 1.5 * np.pi * (1.0 + nu) * mu0 * n_load / np.where(den > 0.0, den, 1.0)
+    ok = (w_sat > 0.0) & (den > 0.0) & np.isfinite(w_sat)
+    tau0 = np.abs(phi) * np.hypot(b0 * np.asarray(c.c11), a0 * np.asarray(c.c22)) / np.where(
+        ok, w_sat, 1.0)
+    return np.where(ok & (tau0 <= SPIN_COORDINATE_EDGE * (1.0 + 1e-9)),
+                    mu0 * tau0 / (SPIN_COORDINATE_EDGE * (1.0 - 1e-9)), 0.0)
+
+
+def table_mu(mu, mu_floor):
+    """The coefficient the model calls the Coulomb table at: ``mu`` kept above ``f =
+    mu_floor`` (:func:`spin_floor`) by a C2 smooth maximum: ``f h(mu / f)``, ``h(x) = x`` for
+    x >= 1.1, 1 for x <= 0.9 and between them ``1 + 0.1 p((x - 1) / 0.1)``, ``p`` the integral
+    of the smoothstep (``p(t) = 2 u^3 - u^4``, ``u = (t + 1) / 2``); mu where f = 0. So mu
+    itself wherever mu >= 1.1 f: a law that does not fall (mu = mu_0) gives the Coulomb table
+    exactly while ``|tau_0| <= SPIN_COORDINATE_EDGE / 1.1`` (18.2). [-]"""
+    mu, f = np.asarray(mu, dtype=float), np.asarray(mu_floor, dtype=float)
+    x = mu / np.where(f > 0.0, f, 1.0)
+    u = np.minimum(np.maximum((x - 1.0) / (2.0 * TABLE_MU_BLEND) + 0.5, 0.0), 1.0)
+    h = 1.0 + TABLE_MU_BLEND * (2.0 * u**3 - u**4)
+    return np.where((f > 0.0) & (x < 1.0 + TABLE_MU_BLEND), f * h, mu)
+
+
+#: Half-width of :func:`table_mu`'s blend, in units of the floor. [-]
+TABLE_MU_BLEND = 0.1
 
 
 #: Name of the correction table's file (``railcontact/data/falling_correction.nc``, built by
@@ -571,6 +642,7 @@ _OUT = np.zeros(6)
 _KERNEL = [None]
 _GAUSS = np.ascontiguousarray(np.concatenate([np.stack([_CX, _SY, _W]), np.zeros((4, _W.size))]))
 _NO_LAW_TABLE = np.zeros((2, 1))
+_MODEL = np.array([SPIN_POLE_SMOOTHING, SPIN_COORDINATE_EDGE, TABLE_MU_BLEND])
 
 #: The slips a law other than the package's two is tabulated at for the compiled path
 #: (:func:`law_table`): 0 and 1e-10 .. 1e4, 40 per decade (the exact solver's spacing,
@@ -655,6 +727,6 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         corr = correction_at(poisson_ratio, ratio, g, eager)
     if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
                   p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, corr, _GAUSS,
-                  EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, SPIN_POLE_SMOOTHING, out):
+                  EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL, out):
         return None
     return out.tolist()     # (floats, one call)

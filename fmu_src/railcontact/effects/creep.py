@@ -11,7 +11,7 @@ import numpy as np
 from .. import creep3d
 from .._scalar import (carter_scalar, creep_force_3d_scalar, creep_stick_3d_scalar,
                        spin_coefficient_scalar)
-from ..falling_table import (falling_friction_table,
+from ..falling_table import (falling_friction_table, falling_friction_table_compiled,
                              falling_friction_table_smooth)
 from ..scene import POLACH_KEYS, SceneError
 from .base import JACOBIAN_FIELDS, NOT_ESTIMATED, Effect, EffectUnavailable
@@ -271,8 +271,8 @@ class Creep3D(Effect):
         the arguments ``args`` (mu_0 = ``args[8]``)."""
         mu0 = args[8]
         mu_k, kappa = self._smooth_law
-        got = falling_friction_table_smooth(self._table, *args[:8], mu0, mu_k, kappa,
-                                            eager=True)      # compiled, one call
+        got = falling_friction_table_compiled(self._table, *args[:8], 0, mu0, mu_k, kappa,
+                                              0.0, True)  # the smooth law, compiled, eager
         if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
             cap = _SLIP_CAP / max(kappa, 1.0)    # kappa s stays finite (any creepage)
 
