@@ -60,7 +60,8 @@ A model in three steps, each one call of the Coulomb table
    lateral force is 1.4 % of mu_0 N above the Coulomb force at mu_0, the model's 3.8 % below
    it).
 
-Limits (exact): Coulomb friction (a constant law) gives the Coulomb table; zero creepage
+Limits (exact): Coulomb friction (a constant law) gives the Coulomb table (while the spin
+coordinate |tau| <= 18.2, where :func:`table_mu` leaves mu as it is); zero creepage
 gives zero; in full sliding without spin |T| -> mu(|xi|) N. The means over the ellipse use
 Gauss points (:data:`GAUSS_POINTS`: 5 radial Gauss-Legendre x 10 angular, weights
 ``(3/(2 pi)) sqrt(1 - r^2)``).
