@@ -11,7 +11,7 @@ and a law's constants, with 2 and 3 nodes), where the tables' format, which the 
 readers take, is cubic along every axis. About 1.5 h of exact solves on 2 cores (2026-11-28:
 65 min for 13 tau nodes, 20 min for the two added later), most of it the cases of the most
 strongly falling laws that the exact solver does not converge on (each runs to its iteration
-limit), then about a minute for the model at the nodes.
+limit), then seconds for the model at the nodes.
 
 What is tabulated, at every node of (ln(a0/b0), nu, s, theta, tau, mu_k/mu_0, kappa mu_0 p0/G)
 (the exact table's coordinates of :func:`railcontact.exact_table.exact_table_coordinates`,
@@ -40,9 +40,9 @@ missing:
    ``exact_<i_g>_<i_nu>_tau<tau>.npy``. The hash covers the solver and the nodes of every axis
    but tau; a chunk's file is named by its tau node, so that a tau node added to
    :data:`NODES` costs only its own chunks;
-2. the model at the nodes (about a minute on 2 cores since the model keeps the table's spin
-   coordinate on its axis, :func:`railcontact.falling_table.spin_floor`; 30 min before, when
-   the nodes of large spin and low mu_e took the exact solver beyond that axis), one file per
+2. the model at the nodes (7-11 s for the whole command on 2 cores, 2026-11-28, since the
+   model keeps the table's spin coordinate on its axis,
+   :func:`railcontact.falling_table.spin_floor`; 30 min before, when the nodes of large spin and low mu_e took the exact solver beyond that axis), one file per
    tau node named by the model's hash (the code of
    :func:`railcontact.falling_table.falling_friction_table`, ``spin_floor`` and ``table_mu``
    and the module's constants): a changed
@@ -203,7 +203,7 @@ def model_points(lg, nu, s, th, tau, m, kn):
 
 def _model_hash():
     """The model's hash: the source of its function and its constants (a model changed later
-    costs only its evaluation at the nodes, about a minute, not the exact solves)."""
+    costs only its evaluation at the nodes, seconds, not the exact solves)."""
     import ast
     import inspect
 

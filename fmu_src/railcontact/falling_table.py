@@ -280,18 +280,31 @@ def spin_floor(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_rat
     creepage), what the correction table (built on the same model) then takes up within
     |tau_0| <= 20.
     """
+    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0 = np.broadcast_arrays(*(
+        np.asarray(v, dtype=float) for v in (xi_x, xi_y, phi, normal_load, a0, b0,
+                                             youngs_modulus, poisson_ratio, mu0)))
+    ok = (n_load > 0.0) & (a0 > 0.0) & (b0 > 0.0) & (e_mod > 0.0) & (mu0 > 0.0)
+    safe = [np.where(ok, v, 1.0) for v in (n_load, a0, b0, e_mod, mu0)]  # (0 where not ok)
+    tau0 = np.abs(_coordinates_at(xi_x, xi_y, phi, *safe[:4], nu, safe[4])[3])
+    ok = ok & np.isfinite(tau0) & (tau0 <= SPIN_COORDINATE_EDGE * (1.0 + 1e-9))
+    return np.where(ok, mu0 * tau0 / (SPIN_COORDINATE_EDGE * (1.0 - 1e-9)), 0.0)
+
+
+def _coordinates_at(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
+                    mu0):
+    """The exact table's coordinates at mu_0 (:func:`railcontact.exact_table.
+    exact_table_coordinates`, Kalker's coefficients at (a0/b0, nu)) and the peak pressure:
+    ``(ln(a0/b0), s, theta, tau, p_max)`` ([-], [-], [rad], [-], [Pa]); inputs > 0."""
+    from .exact_table import exact_table_coordinates  # noqa: PLC0415
     from .kalker import kalker_coefficients  # noqa: PLC0415
 
-    xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0 = (np.asarray(v, dtype=float) for v in (
-        xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, mu0))
-    c = kalker_coefficients(a0 / b0, nu)
-    den = a0 * b0 * e_mod
-    w_sat = 1.5 * np.pi * (1.0 + nu) * mu0 * n_load / np.where(den > 0.0, den, 1.0)
-    ok = (w_sat > 0.0) & (den > 0.0) & np.isfinite(w_sat)
-    tau0 = np.abs(phi) * np.hypot(b0 * np.asarray(c.c11), a0 * np.asarray(c.c22)) / np.where(
-        ok, w_sat, 1.0)
-    return np.where(ok & (tau0 <= SPIN_COORDINATE_EDGE * (1.0 + 1e-9)),
-                    mu0 * tau0 / (SPIN_COORDINATE_EDGE * (1.0 - 1e-9)), 0.0)
+    c = kalker_coefficients(a0 / b0, poisson_ratio)
+    p_max = 1.5 * normal_load / (np.pi * a0 * b0)
+    w_sat = np.pi**2 * (1.0 + poisson_ratio) * mu0 * p_max / youngs_modulus
+    lg, _, s, theta, tau = exact_table_coordinates(
+        xi_x, xi_y, phi, a0, b0, poisson_ratio, w_sat,
+        tuple(np.asarray(getattr(c, k), dtype=float) for k in ("c11", "c22", "c23")))
+    return lg, s, theta, tau, p_max
 
 
 def table_mu(mu, mu_floor):
@@ -339,8 +352,6 @@ def falling_correction(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poi
         mu_0 [-], mu_k / mu_0 [-] and kappa [-] of the smooth law.
     """
     from ._compiled import falling_correction_batch  # noqa: PLC0415
-    from .exact_table import exact_table_coordinates  # noqa: PLC0415
-    from .kalker import kalker_coefficients  # noqa: PLC0415
 
     args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (
         xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio, mu0,
@@ -352,13 +363,9 @@ def falling_correction(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poi
     on = (ratio < 1.0) & (n_load > 0.0) & (mu0 > 0.0)
     if corr.size and on.any():
         i = np.flatnonzero(on)
-        g, nu_i = a0[i] / b0[i], nu[i]
-        c = kalker_coefficients(g, nu_i)
-        p_max = 1.5 * n_load[i] / (np.pi * a0[i] * b0[i])
-        w_sat = np.pi**2 * (1.0 + nu_i) * mu0[i] * p_max / e_mod[i]
-        lg, _, s, theta, tau = exact_table_coordinates(
-            xi_x[i], xi_y[i], phi[i], a0[i], b0[i], nu_i, w_sat,
-            tuple(np.asarray(getattr(c, k), dtype=float) for k in ("c11", "c22", "c23")))
+        nu_i = nu[i]
+        lg, s, theta, tau, p_max = _coordinates_at(xi_x[i], xi_y[i], phi[i], n_load[i], a0[i],
+                                                   b0[i], e_mod[i], nu_i, mu0[i])
         kn = np.minimum(kappa[i], 1e300) * mu0[i] * p_max * 2.0 * (1.0 + nu_i) / e_mod[i]
         d = np.zeros((i.size, 3))
         falling_correction_batch()(corr, *(np.ascontiguousarray(v, dtype=float) for v in (
