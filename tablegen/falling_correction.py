@@ -43,9 +43,9 @@ missing:
 2. the model at the nodes (7-11 s for the whole command on 2 cores, 2026-11-28, since the
    model keeps the table's spin coordinate on its axis,
    :func:`railcontact.falling_table.spin_floor`; 30 min before, when the nodes of large
-   spin and low mu_e took the exact solver beyond that axis), one file per tau node named by the model's hash (the code of
-   :func:`railcontact.falling_table.falling_friction_table`, ``spin_floor`` and ``table_mu``
-   and the module's constants): a changed
+   spin and low mu_e took the exact solver beyond that axis), one file per tau node named
+   by the model's hash (the code of :func:`railcontact.falling_table.falling_friction_table`,
+   ``spin_floor`` and ``table_mu`` and the module's constants): a changed
    model costs this stage only, not the exact solves.
 
 The table is the difference of the two. (The shipped file's exact solves were made by an
