@@ -8,8 +8,9 @@ The shipped file is the package data ``fmu_src/railcontact/data/falling_correcti
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
 not one of the shipped ``tables/``: two of its axes are linear (nu and mu_k/mu_0, a material's
 and a law's constants, with 2 and 3 nodes), where the tables' format, which the C and Fortran
-readers take, is cubic along every axis. About 1.5 h of exact solves on 2 cores (2026-11-28:
-65 min for 13 tau nodes, 20 min for the two added later), most of it the cases of the most
+readers take, is cubic along every axis. About 2.5 h of exact solves on 2 cores (2026-11-28:
+65 min for 13 tau nodes, 20 min for the two added later, 37 min for the nu node 0.25;
+2026-11-29: 40 min for five more tau nodes), most of it the cases of the most
 strongly falling laws that the exact solver does not converge on (each runs to its iteration
 limit), then seconds for the model at the nodes.
 
@@ -30,7 +31,8 @@ within 0.3 % of the exact theory); s = 1 is infinite creepage (full sliding with
 share: the model's limit is exact, 0); at s = 0 theta is void (one solve per theta row);
 negative tau are the mirror images (y -> -y: theta -> -theta, tau -> -tau, T_y and M_z change
 sign), made by the reader. A case the exact solver does not converge on is stored as NaN and
-filled by the reader's fit from its neighbours along theta (the table records how many).
+filled when the spline is fitted (:func:`railcontact.falling_table._filled`: along theta,
+then the line along mu_k/mu_0; the table records how many).
 
 Resumable, in two stages under the work directory (``<workdir>/falling_correction-<hash>/``),
 each file saved as soon as it is done; running the same command again computes only what is
@@ -76,15 +78,17 @@ __all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
 #: error is largest; tau graded where the spin's force develops (the model's error rises there
 #: within 0.5 of tau: the example in the docstring of railcontact.falling_table); 1.25
 #: and 1.75 added after a first build: pure spin with a strongly falling law jumps from 1 % to
-#: 13 % of mu_0 N between tau 1.25 and 1.75;
+#: 13 % of mu_0 N between tau 1.25 and 1.75; 1.125, 1.375, 1.625, 1.875 and 2.25 added
+#: 2026-11-29 (that rise sits between tau 1.3 and 2.1 as a0/b0 and the law vary, some 0.4
+#: wide: the spline along tau missed by up to 0.8 % across it with nodes 0.25 apart);
 #: kappa in squares (the correction rises fast from kappa = 0).
 NODES = {
     "log_aspect_ratio": np.log(5.0) * np.linspace(-1.0, 1.0, 5),
     "poisson_ratio": np.array([0.0, 0.25, 0.5]),
     "creepage_coordinate": np.array([0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
     "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
-    "spin_coordinate": np.array([0.0, 0.5, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5, 3.0, 4.0, 5.5, 7.5,
-                                 10.0, 14.0, 20.0]),
+    "spin_coordinate": np.array([0.0, 0.5, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875,
+                                 2.0, 2.25, 2.5, 3.0, 4.0, 5.5, 7.5, 10.0, 14.0, 20.0]),
     "friction_ratio": np.array([0.3, 0.65, 1.0]),
     "friction_decay_number": np.array([0.0, 0.125, 0.5, 1.125, 2.0]),
 }
