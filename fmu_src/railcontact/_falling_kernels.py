@@ -213,17 +213,13 @@ def falling_correction_batch(corr, lg, nu, s, theta, tau, m, kn, out):
 
 
 @njit(cache=True)
-def _spin_floor(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0, nu, c11, c22,
-                spin_edge):
+def _spin_floor(mu0, tau0, w_sat, spin_edge):
     """mu_0 |tau_0| / spin_edge (less 1e-9), the coefficient at which the table's spin
-    coordinate reaches ``spin_edge`` (tau = tau_0 mu_0 / mu, tau_0 at mu_0), or 0 where
-    |tau_0| > spin_edge or it cannot be computed (as
-    :func:`railcontact.falling_table.spin_floor`)."""
-    w_sat = saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0, nu)
-    if not w_sat > 0.0:
-        return 0.0
-    tau0 = abs(phi) * math.hypot(b0 * c11, a0 * c22) / w_sat
-    if tau0 > spin_edge * (1.0 + 1e-9):
+    coordinate reaches ``spin_edge`` (tau = tau_0 mu_0 / mu, ``tau0`` the contact's at mu_0,
+    ``w_sat`` its saturation creepage there), or 0 where |tau_0| > spin_edge or it cannot be
+    computed (``w_sat`` 0) (as :func:`railcontact.falling_table.spin_floor`)."""
+    tau0 = abs(tau0)
+    if not w_sat > 0.0 or tau0 > spin_edge * (1.0 + 1e-9):
         return 0.0
     return mu0 * tau0 / (spin_edge * (1.0 - 1e-9))
 
@@ -291,9 +287,16 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     inv = 1.0 / (normal_load * w_mean) if has_slip else 0.0
     s_cap = 0.5 * fmax / max(scale, 1.0)
     kap_cap = 1e300 / max(p2, 1.0) / (max(p3, 1.0) if kind == 1 else 1.0)
-    mu = _law(kind, p0, p1, p2, p3, tab, 0.0)
-    mu_f = _spin_floor(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu, buf[7],
-                       buf[4], buf[5], model[1])
+    mu0 = _law(kind, p0, p1, p2, p3, tab, 0.0)
+    mu = mu0
+    # the contact's table coordinates at mu_0: for the spin floor and the correction table
+    nu = buf[7]
+    w_sat = saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0, nu)
+    root_ab, tau, s_c, theta = 0.0, 0.0, 0.0, 0.0
+    if w_sat > 0.0:
+        root_ab, _, _, _, tau, _, _, _, s_c, theta = table_coordinates(
+            xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
+    mu_f = _spin_floor(mu0, tau, w_sat, model[1])
     for step in range(steps + 1):
         mu_t = _table_mu(mu, mu_f, model[2])
         if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu_t,
@@ -332,15 +335,9 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     out[0] = res[0] - weight * cx
     out[1] = res[1] - weight * cy
     out[2] = res[2]
-    mu0 = _law(kind, p0, p1, p2, p3, tab, 0.0)
     if corr.shape[0] > 0 and has_slip:
         m_ratio, kappa = _law_shape(kind, p0, p1, p2, p3, tab)
-        nu = buf[7]
-        w_sat = saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0,
-                                     nu)
         if m_ratio < 1.0 and w_sat > 0.0:
-            root_ab, _, _, _, tau, _, _, _, s_c, theta = table_coordinates(
-                xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
             p_max = 1.5 * normal_load / (math.pi * a0 * b0)
             shear = youngs_modulus / (2.0 * (1.0 + nu))
             kn = min(kappa, 1e300) * mu0 * p_max / shear
