@@ -8,11 +8,11 @@ The shipped file is the package data ``fmu_src/railcontact/data/falling_correcti
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
 not one of the shipped ``tables/``: two of its axes are linear (nu and mu_k/mu_0, a material's
 and a law's constants, with 2 and 3 nodes), where the tables' format, which the C and Fortran
-readers take, is cubic along every axis. About 2.5 h of exact solves on 2 cores (2026-11-28:
+readers take, is cubic along every axis. About 3 h of exact solves on 2 cores (2026-11-28:
 65 min for 13 tau nodes, 20 min for the two added later, 37 min for the nu node 0.25;
-2026-11-29: 40 min for five more tau nodes), most of it the cases of the most
-strongly falling laws that the exact solver does not converge on (each runs to its iteration
-limit), then seconds for the model at the nodes.
+2026-11-29: 40 min for five more tau nodes, 33 min for the ln(a0/b0) node), most of it the
+cases of the most strongly falling laws that the exact solver does not converge on (each runs
+to its iteration limit), then seconds for the model at the nodes.
 
 What is tabulated, at every node of (ln(a0/b0), nu, s, theta, tau, mu_k/mu_0, kappa mu_0 p0/G)
 (the exact table's coordinates of :func:`railcontact.exact_table.exact_table_coordinates`,
@@ -39,16 +39,18 @@ each file saved as soon as it is done; running the same command again computes o
 missing:
 
 1. the exact solves (the hours): each (ln(a0/b0), nu, tau) block of nodes is one chunk
-   ``exact_<i_g>_<i_nu>_tau<tau>.npy``. The hash covers the solver and the nodes of every axis
-   but tau; a chunk's file is named by its tau node, so that a tau node added to
-   :data:`NODES` costs only its own chunks;
+   ``exact_g<ln(a0/b0)>_<i_nu>_tau<tau>.npy``. The hash covers the solver and the nodes of
+   every axis but ln(a0/b0) and tau; a chunk's file is named by those two nodes' values, so
+   that a node of either added to :data:`NODES` costs only its own chunks (since 2026-11-29;
+   the chunks before were named by the index of their ln(a0/b0) node and were copied to the
+   new names, the values unchanged);
 2. the model at the nodes (7-11 s for the whole command on 2 cores, 2026-11-28, since the
    model keeps the table's spin coordinate on its axis,
    :func:`railcontact.falling_table.spin_floor`; 30 min before, when the nodes of large
    spin and low mu_e took the exact solver beyond that axis), one file per tau node named
-   by the model's hash (the code of :func:`railcontact.falling_table.falling_friction_table`,
-   ``spin_floor`` and ``table_mu`` and the module's constants): a changed
-   model costs this stage only, not the exact solves.
+   by the ln(a0/b0) nodes and the model's hash (the code of
+   :func:`railcontact.falling_table.falling_friction_table`, ``spin_floor`` and ``table_mu``
+   and the module's constants): a changed model costs this stage only, not the exact solves.
 
 The table is the difference of the two. (The shipped file's exact solves were made by an
 earlier builder that kept the difference to the model of the time; they were recovered as
@@ -81,9 +83,15 @@ __all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
 #: 13 % of mu_0 N between tau 1.25 and 1.75; 1.125, 1.375, 1.625, 1.875 and 2.25 added
 #: 2026-11-29 (that rise sits between tau 1.3 and 2.1 as a0/b0 and the law vary, some 0.4
 #: wide: the spline along tau missed by up to 0.8 % across it with nodes 0.25 apart);
-#: kappa in squares (the correction rises fast from kappa = 0).
+#: kappa in squares (the correction rises fast from kappa = 0); ln(a0/b0) = -0.75 ln 5
+#: (a0/b0 0.30) added 2026-11-29: with large spin the correction changes from 2 % to 7-9 % of
+#: mu_0 N between a0/b0 0.2 and 0.45, and the spline along ln(a0/b0) missed a random case
+#: (seed 20's case 98, pure spin, a0/b0 0.26, tau -2.9) by 2.2 % (0.4 % with the node). Its
+#: mirror node 0.75 ln 5 (a0/b0 3.34, solved too) gained nothing over 7,482 random cases
+#: (seeds 11-60: within 1 % 7,463 against 7,464 without it, max 2.12 against 2.20 %) and took
+#: a case beside the unconverged nodes (seed 14's case 7) from 0.14 to 1.52 %: left out.
 NODES = {
-    "log_aspect_ratio": np.log(5.0) * np.linspace(-1.0, 1.0, 5),
+    "log_aspect_ratio": np.log(5.0) * np.array([-1.0, -0.75, -0.5, 0.0, 0.5, 1.0]),
     "poisson_ratio": np.array([0.0, 0.25, 0.5]),
     "creepage_coordinate": np.array([0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
     "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
@@ -224,26 +232,30 @@ def _model_hash():
 
 
 def _hash():
-    """The work directory's hash: the solver and every axis but tau, whose nodes name the
-    chunks (a tau node added later reuses every chunk computed before)."""
+    """The work directory's hash: the solver and every axis but ln(a0/b0) and tau, whose
+    nodes name the chunks (a node of either added later reuses every chunk computed
+    before)."""
     h = hashlib.sha256(SOLVER.encode())
     for k, v in NODES.items():
-        if k != "spin_coordinate":
+        if k not in ("log_aspect_ratio", "spin_coordinate"):
             h.update(k.encode())
             h.update(np.asarray(v, dtype=float).tobytes())
     return h.hexdigest()[:12]
 
 
 def _chunk(workdir, i_g, i_nu, i_tau):
-    """The file of one chunk of exact solves: named by its tau node's value."""
+    """The file of one chunk of exact solves: named by its ln(a0/b0) and tau nodes' values."""
+    lg = float(NODES["log_aspect_ratio"][i_g])
     tau = float(NODES["spin_coordinate"][i_tau])
-    return Path(workdir) / f"exact_{i_g}_{i_nu}_tau{tau!r}.npy"
+    return Path(workdir) / f"exact_g{lg!r}_{i_nu}_tau{tau!r}.npy"
 
 
 def _model_chunk(workdir, i_tau):
-    """The file of the model at one tau node's nodes (named by the model's hash too)."""
+    """The file of the model at one tau node's nodes (named by the model's hash and the
+    ln(a0/b0) nodes' too)."""
     tau = float(NODES["spin_coordinate"][i_tau])
-    return Path(workdir) / f"model_{_model_hash()}_tau{tau!r}.npy"
+    lg = hashlib.sha256(np.asarray(NODES["log_aspect_ratio"], dtype=float).tobytes())
+    return Path(workdir) / f"model_{_model_hash()}_g{lg.hexdigest()[:6]}_tau{tau!r}.npy"
 
 
 def _save(path, vals):

@@ -1,0 +1,94 @@
+"""The falling-friction correction table's builder (tablegen.falling_correction): resumable
+chunks, and nodes added later along ln(a0/b0) or tau costing only their own chunks.
+
+The exact solves (hours) are replaced by a cheap function of the node here; what is checked
+is the bookkeeping: which chunks a run computes, that a resumed or extended build reuses
+what is there, and that the written file holds the exact values minus the model's.
+"""
+
+import numpy as np
+import pytest
+
+netCDF4 = pytest.importorskip("netCDF4")
+pytest.importorskip("xarray")
+
+import tablegen.falling_correction as fc  # noqa: E402
+
+
+def _small_nodes(log_aspect_ratio=(-1.0, -0.3, 0.4, 1.0), spin_coordinate=(0.0, 1.0, 2.0, 4.0)):
+    return {
+        "log_aspect_ratio": np.array(log_aspect_ratio),
+        "poisson_ratio": np.array([0.0, 0.5]),
+        "creepage_coordinate": np.array([0.0, 0.3, 0.6, 1.0]),
+        "creepage_angle": np.linspace(-np.pi, np.pi, 5)[:-1],
+        "spin_coordinate": np.array(spin_coordinate),
+        "friction_ratio": np.array([0.3, 0.65, 1.0]),
+        "friction_decay_number": np.array([0.0, 0.5, 1.125, 2.0]),
+    }
+
+
+def _exact(lg, nu, s, th, tau, m, kn):
+    """A stand-in for the exact solve: smooth in the node, NaN at one (an unconverged
+    node)."""
+    if m == 0.3 and kn == 2.0 and tau == 4.0 and s == 0.3 and th == 0.0:
+        return np.full(3, np.nan)
+    return np.array([0.01 * lg + 0.02 * s, 0.003 * tau * (1.0 - m), 0.001 * kn + 0.002 * nu])
+
+
+def _model(lg, nu, s, th, tau, m, kn):
+    return np.stack([0.001 * np.asarray(lg), 0.0 * np.asarray(nu), 0.0005 * np.asarray(kn)])
+
+
+@pytest.fixture
+def builder(monkeypatch):
+    monkeypatch.setattr(fc, "NODES", _small_nodes())
+    monkeypatch.setattr(fc, "exact_point", _exact)
+    monkeypatch.setattr(fc, "model_points", _model)
+    return monkeypatch
+
+
+def test_build_resumes_and_writes_exact_minus_model(builder, tmp_path):
+    chunks = 4 * 2 * 4          # (ln(a0/b0), nu, tau) blocks
+    done, missing, path = fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc",
+                                   limit=5)
+    assert (done, missing, path) == (5, chunks - 5, None)
+    done, missing, path = fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    # the 27 missing chunks, then the model at the 4 tau nodes
+    assert (done, missing, path) == (chunks - 5 + 4, 0, tmp_path / "t.nc")
+    with netCDF4.Dataset(path) as ds:
+        vals = np.stack([np.ma.filled(ds.variables[v][:].astype(float), np.nan)
+                         for v in fc.VARIABLES])
+        assert ds.n_unconverged == 4 * 2     # (one node per ln(a0/b0) and nu)
+        assert ds.grid_hash == fc._hash()
+    n = fc.NODES
+    # a node that is solved: (lg, nu, s, theta, tau, m, kn) indices (1, 1, 2, 3, 2, 1, 2)
+    i = (1, 1, 2, 3, 2, 1, 2)
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None), *i)],
+                               _exact(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
+    # the known nodes are 0: Coulomb (mu_k/mu_0 = 1, kappa = 0) and s = 1
+    assert np.all(vals[..., 2, :] == 0.0) and np.all(vals[..., 0] == 0.0)
+    assert np.all(vals[:, :, :, 3] == 0.0)
+    assert np.isnan(vals[0, :, :, 1, 2, 3, 0, 3]).all()     # the unconverged node
+
+
+@pytest.mark.parametrize("axis, nodes", [
+    ("log_aspect_ratio", (-1.0, -0.6, -0.3, 0.4, 1.0)),
+    ("spin_coordinate", (0.0, 1.0, 1.5, 2.0, 4.0)),
+])
+def test_a_node_added_later_costs_only_its_own_chunks(builder, tmp_path, axis, nodes):
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    first = fc._hash()
+    kw = {axis: nodes}
+    builder.setattr(fc, "NODES", _small_nodes(**kw))
+    assert fc._hash() == first                  # the same work directory
+    done, missing, path = fc.build(tmp_path / "w", workers=1, output=tmp_path / "t2.nc")
+    # the new node's (nu x tau) or (ln(a0/b0) x nu) chunks, then the model at every tau
+    # node (its file is named by the ln(a0/b0) nodes too)
+    new_chunks = 2 * 4
+    n_tau = fc.NODES["spin_coordinate"].size
+    model = n_tau if axis == "log_aspect_ratio" else 1
+    assert (done, missing) == (new_chunks + model, 0)
+    with netCDF4.Dataset(path) as ds:
+        assert ds.dimensions[axis].size == 5
