@@ -86,10 +86,10 @@ __all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
 #: kappa in squares (the correction rises fast from kappa = 0); ln(a0/b0) = -0.75 ln 5
 #: (a0/b0 0.30) added 2026-11-29: with large spin the correction changes from 2 % to 7-9 % of
 #: mu_0 N between a0/b0 0.2 and 0.45, and the spline along ln(a0/b0) missed a random case
-#: (seed 20's case 98, pure spin, a0/b0 0.26, tau -2.9) by 2.2 % (0.4 % with the node). Its
+#: (seed 20's case 98, pure spin, a0/b0 0.26, tau -2.9) by 2.2 % (0.31 % with the node). Its
 #: mirror node 0.75 ln 5 (a0/b0 3.34, solved too) gained nothing over 7,482 random cases
 #: (seeds 11-60: within 1 % 7,463 against 7,464 without it, max 2.12 against 2.20 %) and took
-#: a case beside the unconverged nodes (seed 14's case 7) from 0.14 to 1.52 %: left out.
+#: a case beside the unconverged nodes (seed 14's case 7) from 0.19 to 1.52 %: left out.
 NODES = {
     "log_aspect_ratio": np.log(5.0) * np.array([-1.0, -0.75, -0.5, 0.0, 0.5, 1.0]),
     "poisson_ratio": np.array([0.0, 0.25, 0.5]),
