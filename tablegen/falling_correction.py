@@ -32,7 +32,8 @@ share: the model's limit is exact, 0); at s = 0 theta is void (one solve per the
 negative tau are the mirror images (y -> -y: theta -> -theta, tau -> -tau, T_y and M_z change
 sign), made by the reader. A case the exact solver does not converge on is stored as NaN and
 filled when the spline is fitted (:func:`railcontact.falling_table._filled`: along theta,
-then the line along mu_k/mu_0; the table records how many).
+then the line along the kappa number, then the line along mu_k/mu_0; the table records how
+many).
 
 Resumable, in two stages under the work directory (``<workdir>/falling_correction-<hash>/``),
 each file saved as soon as it is done; running the same command again computes only what is

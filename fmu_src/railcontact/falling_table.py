@@ -568,10 +568,9 @@ def _filled(vals, friction_ratio, friction_decay_number):
     overshoots where the exact correction flattens towards mu_k/mu_0 0.3: seed 11's case
     46, 1.04 % -> 0.69 %). Filled with 0 (before 2026-11-29), they pulled converged cases at
     mu_k/mu_0 0.41-0.6 by up to 6.6 % of mu_0 N. A fill is a middle course, not the truth:
-    where the
-    solver does not converge the problem is hard or non-unique (continuation along the kappa
-    number from converged neighbours loses convergence too, between kappa numbers 1.375 and
-    1.875 on four such nodes).
+    where the solver does not converge the problem is hard or non-unique (continuation along
+    the kappa number from converged neighbours loses convergence too, between kappa numbers
+    1.375 and 1.875 on four such nodes).
     """
     vals = vals.copy()
     for _ in range(12):
@@ -584,15 +583,19 @@ def _filled(vals, friction_ratio, friction_decay_number):
             mean = np.nanmean(nb, axis=0)
         vals = np.where(bad, mean, vals)
     r = np.sqrt(np.asarray(friction_decay_number, dtype=float))
-    for j in range(2, r.size):
-        w = (r[j] - r[j - 1]) / (r[j - 1] - r[j - 2])
-        line = vals[..., j - 1] + w * (vals[..., j - 1] - vals[..., j - 2])
-        vals[..., j] = np.where(np.isnan(vals[..., j]), line, vals[..., j])
+    for j in range(2, r.size):          # (the last axis)
+        _fill_by_line(vals[..., j], vals[..., j - 1], vals[..., j - 2], r[j], r[j - 1],
+                      r[j - 2])
     m = np.asarray(friction_ratio, dtype=float)
-    w = (m[0] - m[1]) / (m[2] - m[1])
-    line = vals[..., 1, :] + w * (vals[..., 2, :] - vals[..., 1, :])
-    vals[..., 0, :] = np.where(np.isnan(vals[..., 0, :]), line, vals[..., 0, :])
+    _fill_by_line(vals[..., 0, :], vals[..., 1, :], vals[..., 2, :], m[0], m[1], m[2])
     return np.nan_to_num(vals, nan=0.0)
+
+
+def _fill_by_line(target, near, far, x, x_near, x_far):
+    """NaN of ``target`` (a view, in place), the node at ``x``, set to the straight line through
+    the nodes ``near`` at ``x_near`` and ``far`` at ``x_far``."""
+    line = near + (x - x_near) / (x_far - x_near) * (far - near)
+    target[...] = np.where(np.isnan(target), line, target)
 
 
 def _mirrored(vals, nodes):
