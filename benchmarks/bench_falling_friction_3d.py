@@ -69,29 +69,42 @@ LAW_KW = {}
 POLACH_SPEED = 30.0
 
 
-def cases(n, rng, law_kind="smooth"):
+def cases(n, rng, law_kind="smooth", region="all"):
     """The random cases: ``(args, law, tau, m, kn)``. ``law_kind="polach"``: Polach's law
     ``mu_0 ((1 - A) exp(-B w) + A)`` in the slip velocity w at :data:`POLACH_SPEED`, with
     ``A = m`` and ``B V = kn / (mu_0 p0 / G)`` (its slope at zero slip that of the smooth
-    law with the same m and kn)."""
+    law with the same m and kn). ``region="collapse"``: only where the stick zone collapses
+    with spin under a strong law, the fast path's hardest region (|tau| uniform in [1, 2.5],
+    the creepage coordinate's rho log-uniform in [0.02, 3] sqrt(1 + tau^2), 0 for a fifth,
+    mu_k/mu_0 in [0.3, 0.8], the kappa number in [0.5, 2])."""
     from railcontact.friction import PolachFriction  # noqa: PLC0415
 
     out = []
+    collapse = region == "collapse"
     for _ in range(n):
         g = math.exp(rng.uniform(math.log(0.2), math.log(5.0)))
         nu = rng.uniform(0.0, 0.5)
-        tau = 0.0 if rng.random() < 0.3 else (
-            math.exp(rng.uniform(math.log(0.1), math.log(10.0))) * rng.choice([-1.0, 1.0]))
-        rho = math.exp(rng.uniform(math.log(0.05), math.log(10.0))) * math.hypot(1.0, tau)
-        if rng.random() < 0.1:
-            rho = 0.0
+        if collapse:
+            tau = rng.uniform(1.0, 2.5) * rng.choice([-1.0, 1.0])
+            rho = math.exp(rng.uniform(math.log(0.02), math.log(3.0))) * math.hypot(1.0, tau)
+            if rng.random() < 0.2:
+                rho = 0.0
+        else:
+            tau = 0.0 if rng.random() < 0.3 else (
+                math.exp(rng.uniform(math.log(0.1), math.log(10.0))) * rng.choice([-1.0, 1.0]))
+            rho = math.exp(rng.uniform(math.log(0.05), math.log(10.0))) * math.hypot(1.0, tau)
+            if rng.random() < 0.1:
+                rho = 0.0
         theta = rng.uniform(-math.pi, math.pi)
         ph = exact_table_inverse(math.log(g), nu, float(creepage_coordinate(rho, tau)), theta,
                                  tau, REFERENCE_CONTACT)
         args = [float(ph[k]) for k in KEYS]
         shear = args[6] / (2.0 * (1.0 + nu))
         p0 = 1.5 * args[3] / (math.pi * args[4] * args[5])
-        m, kn = rng.uniform(0.3, 1.0), rng.uniform(0.0, 2.0)
+        if collapse:
+            m, kn = rng.uniform(0.3, 0.8), rng.uniform(0.5, 2.0)
+        else:
+            m, kn = rng.uniform(0.3, 1.0), rng.uniform(0.0, 2.0)
         law = SmoothFriction(args[8], m * args[8], kn / (args[8] * p0 / shear))
         if law_kind == "polach":
             law = PolachFriction(args[8], m, law.kappa / POLACH_SPEED)
@@ -252,6 +265,9 @@ def main(argv=None):
     ap.add_argument("--law", choices=("smooth", "polach"), default="smooth",
                     help="the sample's law (polach: only the candidates 'package' and "
                          "'coulomb' take it)")
+    ap.add_argument("--region", choices=("all", "collapse"), default="all",
+                    help="collapse: only where the stick zone collapses with spin under a "
+                         "strong law (|tau| 1-2.5; see cases)")
     opts = ap.parse_args(argv)
     if opts.law == "polach":
         LAW_KW["rolling_speed"] = POLACH_SPEED
@@ -264,7 +280,7 @@ def main(argv=None):
         seeds = [opts.seed]
     ref, kept, failed, n_cases, t0 = [], [], 0, 0, time.perf_counter()
     for seed in seeds:
-        data = cases(opts.n, np.random.default_rng(seed), opts.law)
+        data = cases(opts.n, np.random.default_rng(seed), opts.law, opts.region)
         n_cases += len(data)
         path = opts.cache.format(seed=seed) if opts.cache else ""
         cache = dict(np.load(path)) if path and Path(path).is_file() else {}

@@ -39,12 +39,16 @@ Resumable, in two stages under the work directory (``<workdir>/falling_correctio
 each file saved as soon as it is done; running the same command again computes only what is
 missing:
 
-1. the exact solves (the hours): each (ln(a0/b0), nu, tau) block of nodes is one chunk
-   ``exact_g<ln(a0/b0)>_<i_nu>_tau<tau>.npy``. The hash covers the solver and the nodes of
-   every axis but ln(a0/b0) and tau; a chunk's file is named by those two nodes' values, so
-   that a node of either added to :data:`NODES` costs only its own chunks (since 2026-11-29;
-   the chunks before were named by the index of their ln(a0/b0) node and were copied to the
-   new names, the values unchanged);
+1. the exact solves (the hours): each (ln(a0/b0), nu, tau, s) row of nodes (every theta,
+   mu_k/mu_0 and kappa number) is one chunk ``exact_g<ln(a0/b0)>_<i_nu>_tau<tau>_s<s>.npy``,
+   a (ln(a0/b0), nu, tau) block's missing rows one job. The hash covers the solver and the
+   nodes of every axis but :data:`CHUNK_AXES` (ln(a0/b0), tau and s); a chunk's file is
+   named by those three nodes' values, so that a node of any of them added to :data:`NODES`
+   costs only its own solves (since 2026-11-29: the chunks were first named by the index of
+   their ln(a0/b0) node, then by (ln(a0/b0), nu, tau) blocks of every s; each time they were
+   copied or split to the new names, the values unchanged; the tau node 0.75 then took
+   2.5 min on 2 cores, the rows of an s node 0.05 3 s a block at small spin but 20-70 s at
+   tau >= 1.25);
 2. the model at the nodes (7-11 s for the whole command on 2 cores, 2026-11-28, since the
    model keeps the table's spin coordinate on its axis,
    :func:`railcontact.falling_table.spin_floor`; 30 min before, when the nodes of large
@@ -74,7 +78,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
+__all__ = ["NODES", "AXES", "CHUNK_AXES", "exact_row", "model_points", "build"]
 
 #: Nodes of the computed grid (tau >= 0; the reader mirrors tau < 0). Along s the creepage
 #: coordinate (2/pi) atan(rho / w), denser at small s, where spin dominates and the model's
@@ -91,12 +95,17 @@ __all__ = ["NODES", "AXES", "exact_block", "model_points", "build"]
 #: mirror node 0.75 ln 5 (a0/b0 3.34, solved too) gained nothing over 7,482 random cases
 #: (seeds 11-60: within 1 % 7,463 against 7,464 without it, max 2.12 against 2.20 %) and took
 #: a case beside the unconverged nodes (seed 14's case 7) from 0.19 to 1.52 %: left out.
+#: tau = 0.75 added 2026-11-29 with the model's blend with spin
+#: (railcontact.falling_table.SPIN_BLEND, tau 0.75-1.25): the nodes 0.5 and 1 apart missed a
+#: case inside the blend by 1.33 % (1.03 % with the node). The misses left include the spline
+#: along s between 0 and 0.1 with spin (up to 1.6 % of mu_0 N at s 0.04): an s node 0.05
+#: is the next step (its rows are being solved; not in this grid yet).
 NODES = {
     "log_aspect_ratio": np.log(5.0) * np.array([-1.0, -0.75, -0.5, 0.0, 0.5, 1.0]),
     "poisson_ratio": np.array([0.0, 0.25, 0.5]),
     "creepage_coordinate": np.array([0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
     "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
-    "spin_coordinate": np.array([0.0, 0.5, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875,
+    "spin_coordinate": np.array([0.0, 0.5, 0.75, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875,
                                  2.0, 2.25, 2.5, 3.0, 4.0, 5.5, 7.5, 10.0, 14.0, 20.0]),
     "friction_ratio": np.array([0.3, 0.65, 1.0]),
     "friction_decay_number": np.array([0.0, 0.125, 0.5, 1.125, 2.0]),
@@ -149,25 +158,23 @@ def _known(m, kn, s):
     return (np.asarray(m) >= 1.0) | (np.asarray(kn) == 0.0) | (np.asarray(s) >= 1.0)
 
 
-def exact_block(i_g, i_nu, i_tau):
-    """The exact theory on one (ln(a0/b0), nu, tau) block of nodes: array (3, n_s, n_theta,
-    n_m, n_kn) as :func:`exact_point` (0 at the known nodes; s = 0 one solve per theta
-    row)."""
+def exact_row(i_g, i_nu, i_tau, i_s):
+    """The exact theory on one (ln(a0/b0), nu, tau, s) row of nodes: array (3, n_theta, n_m,
+    n_kn) as :func:`exact_point` (0 at the known nodes; at s = 0 one solve for every theta)."""
     warnings.simplefilter("ignore")
     n = NODES
-    lg, nu, tau = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
-                   n["spin_coordinate"][i_tau])
-    out = np.zeros((3, n["creepage_coordinate"].size, n["creepage_angle"].size,
-                    n["friction_ratio"].size, n["friction_decay_number"].size))
-    for i_s, s in enumerate(n["creepage_coordinate"]):
-        for i_t, th in enumerate(n["creepage_angle"]):
-            if s == 0.0 and i_t > 0:
-                out[:, i_s, i_t] = out[:, i_s, 0]
-                continue
-            for i_m, m in enumerate(n["friction_ratio"]):
-                for i_k, kn in enumerate(n["friction_decay_number"]):
-                    if not _known(m, kn, s):
-                        out[:, i_s, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
+    lg, nu, tau, s = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
+                      n["spin_coordinate"][i_tau], n["creepage_coordinate"][i_s])
+    out = np.zeros((3, n["creepage_angle"].size, n["friction_ratio"].size,
+                    n["friction_decay_number"].size))
+    for i_t, th in enumerate(n["creepage_angle"]):
+        if s == 0.0 and i_t > 0:
+            out[:, i_t] = out[:, 0]
+            continue
+        for i_m, m in enumerate(n["friction_ratio"]):
+            for i_k, kn in enumerate(n["friction_decay_number"]):
+                if not _known(m, kn, s):
+                    out[:, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
     return out
 
 
@@ -223,40 +230,57 @@ def _model_hash():
     from railcontact import falling_table as ft
 
     h = hashlib.sha256()
-    for f in (ft.falling_friction_table, ft.spin_floor, ft.table_mu):
+    for f in (ft.falling_friction_table, ft.spin_floor, ft.table_mu, ft._floor_at,
+              ft.static_spin_coordinate, ft.spin_blend_weight):
         fun = ast.parse(inspect.getsource(f)).body[0]
         fun.body = fun.body[1:]     # (its code: neither the docstring nor comments count)
         h.update(ast.unparse(fun).encode())
     h.update(repr((ft.EFFECTIVE_MU_STEPS, ft.GAUSS_POINTS, ft.SLIP_SHARE_MIN,
-                   ft.SPIN_POLE_SMOOTHING, ft.SPIN_COORDINATE_EDGE, ft.TABLE_MU_BLEND)).encode())
+                   ft.SPIN_POLE_SMOOTHING, ft.SPIN_COORDINATE_EDGE, ft.TABLE_MU_BLEND,
+                   ft.SPIN_BLEND)).encode())
     return h.hexdigest()[:12]
 
 
+#: The axes whose nodes name the chunks of exact solves (a node added to one of them later
+#: costs only its own solves); the others are in the work directory's hash.
+CHUNK_AXES = ("log_aspect_ratio", "spin_coordinate", "creepage_coordinate")
+
+
 def _hash():
-    """The work directory's hash: the solver and every axis but ln(a0/b0) and tau, whose
-    nodes name the chunks (a node of either added later reuses every chunk computed
+    """The work directory's hash: the solver and every axis but :data:`CHUNK_AXES`, whose
+    nodes name the chunks (a node of one of them added later reuses every chunk computed
     before)."""
     h = hashlib.sha256(SOLVER.encode())
     for k, v in NODES.items():
-        if k not in ("log_aspect_ratio", "spin_coordinate"):
+        if k not in CHUNK_AXES:
             h.update(k.encode())
             h.update(np.asarray(v, dtype=float).tobytes())
     return h.hexdigest()[:12]
 
 
-def _chunk(workdir, i_g, i_nu, i_tau):
-    """The file of one chunk of exact solves: named by its ln(a0/b0) and tau nodes' values."""
+def _chunk(workdir, i_g, i_nu, i_tau, i_s):
+    """The file of one chunk of exact solves, a row of :func:`exact_row`: named by its
+    ln(a0/b0), tau and s nodes' values."""
     lg = float(NODES["log_aspect_ratio"][i_g])
     tau = float(NODES["spin_coordinate"][i_tau])
-    return Path(workdir) / f"exact_g{lg!r}_{i_nu}_tau{tau!r}.npy"
+    s = float(NODES["creepage_coordinate"][i_s])
+    return Path(workdir) / f"exact_g{lg!r}_{i_nu}_tau{tau!r}_s{s!r}.npy"
+
+
+def _block_missing(workdir, i_g, i_nu, i_tau):
+    """The s rows of a (ln(a0/b0), nu, tau) block whose chunk is not there yet."""
+    return [i_s for i_s in range(NODES["creepage_coordinate"].size)
+            if not _chunk(workdir, i_g, i_nu, i_tau, i_s).exists()]
 
 
 def _model_chunk(workdir, i_tau):
     """The file of the model at one tau node's nodes (named by the model's hash and the
-    ln(a0/b0) nodes' too)."""
+    ln(a0/b0) and s nodes' too)."""
     tau = float(NODES["spin_coordinate"][i_tau])
-    lg = hashlib.sha256(np.asarray(NODES["log_aspect_ratio"], dtype=float).tobytes())
-    return Path(workdir) / f"model_{_model_hash()}_g{lg.hexdigest()[:6]}_tau{tau!r}.npy"
+    nodes = hashlib.sha256()
+    for k in ("log_aspect_ratio", "creepage_coordinate"):
+        nodes.update(np.asarray(NODES[k], dtype=float).tobytes())
+    return Path(workdir) / f"model_{_model_hash()}_g{nodes.hexdigest()[:6]}_tau{tau!r}.npy"
 
 
 def _save(path, vals):
@@ -266,18 +290,20 @@ def _save(path, vals):
 
 
 def _work(workdir, i_g, i_nu, i_tau):
-    path = _chunk(workdir, i_g, i_nu, i_tau)
-    if not path.exists():
-        t = time.perf_counter()
-        _save(path, exact_block(i_g, i_nu, i_tau))
-        return path.name, time.perf_counter() - t
-    return path.name, 0.0
+    """The missing rows of one (ln(a0/b0), nu, tau) block, each saved when done."""
+    t = time.perf_counter()
+    for i_s in _block_missing(workdir, i_g, i_nu, i_tau):
+        _save(_chunk(workdir, i_g, i_nu, i_tau, i_s), exact_row(i_g, i_nu, i_tau, i_s))
+    name = _chunk(workdir, i_g, i_nu, i_tau, 0).name.rsplit("_s", 1)[0]
+    return name, time.perf_counter() - t
 
 
 def _exact_tau(workdir, i_tau):
     """The exact solves of one tau node: (3, n_g, n_nu, n_s, n_theta, n_m, n_kn)."""
     n = NODES
-    return np.stack([np.stack([np.load(_chunk(workdir, i, j, i_tau))
+    return np.stack([np.stack([np.stack([np.load(_chunk(workdir, i, j, i_tau, k))
+                                         for k in range(n["creepage_coordinate"].size)],
+                                        axis=1)
                                for j in range(n["poisson_ratio"].size)], axis=1)
                      for i in range(n["log_aspect_ratio"].size)], axis=1)
 
@@ -365,16 +391,17 @@ def write(values, path, seconds=None):
 
 
 def build(workdir=None, workers=2, output=None, limit=None):
-    """Compute the missing chunks of exact solves (``limit``: at most that many in this run),
-    then the model at the nodes (per tau node, kept under the model's hash), and, once all
-    are there, write the file. Returns (n_done, n_missing, path or None)."""
+    """Compute the missing chunks of exact solves, a (ln(a0/b0), nu, tau) block's missing s
+    rows a job (``limit``: at most that many blocks in this run), then the model at the nodes
+    (per tau node, kept under the model's hash), and, once all are there, write the file.
+    Returns (n_done, n_missing, path or None): jobs done and blocks still missing."""
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
     workdir.mkdir(parents=True, exist_ok=True)
     n = NODES
     n_tau = n["spin_coordinate"].size
-    todo = [(i, j, k) for k in range(n_tau)
-            for i in range(n["log_aspect_ratio"].size) for j in range(n["poisson_ratio"].size)
-            if not _chunk(workdir, i, j, k).exists()]
+    blocks = [(i, j, k) for k in range(n_tau) for i in range(n["log_aspect_ratio"].size)
+              for j in range(n["poisson_ratio"].size)]
+    todo = [b for b in blocks if _block_missing(workdir, *b)]
     if limit is not None:
         todo = todo[:limit]
     t0 = time.perf_counter()
@@ -392,9 +419,7 @@ def build(workdir=None, workers=2, output=None, limit=None):
 
     if todo:
         run(_work, todo)
-    missing = sum(not _chunk(workdir, i, j, k).exists()
-                  for i in range(n["log_aspect_ratio"].size)
-                  for j in range(n["poisson_ratio"].size) for k in range(n_tau))
+    missing = sum(bool(_block_missing(workdir, *b)) for b in blocks)
     if missing:
         return done, missing, None
     models = [(k,) for k in range(n_tau) if not _model_chunk(workdir, k).exists()]

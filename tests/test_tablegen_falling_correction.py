@@ -1,5 +1,5 @@
 """The falling-friction correction table's builder (tablegen.falling_correction): resumable
-chunks, and nodes added later along ln(a0/b0) or tau costing only their own chunks.
+chunks, and nodes added later along ln(a0/b0), tau or s costing only their own solves.
 
 The exact solves (hours) are replaced by a cheap function of the node here; what is checked
 is the bookkeeping: which chunks a run computes, that a resumed or extended build reuses
@@ -15,11 +15,12 @@ pytest.importorskip("xarray")
 import tablegen.falling_correction as fc  # noqa: E402
 
 
-def _small_nodes(log_aspect_ratio=(-1.0, -0.3, 0.4, 1.0), spin_coordinate=(0.0, 1.0, 2.0, 4.0)):
+def _small_nodes(log_aspect_ratio=(-1.0, -0.3, 0.4, 1.0), spin_coordinate=(0.0, 1.0, 2.0, 4.0),
+                creepage_coordinate=(0.0, 0.3, 0.6, 1.0)):
     return {
         "log_aspect_ratio": np.array(log_aspect_ratio),
         "poisson_ratio": np.array([0.0, 0.5]),
-        "creepage_coordinate": np.array([0.0, 0.3, 0.6, 1.0]),
+        "creepage_coordinate": np.array(creepage_coordinate),
         "creepage_angle": np.linspace(-np.pi, np.pi, 5)[:-1],
         "spin_coordinate": np.array(spin_coordinate),
         "friction_ratio": np.array([0.3, 0.65, 1.0]),
@@ -76,19 +77,38 @@ def test_build_resumes_and_writes_exact_minus_model(builder, tmp_path):
 @pytest.mark.parametrize("axis, nodes", [
     ("log_aspect_ratio", (-1.0, -0.6, -0.3, 0.4, 1.0)),
     ("spin_coordinate", (0.0, 1.0, 1.5, 2.0, 4.0)),
+    ("creepage_coordinate", (0.0, 0.15, 0.3, 0.6, 1.0)),
 ])
 def test_a_node_added_later_costs_only_its_own_chunks(builder, tmp_path, axis, nodes):
     fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
     first = fc._hash()
+    before = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "w").rglob("exact_*.npy")}
     kw = {axis: nodes}
     builder.setattr(fc, "NODES", _small_nodes(**kw))
     assert fc._hash() == first                  # the same work directory
     done, missing, path = fc.build(tmp_path / "w", workers=1, output=tmp_path / "t2.nc")
-    # the new node's (nu x tau) or (ln(a0/b0) x nu) chunks, then the model at every tau
-    # node (its file is named by the ln(a0/b0) nodes too)
-    new_chunks = 2 * 4
+    after = {p.name: p.stat().st_mtime_ns for p in (tmp_path / "w").rglob("exact_*.npy")}
+    # every chunk of before is kept as it was; the new ones are the new node's rows:
+    # (nu x tau x s) for ln(a0/b0), (ln(a0/b0) x nu x s) for tau, (ln(a0/b0) x nu x tau)
+    # for s, each a row of (theta, m, kappa) nodes
+    assert {k: after[k] for k in before} == before
+    assert len(after) - len(before) == 2 * 4 * 4
+    # jobs: the blocks with a new row (a new ln(a0/b0) or tau node's 2 x 4, every block
+    # for a new s node), then the model at every tau node (its file is named by the
+    # ln(a0/b0) and s nodes too) or at the new tau node only
     n_tau = fc.NODES["spin_coordinate"].size
-    model = n_tau if axis == "log_aspect_ratio" else 1
-    assert (done, missing) == (new_chunks + model, 0)
+    jobs = 4 * 2 * 4 if axis == "creepage_coordinate" else 2 * 4
+    model = 1 if axis == "spin_coordinate" else n_tau
+    assert (done, missing) == (jobs + model, 0)
     with netCDF4.Dataset(path) as ds:
         assert ds.dimensions[axis].size == 5
+        vals = np.stack([np.ma.filled(ds.variables[v][:].astype(float), np.nan)
+                         for v in fc.VARIABLES])
+    # the new node's values are the stand-in's there (a solved node of it)
+    n = fc.NODES
+    i = [1, 1, 1, 3, 1, 1, 2]
+    i[fc.AXES.index(axis)] = 1 if axis != "spin_coordinate" else 2
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None), *i)],
+                               _exact(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)

@@ -238,6 +238,14 @@ def _table_mu(mu, mu_f, blend):
 
 
 @njit(cache=True)
+def _spin_blend_weight(tau0, lo, hi):
+    """The quintic smoothstep from ``lo`` to ``hi`` at ``tau0`` (as
+    :func:`railcontact.falling_table.spin_blend_weight`)."""
+    t = min(max((tau0 - lo) / (hi - lo), 0.0), 1.0)
+    return t * t * t * (10.0 + t * (6.0 * t - 15.0))
+
+
+@njit(cache=True)
 def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1,
                     p2, p3, tab, corr, gauss, steps, share_min, model, out):
     """Falling friction on one contact buffer of the exact table, the law ``(kind, p0..p3,
@@ -249,8 +257,9 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     its magnitude and its magnitude smoothed over the spin pole: no allocation per call);
     ``steps``, ``share_min`` its fixed-point steps and least slip share, ``model`` its
     :data:`~railcontact.falling_table.SPIN_POLE_SMOOTHING`,
-    :data:`~railcontact.falling_table.SPIN_COORDINATE_EDGE` and
-    :data:`~railcontact.falling_table.TABLE_MU_BLEND` (arguments, not module constants:
+    :data:`~railcontact.falling_table.SPIN_COORDINATE_EDGE`,
+    :data:`~railcontact.falling_table.TABLE_MU_BLEND` and the two ends of
+    :data:`~railcontact.falling_table.SPIN_BLEND` (arguments, not module constants:
     numba's cache would keep a constant of another module frozen at its old value); the
     table is called at :func:`_table_mu` of mu, its force and moment scaled by mu over
     that. Writes ``out[:6] = (tx, ty, mz, stick_area_fraction,
@@ -297,6 +306,9 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
         root_ab, _, _, _, tau, _, _, _, s_c, theta = table_coordinates(
             xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
     mu_f = _spin_floor(mu0, tau, w_sat, model[1])
+    blend = _spin_blend_weight(abs(tau), model[3], model[4])
+    st0 = st1 = st2 = st3 = 0.0     # the Coulomb solution at mu_0 (the first step)
+    lam = 0.0
     for step in range(steps + 1):
         mu_t = _table_mu(mu, mu_f, model[2])
         if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu_t,
@@ -306,6 +318,14 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
         res[0] *= q
         res[1] *= q
         res[2] *= q
+        if step == 0:
+            st0, st1, st2, st3 = res[0], res[1], res[2], res[3]
+        if step == steps:   # the blend with spin (as the numpy function's step 2)
+            qs = blend * mu / mu0
+            res[0] = res[0] * (1.0 - blend) + st0 * qs
+            res[1] = res[1] * (1.0 - blend) + st1 * qs
+            res[2] = res[2] * (1.0 - blend) + st2 * qs
+            res[3] = res[3] * (1.0 - blend) + st3 * blend
         power = abs(res[0] * rx + res[1] * ry + res[2] * rp)
         share = min(max(1.0 - res[3], share_min), 1.0)
         lam = power * inv / (max(mu, tiny) * share)
