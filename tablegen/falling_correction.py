@@ -47,8 +47,9 @@ missing:
    costs only its own solves (since 2026-11-29: the chunks were first named by the index of
    their ln(a0/b0) node, then by (ln(a0/b0), nu, tau) blocks of every s; each time they were
    copied or split to the new names, the values unchanged; the tau node 0.75 then took
-   2.5 min on 2 cores, the rows of an s node 0.05 3 s a block at small spin but 20-70 s at
-   tau >= 1.25);
+   2.5 min on 2 cores, the s node 0.05 50 min (its second half with its nodes between two
+   unconverged ones were not
+   tried, :func:`_between_unconverged`));
 2. the model at the nodes (7-11 s for the whole command on 2 cores, 2026-11-28, since the
    model keeps the table's spin coordinate on its axis,
    :func:`railcontact.falling_table.spin_floor`; 30 min before, when the nodes of large
@@ -97,13 +98,14 @@ __all__ = ["NODES", "AXES", "CHUNK_AXES", "exact_row", "model_points", "build"]
 #: a case beside the unconverged nodes (seed 14's case 7) from 0.19 to 1.52 %: left out.
 #: tau = 0.75 added 2026-11-29 with the model's blend with spin
 #: (railcontact.falling_table.SPIN_BLEND, tau 0.75-1.25): the nodes 0.5 and 1 apart missed a
-#: case inside the blend by 1.33 % (1.03 % with the node). The misses left include the spline
-#: along s between 0 and 0.1 with spin (up to 1.6 % of mu_0 N at s 0.04): an s node 0.05
-#: is the next step (its rows are being solved; not in this grid yet).
+#: case inside the blend by 1.33 % (1.03 % with the node). s = 0.05 added 2026-11-29 too: the
+#: spline along s between 0 and 0.1 with spin missed by up to 1.6 % of mu_0 N at s 0.04
+#: (seeds 11-40: 4,483 within 1 % against 4,481 without it; seeds 41-60 max 1.31 against
+#: 1.83 %; seed 14's case 7, beside unconverged nodes, 0.17 against 1.005 %).
 NODES = {
     "log_aspect_ratio": np.log(5.0) * np.array([-1.0, -0.75, -0.5, 0.0, 0.5, 1.0]),
     "poisson_ratio": np.array([0.0, 0.25, 0.5]),
-    "creepage_coordinate": np.array([0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
+    "creepage_coordinate": np.array([0.0, 0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
     "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
     "spin_coordinate": np.array([0.0, 0.5, 0.75, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875,
                                  2.0, 2.25, 2.5, 3.0, 4.0, 5.5, 7.5, 10.0, 14.0, 20.0]),
@@ -158,9 +160,11 @@ def _known(m, kn, s):
     return (np.asarray(m) >= 1.0) | (np.asarray(kn) == 0.0) | (np.asarray(s) >= 1.0)
 
 
-def exact_row(i_g, i_nu, i_tau, i_s):
+def exact_row(i_g, i_nu, i_tau, i_s, skip=None):
     """The exact theory on one (ln(a0/b0), nu, tau, s) row of nodes: array (3, n_theta, n_m,
-    n_kn) as :func:`exact_point` (0 at the known nodes; at s = 0 one solve for every theta)."""
+    n_kn) as :func:`exact_point` (0 at the known nodes; at s = 0 one solve for every theta).
+    ``skip``: a boolean array (n_theta, n_m, n_kn) of nodes not attempted (NaN, as a node the
+    solver does not converge on)."""
     warnings.simplefilter("ignore")
     n = NODES
     lg, nu, tau, s = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
@@ -173,7 +177,11 @@ def exact_row(i_g, i_nu, i_tau, i_s):
             continue
         for i_m, m in enumerate(n["friction_ratio"]):
             for i_k, kn in enumerate(n["friction_decay_number"]):
-                if not _known(m, kn, s):
+                if _known(m, kn, s):
+                    continue
+                if skip is not None and skip[i_t, i_m, i_k]:
+                    out[:, i_t, i_m, i_k] = np.nan
+                else:
                     out[:, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
     return out
 
@@ -289,11 +297,30 @@ def _save(path, vals):
     os.replace(tmp, path)
 
 
+def _between_unconverged(workdir, i_g, i_nu, i_tau, i_s):
+    """The nodes of a row whose two neighbouring rows along s are both there and both
+    unconverged (NaN), or None: a row added later between two solved ones is not attempted
+    there. Such a solve runs to the solver's iteration limit and, measured on the s node 0.05
+    between 0 and 0.1 (2026-11-29, 4 blocks), failed at every such node too; it made those
+    blocks 3-8 times slower (14 s for a block without them, 45-112 s with 12 of them)."""
+    rows = []
+    for j in (i_s - 1, i_s + 1):
+        path = _chunk(workdir, i_g, i_nu, i_tau, j) if 0 <= j < NODES[
+            "creepage_coordinate"].size else None
+        if path is None or not path.exists():
+            return None
+        rows.append(np.isnan(np.load(path)[0]))
+    return rows[0] & rows[1]
+
+
 def _work(workdir, i_g, i_nu, i_tau):
-    """The missing rows of one (ln(a0/b0), nu, tau) block, each saved when done."""
+    """The missing rows of one (ln(a0/b0), nu, tau) block, each saved when done (nodes
+    between two unconverged ones along s not attempted: :func:`_between_unconverged`)."""
     t = time.perf_counter()
     for i_s in _block_missing(workdir, i_g, i_nu, i_tau):
-        _save(_chunk(workdir, i_g, i_nu, i_tau, i_s), exact_row(i_g, i_nu, i_tau, i_s))
+        skip = _between_unconverged(workdir, i_g, i_nu, i_tau, i_s)
+        _save(_chunk(workdir, i_g, i_nu, i_tau, i_s),
+              exact_row(i_g, i_nu, i_tau, i_s, skip))
     name = _chunk(workdir, i_g, i_nu, i_tau, 0).name.rsplit("_s", 1)[0]
     return name, time.perf_counter() - t
 

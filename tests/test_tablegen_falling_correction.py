@@ -33,6 +33,8 @@ def _exact(lg, nu, s, th, tau, m, kn):
     node)."""
     if m == 0.3 and kn == 2.0 and tau == 4.0 and s == 0.3 and th == 0.0:
         return np.full(3, np.nan)
+    if m == 0.65 and kn == 0.5 and tau == 2.0 and s in (0.3, 0.6) and th == 0.0:
+        return np.full(3, np.nan)       # (two along s: a node added between is not tried)
     return np.array([0.01 * lg + 0.02 * s, 0.003 * tau * (1.0 - m), 0.001 * kn + 0.002 * nu])
 
 
@@ -59,7 +61,7 @@ def test_build_resumes_and_writes_exact_minus_model(builder, tmp_path):
     with netCDF4.Dataset(path) as ds:
         vals = np.stack([np.ma.filled(ds.variables[v][:].astype(float), np.nan)
                          for v in fc.VARIABLES])
-        assert ds.n_unconverged == 4 * 2     # (one node per ln(a0/b0) and nu)
+        assert ds.n_unconverged == 4 * 2 * 3     # (3 nodes per ln(a0/b0) and nu)
         assert ds.grid_hash == fc._hash()
     n = fc.NODES
     # a node that is solved: (lg, nu, s, theta, tau, m, kn) indices (1, 1, 2, 3, 2, 1, 2)
@@ -78,6 +80,7 @@ def test_build_resumes_and_writes_exact_minus_model(builder, tmp_path):
     ("log_aspect_ratio", (-1.0, -0.6, -0.3, 0.4, 1.0)),
     ("spin_coordinate", (0.0, 1.0, 1.5, 2.0, 4.0)),
     ("creepage_coordinate", (0.0, 0.15, 0.3, 0.6, 1.0)),
+    ("creepage_coordinate", (0.0, 0.3, 0.45, 0.6, 1.0)),
 ])
 def test_a_node_added_later_costs_only_its_own_chunks(builder, tmp_path, axis, nodes):
     fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
@@ -106,9 +109,34 @@ def test_a_node_added_later_costs_only_its_own_chunks(builder, tmp_path, axis, n
                          for v in fc.VARIABLES])
     # the new node's values are the stand-in's there (a solved node of it)
     n = fc.NODES
+    new = [j for j, v in enumerate(n[axis]) if v in nodes and v not in _small_nodes()[axis]][0]
     i = [1, 1, 1, 3, 1, 1, 2]
-    i[fc.AXES.index(axis)] = 1 if axis != "spin_coordinate" else 2
+    i[fc.AXES.index(axis)] = new
     p = [n[k][j] for k, j in zip(fc.AXES, i)]
     np.testing.assert_allclose(vals[(slice(None), *i)],
                                _exact(*p) - _model(*[np.array(v) for v in p]),
                                rtol=1e-6, atol=1e-8)
+
+
+def test_a_node_between_two_unconverged_ones_along_s_is_not_tried(builder, tmp_path):
+    """A row of s added between two solved rows: where both neighbours did not converge, the
+    node is stored unconverged without a solve (the stand-in would converge there), and
+    filled like the others; every other node of the row is solved."""
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    builder.setattr(fc, "NODES", _small_nodes(creepage_coordinate=(0.0, 0.3, 0.45, 0.6, 1.0)))
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t2.nc")
+    workdir = next((tmp_path / "w").iterdir())
+    n = fc.NODES
+    i_tau = list(n["spin_coordinate"]).index(2.0)
+    for i_g in range(4):
+        for i_nu in range(2):
+            row = np.load(fc._chunk(workdir, i_g, i_nu, i_tau, 2))     # s = 0.45
+            # theta 0 is the third angle of linspace(-pi, pi, 5)[:-1]; (m, kn) (0.65, 0.5)
+            assert np.isnan(row[:, 2, 1, 1]).all()
+            assert np.isfinite(np.delete(row[0].reshape(-1), np.ravel_multi_index(
+                (2, 1, 1), row.shape[1:]))).all()
+            assert _exact(n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu], 0.45, 0.0,
+                          2.0, 0.65, 0.5)[0] == pytest.approx(
+                              0.01 * n["log_aspect_ratio"][i_g] + 0.02 * 0.45)
+    with netCDF4.Dataset(tmp_path / "t2.nc") as ds:
+        assert ds.n_unconverged == 4 * 2 * 4     # the 3 before and the one not tried
