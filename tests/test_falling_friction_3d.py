@@ -266,6 +266,27 @@ def test_steep_law_converges_or_names_the_case():
 # ------------------------------------------------------------------------------------------
 # method="exact_table" with a law: the fast path on the Coulomb table (falling_table)
 # ------------------------------------------------------------------------------------------
+def _scalar_values(table, args):
+    """``values(mu)`` of falling_table.falling_friction_table on one contact (``args``: the
+    eight inputs before the friction, floats): the Coulomb table's scalar path."""
+    def values(mu):
+        got = table.step_values(*args, float(mu), False)
+        return (got or table.step(*args, float(mu), False))[:5]
+
+    return values
+
+
+def _model(args, law):
+    """The model alone (falling_table.falling_friction_table, no correction table) on one case
+    of _case_of: ``(tx, ty, mz, stick_area_fraction, normalised_creepage, mu_effective)``."""
+    from railcontact.creep3d import load_exact_table
+    from railcontact.falling_table import falling_friction_table
+
+    a = tuple(args[:8])
+    return falling_friction_table(_scalar_values(load_exact_table(), a), *a[:6], law, args[8],
+                                  material=a[6:8])
+
+
 def _table(xi, eta, phi, law, contact=ROUND, **kw):
     return rc.creep_force_3d(xi, eta, phi, **contact, friction_coefficient=law,
                              method="exact_table", **kw)
@@ -341,11 +362,7 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     table = load_exact_table()
     args = (*case, N, 6e-3, 9e-3, E, NU)
     law = SmoothFriction(0.3, 0.1, 0.8 / SAT)
-
-    def values(mu):
-        got = table.step_values(*args, float(mu), False)
-        return (got or table.step(*args, float(mu), False))[:5]
-
+    values = _scalar_values(table, args)
     ref = falling_friction_table(values, *args[:6], law, 0.3, (E, NU, 0.1 / 0.3, 0.8 / SAT))
     got = falling_friction_table_smooth(table, *args, 0.3, 0.1, 0.8 / SAT, eager=True)
     assert got is not None
@@ -636,25 +653,10 @@ def test_stick_zone_with_a_law_follows_the_coulomb_solution_at_mu_0(case, tau):
     fast = rc.creep_solution_3d(*args[:8], law, method="exact_table")
     table = load_exact_table()
     stick = [float(table.creep_solution_3d(*args[:8], mu, sensitivities=False)
-                   .stick_area_fraction) for mu in (args[8], _mu_effective(args, law))]
+                   .stick_area_fraction) for mu in (args[8], float(_model(args, law)[5]))]
     assert abs(exact - stick[0]) < abs(exact - stick[1]), (exact, stick)
     assert stick[0] - stick[1] > 0.1               # (the two differ: the collapse region)
     assert abs(float(fast.stick_area_fraction) - exact) < 0.06
-
-
-def _mu_effective(args, law):
-    """The model's effective coefficient mu_e on one case (the numpy function, no table)."""
-    from railcontact.creep3d import load_exact_table
-    from railcontact.falling_table import falling_friction_table
-
-    table = load_exact_table()
-    a = tuple(args[:8])
-
-    def values(mu):
-        got = table.step_values(*a, float(mu), False)
-        return (got or table.step(*a, float(mu), False))[:5]
-
-    return float(falling_friction_table(values, *a[:6], law, args[8], material=a[6:8])[5])
 
 
 def test_model_is_smooth_through_the_spin_blend():
@@ -663,10 +665,6 @@ def test_model_is_smooth_through_the_spin_blend():
     mu_0 N inside the blend (measured 2.4e-4 and 1.6e-4 on POLE_CASE and the first
     COLLAPSE_CASES; a step of the size the blend takes, mu_e against mu_0 near the collapse,
     would be some 1e-2)."""
-    from railcontact.creep3d import load_exact_table
-    from railcontact.falling_table import falling_friction_table
-
-    table = load_exact_table()
     ts = np.linspace(0.5, 1.5, 81)
     for base in (POLE_CASE, COLLAPSE_CASES[0]):
         forces = []
@@ -674,13 +672,7 @@ def test_model_is_smooth_through_the_spin_blend():
             c = list(base)
             c[4] = np.sign(base[4]) * t
             args, law = _case_of(*c)
-            a = tuple(args[:8])
-
-            def values(mu, a=a):
-                got = table.step_values(*a, float(mu), False)
-                return (got or table.step(*a, float(mu), False))[:5]
-
-            r = falling_friction_table(values, *a[:6], law, args[8], material=a[6:8])
+            r = _model(args, law)
             forces.append((float(r[0]), float(r[1])))
         f = np.array(forces) / (args[8] * args[3])
         second = np.abs(np.diff(f, 2, axis=0)).max(axis=1)
@@ -745,9 +737,7 @@ def test_any_law_takes_the_compiled_path_on_its_table(case, monkeypatch):
     def smooth_like(s):
         return (0.3 - 0.1) / (1.0 + kappa * np.asarray(s, dtype=float)) + 0.1
 
-    def values(mu):
-        got = table.step_values(*args, float(mu), False)
-        return (got or table.step(*args, float(mu), False))[:5]
+    values = _scalar_values(table, args)
 
     for _ in range(SLAB_CALLS):     # (the contact's buffer: the table's ski rental)
         rc.creep_force_3d(*args, 0.3, method="exact_table")
