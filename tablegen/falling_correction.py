@@ -3,6 +3,7 @@ minus the package's fast model on the Coulomb exact table, over the law's normal
 parameters (issue 38; read by :mod:`railcontact.falling_table`).
 
     python -m tablegen.falling_correction build [--workers 2] [--workdir DIR] [--output F]
+    python -m tablegen.falling_correction recover [--source F] [--workdir DIR]
 
 The shipped file is the package data ``fmu_src/railcontact/data/falling_correction.nc``
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
@@ -417,6 +418,61 @@ def write(values, path, seconds=None):
     ds.to_netcdf(path, encoding=enc)
 
 
+def recover(source, workdir=None):
+    """Recover the chunks of exact solves from a table file (the shipped one, on a machine
+    without the work directory): the exact theory at a node is the file's correction plus the
+    model at that node (0 at the known nodes; NaN, unconverged, where the file has NaN). The
+    file must be of the current model (its ``method`` attribute names the model's hash) and of
+    the current nodes on every axis but :data:`CHUNK_AXES`, whose nodes in the file must be
+    nodes of :data:`NODES`. A chunk already there is kept. The values come back to float32's
+    rounding of the correction (some 1e-9 of mu_0 N). Returns (n_written, workdir)."""
+    import xarray as xr  # noqa: PLC0415
+
+    workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
+    workdir.mkdir(parents=True, exist_ok=True)
+    with xr.open_dataset(source) as ds:
+        model = ds.attrs.get("method", "").rsplit(" ", 1)[-1]
+        if model != _model_hash():
+            raise ValueError(f"source: the file's model {model!r} is not the current model "
+                             f"{_model_hash()!r}; recover with the code that built it")
+        index = {}
+        for k in AXES:
+            got = np.asarray(ds[k].values, dtype=float)
+            pos = [np.flatnonzero(np.isclose(NODES[k], v, rtol=0.0, atol=1e-12)) for v in got]
+            if k not in CHUNK_AXES and (got.size != NODES[k].size or not all(
+                    p.size == 1 and p[0] == i for i, p in enumerate(pos))):
+                raise ValueError(f"source: the file's nodes of {k} {got.tolist()} are not the "
+                                 f"builder's {NODES[k].tolist()}")
+            if not all(p.size == 1 for p in pos):
+                raise ValueError(f"source: the file's nodes of {k} {got.tolist()} are not all "
+                                 f"nodes of the builder's {NODES[k].tolist()}")
+            index[k] = [int(p[0]) for p in pos]
+        corr = np.stack([ds[v].values.astype(float) for v in VARIABLES])
+        nodes = {k: np.asarray(ds[k].values, dtype=float) for k in AXES}
+    written = 0
+    for j_tau, i_tau in enumerate(index["spin_coordinate"]):
+        c = corr[:, :, :, :, :, j_tau]     # (3, g, nu, s, theta, m, kn)
+        lg, nu, s, th, m, kn = (g.ravel() for g in np.meshgrid(
+            *(nodes[k] for k in AXES if k != "spin_coordinate"), indexing="ij"))
+        on = ~_known(m, kn, s) & np.isfinite(c[0].ravel())
+        model = np.zeros((3, lg.size))
+        i = np.flatnonzero(on)
+        for k in range(0, i.size, 2000):
+            sel = i[k:k + 2000]
+            model[:, sel] = model_points(lg[sel], nu[sel], s[sel], th[sel],
+                                         np.full(sel.size, nodes["spin_coordinate"][j_tau]),
+                                         m[sel], kn[sel])
+        exact = np.where(_known(m, kn, s), 0.0, c.reshape(3, -1) + model).reshape(c.shape)
+        for j_g, i_g in enumerate(index["log_aspect_ratio"]):
+            for i_nu in range(nodes["poisson_ratio"].size):
+                for j_s, i_s in enumerate(index["creepage_coordinate"]):
+                    path = _chunk(workdir, i_g, i_nu, i_tau, i_s)
+                    if not path.exists():
+                        _save(path, exact[:, j_g, i_nu, j_s])
+                        written += 1
+    return written, workdir
+
+
 def build(workdir=None, workers=2, output=None, limit=None):
     """Compute the missing chunks of exact solves, a (ln(a0/b0), nu, tau) block's missing s
     rows a job (``limit``: at most that many blocks in this run), then the model at the nodes
@@ -463,12 +519,21 @@ def build(workdir=None, workers=2, output=None, limit=None):
 
 def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m tablegen.falling_correction")
-    p.add_argument("command", choices=["build"])
+    p.add_argument("command", choices=["build", "recover"])
+    p.add_argument("--source", default=None, help="recover: the table file (default: the "
+                   "shipped one)")
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--workdir", default=None)
     p.add_argument("--output", default=None)
     p.add_argument("--limit", type=int, default=None, help="at most this many chunks now")
     a = p.parse_args(argv)
+    if a.command == "recover":
+        from railcontact import falling_table  # noqa: PLC0415
+
+        shipped = Path(falling_table.__file__).parent / "data" / "falling_correction.nc"
+        n, where = recover(a.source or shipped, a.workdir)
+        print(f"{n} chunks recovered into {where}")
+        return 0
     done, missing, path = build(a.workdir, a.workers, a.output, a.limit)
     print(f"{done} chunks computed; {missing} missing" + (f"; wrote {path}" if path else ""))
     return 0

@@ -140,3 +140,41 @@ def test_a_node_between_two_unconverged_ones_along_s_is_not_tried(builder, tmp_p
                               0.01 * n["log_aspect_ratio"][i_g] + 0.02 * 0.45)
     with netCDF4.Dataset(tmp_path / "t2.nc") as ds:
         assert ds.n_unconverged == 4 * 2 * 4     # the 3 before and the one not tried
+
+
+def test_recover_rebuilds_the_chunks_from_a_file_without_a_solve(builder, tmp_path):
+    """On a machine without the work directory: the chunks come back from the file (its
+    correction plus the model at the nodes), and the build from them writes the same table
+    without one exact solve; the file's unconverged nodes stay unconverged."""
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+
+    def no_solve(*args):
+        raise AssertionError("an exact solve was made")
+
+    builder.setattr(fc, "exact_point", no_solve)
+    n_written, workdir = fc.recover(tmp_path / "t.nc", tmp_path / "w2")
+    assert n_written == 4 * 2 * 4 * 4           # every (ln(a0/b0), nu, tau, s) row
+    for p in (tmp_path / "w").rglob("exact_*.npy"):
+        np.testing.assert_allclose(np.load(workdir / p.name), np.load(p), rtol=1e-6,
+                                   atol=1e-9)
+    done, missing, path = fc.build(tmp_path / "w2", workers=1, output=tmp_path / "t2.nc")
+    assert missing == 0 and done == 4          # the model at the 4 tau nodes only
+    with netCDF4.Dataset(tmp_path / "t.nc") as a, netCDF4.Dataset(path) as b:
+        assert b.n_unconverged == a.n_unconverged == 4 * 2 * 3
+        for v in fc.VARIABLES:
+            np.testing.assert_allclose(np.ma.filled(b.variables[v][:], np.nan),
+                                       np.ma.filled(a.variables[v][:], np.nan), rtol=1e-6,
+                                       atol=1e-9)
+    # a second recover keeps what is there
+    assert fc.recover(tmp_path / "t.nc", tmp_path / "w2")[0] == 0
+
+
+def test_recover_refuses_a_file_of_another_model_or_other_nodes(builder, tmp_path):
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    builder.setattr(fc, "_model_hash", lambda: "0123456789ab")
+    with pytest.raises(ValueError, match="source: the file's model .* is not the current"):
+        fc.recover(tmp_path / "t.nc", tmp_path / "w2")
+    builder.undo()
+    builder.setattr(fc, "NODES", _small_nodes(spin_coordinate=(0.0, 1.0, 4.0)))
+    with pytest.raises(ValueError, match="nodes of spin_coordinate .* are not all nodes"):
+        fc.recover(tmp_path / "t.nc", tmp_path / "w2")
