@@ -263,6 +263,21 @@ def test_steep_law_converges_or_names_the_case():
         assert np.hypot(f.tx, f.ty) <= 0.3 * N
 
 
+def test_a_case_that_does_not_converge_at_nu_one_half_names_the_case():
+    """nu = 0.5 (incompressible: the 3-D API takes it) with a strong law and large spin, a
+    node of the falling correction table the exact solver does not converge on (the residual
+    stalls near 1e-2 to 1e-1 also with 3,000 sweeps, measured 2026-11-29, though the law's
+    steepness number is 0.73): RollingConvergenceError naming the case and the steepness.
+    Before, the note's steepness number took nu = 0.5 to the 2-D solver's compliance, which
+    takes nu in [0, 0.5), and the user got "poisson_ratio must be in [0, 0.5)" instead."""
+    args, law = _case_of(0.4024, 0.5, 0.1, -np.pi / 3.0, -1.625, 0.3, 2.0)
+    with pytest.raises(RollingConvergenceError,
+                       match=r"did not converge for the case .*poisson_ratio=0\.5, "
+                             r"friction_coefficient=SmoothFriction.*steepness number .* is "
+                             r"0\.73"):
+        rc.creep_force_3d(*args[:8], law, method="exact")
+
+
 # ------------------------------------------------------------------------------------------
 # method="exact_table" with a law: the fast path on the Coulomb table (falling_table)
 # ------------------------------------------------------------------------------------------

@@ -927,7 +927,8 @@ def falling_friction_steepness(friction, max_pressure, youngs_modulus, poisson_r
     max_pressure : float
         Largest pressure in the contact. [Pa]
     youngs_modulus, poisson_ratio : float
-        [Pa], [-]
+        [Pa], [-] (nu in [0, 0.5], 0.5 included: the 3-D exact solver's note on a case it
+        does not converge on takes any nu the 3-D API takes).
     slip_max : float, optional
         Slips sampled in ``[0, slip_max]``. [-]
     n_samples : int, optional
@@ -938,7 +939,9 @@ def falling_friction_steepness(friction, max_pressure, youngs_modulus, poisson_r
     float
         The steepness number (0 for a law that never falls). [-]
     """
-    kern = combined_compliance(youngs_modulus, poisson_ratio)
+    e = check_range("youngs_modulus", youngs_modulus, "Pa", 0.0, None, lower_closed=False)
+    nu = check_range("poisson_ratio", poisson_ratio, "-", 0.0, 0.5)
+    kern = float(4.0 * (1.0 - nu**2) / (np.pi * e))     # combined_compliance, nu = 0.5 too
     p = float(check_range("max_pressure", max_pressure, "Pa", 0.0, None))
     s = np.concatenate([[0.0], np.geomspace(1e-9, float(slip_max), int(n_samples))])
     mu = np.asarray(friction(s), dtype=float)
