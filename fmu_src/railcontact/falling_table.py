@@ -5,19 +5,21 @@ An approximation, measured against Kalker's exact theory with the same law
 (``method="exact"``; ``benchmarks/bench_falling_friction_3d.py --n 150 --seeds 11-40``, random
 cases over a0/b0 0.2-5, nu 0-0.5, every creepage direction and size, spin coordinate |tau|
 0-10, mu_k/mu_0 0.3-1, kappa mu_0 p0 / G 0-2 of Eq. (5.16); 2026-11-29, with the blend with
-spin of step 2 and the table's s node 0.05): of 4,491 cases 4,483 (99.8 %) are within issue
-38's 1 % of mu_0 N; max 0.96 % without spin, 1.03 % with |tau| <= 1, **1.37 % with
-|tau| > 1** (RMS 0.13 % over all; before the blend 4,477, max 0.96 / 0.96 / 2.20 %). Twenty
-more samples (seeds 41-60, 2,991 cases): 2,989 within 1 %, max 0.93 / 0.77 / 1.31 % (before
-2,987, 2.08 %). All misses but one are at |tau| > 1 with a strong law (mu_k/mu_0 < 0.75,
-kappa number > 0.7), where the table's splines miss a correction that changes fast (along
-theta by 1.2-1.5 %). A sample drawn in that region only (``--region collapse --n 300 --seeds
-101-102``: |tau| 1-2.5, mu_k/mu_0 0.3-0.8, kappa number 0.5-2; 587 cases): 575 within 1 %,
-max 2.52 %, RMS 0.33 % (before the blend 564, 2.55 %, 0.42 %): the exact force peaks just
+spin of step 2, the table's s node 0.05 and its ln(a0/b0) nodes 0.25 and 0.75 ln 5): of 4,491
+cases 4,487 (99.9 %) are within issue 38's 1 % of mu_0 N; max 0.96 % without spin, 1.03 %
+with |tau| <= 1, **1.32 % with |tau| > 1** (RMS 0.13 % over all; before the blend 4,477,
+max 0.96 / 0.96 / 2.20 %). Twenty more samples (seeds 41-60, 2,991 cases): 2,989 within 1 %,
+max 0.93 / 0.70 / 1.33 % (before the blend 2,987, 2.08 %). All misses but one are at
+|tau| > 1 with a strong law (mu_k/mu_0 < 0.75, kappa number > 0.7), where the table's splines
+miss a correction that changes fast (along theta by 1.2-1.5 %). A sample drawn in that region
+only (``--region collapse --n 300 --seeds 101-102``: |tau| 1-2.5, mu_k/mu_0 0.3-0.8, kappa
+number 0.5-2; 587 cases): 581 within 1 %, max 2.40 %, RMS 0.27 % (before the blend 564,
+2.55 %, 0.42 %; before the ln(a0/b0) nodes 575, 2.52 %, 0.33 %): the exact force peaks just
 before the stick zone collapses (tau near 1.4-1.5), and where and how high moves with every
-axis of the table. With Polach's law (:func:`law_shape`; seeds 11-20, 1,493 cases): 1,466
-within 1 %, max 0.87 / 1.43 / 1.95 % (RMS 0.29 %; before the blend 1,450 and 2.90 %), its
-other shape than the table's law.
+axis of the table; what is left is along theta and beside nodes the exact solver does not
+converge on (``benchmarks/diagnose_falling_misses.py``). With Polach's law
+(:func:`law_shape`; seeds 11-20, 1,493 cases): 1,467 within 1 %, max 0.87 / 1.42 / 1.90 %
+(RMS 0.29 %; before the blend 1,450 and 2.90 %), its other shape than the table's law.
 A model in three steps, each one call of the Coulomb table
 (:class:`railcontact.exact_table.ExactCreepTable`), and a table of what the model misses:
 
@@ -59,13 +61,13 @@ A model in three steps, each one call of the Coulomb table
    ``railcontact/data/falling_correction.nc``, built by ``python -m
    tablegen.falling_correction build``): the exact theory with the smooth law minus steps
    1-3, tabulated on a grid of the exact table's coordinates at mu_0 (ln(a0/b0) at a0/b0
-   0.2, 0.30, 0.45, 1, 2.24 and 5, nu 0, 0.25 and 0.5, the creepage coordinate s 9 nodes in
+   0.2, 0.30, 0.45, 1, 1.50, 2.24, 3.34 and 5, nu 0, 0.25 and 0.5, the creepage coordinate s 9 nodes in
    [0, 1], the creepage angle every 30 degrees, tau 21 nodes in [0, 20], 0.75 in the blend
    of step 2 and every 0.125 in [1, 2] where spin's lateral force under a strong law rises
    steeply, mirrored to [-20, 20]) and of the law's
    two numbers (mu_k/mu_0 0.3, 0.65, 1; kappa mu_0 p0 / G 0, 0.125, 0.5, 1.125, 2): the
    forces over mu_0 N and the moment over mu_0 N sqrt(a0 b0). The nodes the exact solver
-   does not converge on or does not try (5,554 of 257,040, nearly all of the strongest law, mu_k/mu_0
+   does not converge on or does not try (8,018 of 342,720, nearly all of the strongest law, mu_k/mu_0
    0.3 with kappa number 2, at large spin) are filled (:func:`_filled`). Interpolated by C2 cubic
    B-splines along the five axes a contact's state moves along in a simulation (no kink in
    the forces), linearly along nu and mu_k/mu_0 (a material's and a law's constants); held
@@ -711,9 +713,14 @@ def load_falling_correction(path=None):
             import netCDF4  # noqa: PLC0415
 
             with netCDF4.Dataset(path) as ds:
-                got = np.concatenate([
-                    np.asarray(ds.variables["packed_bspline"][:], dtype=float),
-                    np.asarray(ds.variables["packed_bspline_coefficients"][:], dtype=float)])
+                # (into one float64 array as read, without masked-array copies: the file's
+                # float32 coefficients are the one transient, 23 MiB of the 46 MiB table)
+                ds.set_auto_mask(False)
+                head = np.asarray(ds.variables["packed_bspline"][:], dtype=float)
+                coef = ds.variables["packed_bspline_coefficients"]
+                got = np.empty(head.size + coef.shape[0])
+                got[:head.size] = head
+                got[head.size:] = coef[:]
         _CORRECTION[key] = got
     return got
 
