@@ -348,6 +348,18 @@ def _exact_tau(workdir, i_tau):
                      for i in range(n["log_aspect_ratio"].size)], axis=1)
 
 
+def _model_where(on, points, tau, fill):
+    """The model (:func:`model_points`) at the points ``points`` (lg, nu, s, theta, m, kn: 1-D
+    arrays) where ``on``, at spin coordinate ``tau``: array (3, n), ``fill`` elsewhere."""
+    lg, nu, s, th, m, kn = points
+    out = np.full((3, lg.size), fill)
+    i = np.flatnonzero(on)
+    for k in range(0, i.size, 2000):    # (bounded memory: 50 Gauss points a node)
+        j = i[k:k + 2000]
+        out[:, j] = model_points(lg[j], nu[j], s[j], th[j], np.full(j.size, tau), m[j], kn[j])
+    return out
+
+
 def _model_work(workdir, i_tau):
     """The model at one tau node's nodes where the exact theory is known (NaN elsewhere)."""
     path = _model_chunk(workdir, i_tau)
@@ -359,12 +371,7 @@ def _model_work(workdir, i_tau):
         lg, nu, s, th, m, kn = (g.ravel() for g in np.meshgrid(
             *(n[k] for k in AXES if k != "spin_coordinate"), indexing="ij"))
         on = ~_known(m, kn, s) & np.isfinite(ex[0].ravel())
-        out = np.full((3, lg.size), np.nan)
-        i = np.flatnonzero(on)
-        for k in range(0, i.size, 2000):    # (bounded memory: 50 Gauss points a node)
-            j = i[k:k + 2000]
-            out[:, j] = model_points(lg[j], nu[j], s[j], th[j], np.full(j.size, tau), m[j],
-                                     kn[j])
+        out = _model_where(on, (lg, nu, s, th, m, kn), tau, np.nan)
         _save(path, out.reshape(ex.shape))
         return path.name, time.perf_counter() - t
     return path.name, 0.0
@@ -467,13 +474,7 @@ def recover(source, workdir=None):
         lg, nu, s, th, m, kn = (g.ravel() for g in np.meshgrid(
             *(nodes[k] for k in AXES if k != "spin_coordinate"), indexing="ij"))
         on = ~_known(m, kn, s) & np.isfinite(c[0].ravel())
-        model = np.zeros((3, lg.size))
-        i = np.flatnonzero(on)
-        for k in range(0, i.size, 2000):
-            sel = i[k:k + 2000]
-            model[:, sel] = model_points(lg[sel], nu[sel], s[sel], th[sel],
-                                         np.full(sel.size, nodes["spin_coordinate"][j_tau]),
-                                         m[sel], kn[sel])
+        model = _model_where(on, (lg, nu, s, th, m, kn), nodes["spin_coordinate"][j_tau], 0.0)
         exact = np.where(_known(m, kn, s), 0.0, c.reshape(3, -1) + model).reshape(c.shape)
         for j_g, i_g in enumerate(index["log_aspect_ratio"]):
             for i_nu in range(nodes["poisson_ratio"].size):

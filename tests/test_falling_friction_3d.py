@@ -421,6 +421,15 @@ def _case_of(lg, nu, s, theta, tau, m, kn):
     return args, SmoothFriction(args[8], m * args[8], kn / (args[8] * p0 / shear))
 
 
+def _against_exact(args, law, **kw):
+    """The fast path (method="exact_table") and Kalker's exact theory (method="exact") on one
+    case of _case_of: ``(error over mu_0 N, the exact force, mu_0 N)``."""
+    fast = rc.creep_force_3d(*args[:8], law, method="exact_table", **kw)
+    exact = rc.creep_force_3d(*args[:8], law, method="exact", **kw)
+    mu_n = args[8] * args[3]
+    return np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n, exact, mu_n
+
+
 @pytest.mark.parametrize("case", LARGE_SPIN_CASES)
 def test_exact_table_with_a_law_and_large_spin_against_the_exact_theory(case):
     """The fast path with its correction table (tablegen.falling_correction: the exact theory
@@ -438,17 +447,12 @@ def test_exact_table_with_a_law_and_large_spin_against_the_exact_theory(case):
     0.26, 0.44, 0.82, 0.56, 0.21 %; before the blend 2.15, 1.13, 1.24,
     0.56, 0.77, 2.40, 1.10, 1.27 %), within 1.5 %."""
     args, law = _case_of(*case[:7])
-    fast = rc.creep_force_3d(*args[:8], law, method="exact_table")
-    exact = rc.creep_force_3d(*args[:8], law, method="exact")
-    mu_n = args[8] * args[3]
-    err = np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n
+    err = _against_exact(args, law)[0]
     assert err < 0.01, err
     assert err < 0.3 * case[7] / 100.0, err
     polach = PolachFriction(law.mu_static, law.mu_kinetic / law.mu_static,
                             law.kappa / 30.0)   # (the same slope at zero slip)
-    fast = rc.creep_force_3d(*args[:8], polach, method="exact_table", rolling_speed=30.0)
-    exact = rc.creep_force_3d(*args[:8], polach, method="exact", rolling_speed=30.0)
-    assert np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n < 0.015
+    assert _against_exact(args, polach, rolling_speed=30.0)[0] < 0.015
 
 
 #: Off-node cases beside the grid's unconverged nodes (the strongest law of the grid,
@@ -475,11 +479,9 @@ def test_exact_table_with_a_law_beside_unconverged_nodes(case):
     0.63 and 0.50 % with the line along mu_k/mu_0 alone; 1.52 % for the second with an
     ln(a0/b0) node at a0/b0 3.34, which was left out for it then): within issue 38's 1 %."""
     args, law = _case_of(*case[:7])
-    fast = rc.creep_force_3d(*args[:8], law, method="exact_table")
-    exact = rc.creep_force_3d(*args[:8], law, method="exact")
-    mu_n = args[8] * args[3]
+    err, exact, mu_n = _against_exact(args, law)
     assert abs(exact.ty) / mu_n > 0.1          # (a large lateral force: spin's)
-    assert np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n < 0.01
+    assert err < 0.01
 
 
 #: Off-node cases where the stick zone collapses with spin under a strong law, between the
@@ -507,11 +509,7 @@ def test_exact_table_with_a_law_between_the_aspect_ratio_nodes(case):
     ``benchmarks/diagnose_falling_misses.py`` gave the ln(a0/b0) axis most of each miss)
     measured 0.46, 0.40, 0.48, 0.24, 0.62 % against Kalker's exact theory with the law:
     within issue 38's 1 % and at most half the error before."""
-    args, law = _case_of(*case[:7])
-    fast = rc.creep_force_3d(*args[:8], law, method="exact_table")
-    exact = rc.creep_force_3d(*args[:8], law, method="exact")
-    mu_n = args[8] * args[3]
-    err = np.hypot(fast.tx - exact.tx, fast.ty - exact.ty) / mu_n
+    err = _against_exact(*_case_of(*case[:7]))[0]
     assert err < 0.01, err
     assert err < 0.5 * case[7] / 100.0, err
 
