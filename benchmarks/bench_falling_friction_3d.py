@@ -262,6 +262,8 @@ def main(argv=None):
     ap.add_argument("--cache", default="", help="npz file keeping the exact forces between "
                                                 "runs ({seed}: one per seed)")
     ap.add_argument("--candidates", nargs="*", default=None)
+    ap.add_argument("--retry-failed", action="store_true", help="solve the cases the cache "
+                    "holds as not converged again (after a change of the exact solver)")
     ap.add_argument("--law", choices=("smooth", "polach"), default="smooth",
                     help="the sample's law (polach: only the candidates 'package' and "
                          "'coulomb' take it)")
@@ -286,6 +288,8 @@ def main(argv=None):
         cache = dict(np.load(path)) if path and Path(path).is_file() else {}
         for k, (args, law, tau, m, kn) in enumerate(data):
             key = f"c{k}"
+            if key in cache and opts.retry_failed and np.isnan(cache[key][0]):
+                del cache[key]      # (solved again: the solver may converge on it now)
             if key in cache:
                 if np.isnan(cache[key][0]):
                     failed += 1

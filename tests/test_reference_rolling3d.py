@@ -704,3 +704,27 @@ def test_dense_products_on_small_grids_match_the_fft_products(monkeypatch):
     for name in ("tx", "ty"):
         assert getattr(dense, name) == pytest.approx(getattr(fft, name), abs=1e-9 * 0.3 * 1e5)
     clear_setup_cache()
+
+
+def test_a_stalled_falling_friction_case_converges_with_relaxed_sweeps(monkeypatch):
+    """A node of the falling-friction correction table (a0/b0 1.50, nu 0.5, a strong smooth
+    law mu_k/mu_0 0.3, kappa mu_0 p0/G 2, spin coordinate -1.625) on the 30x20 grid: the
+    plain sweeps stall (relative change 1.8e-2 per sweep for hundreds of sweeps); relaxed
+    after the stall they converge, to the 36x24 grid's solution (which converges without a
+    stall) within its discretisation difference (measured 5e-4 / 1e-3 of mu N)."""
+    import railcontact.reference.rolling3d as r3
+    from railcontact.friction import SmoothFriction
+
+    args = (0.000751312521710629, 0.0013760511206530655, -1.0210641640286102, 1e5,
+            0.007337215927390904, 0.004906493192548241, 210e9, 0.5)
+    law = SmoothFriction(0.3, 0.09, 351.85837720205683)
+    relaxed = solve_rolling_3d(*args, law, mx=30, my=20, tolerance=1e-3, max_iterations=400)
+    finer = solve_rolling_3d(*args, law, mx=36, my=24, tolerance=1e-3, max_iterations=400)
+    assert relaxed.residual < 1e-3 and finer.iterations < 40
+    scale = 0.3 * 1e5
+    assert abs(relaxed.tx - finer.tx) / scale < 3e-3
+    assert abs(relaxed.ty - finer.ty) / scale < 3e-3
+    assert relaxed.tx / scale == pytest.approx(-0.1067, abs=1e-3)
+    monkeypatch.setattr(r3, "_RELAX_STALL", 10**9)      # the plain sweeps
+    with pytest.raises(RollingConvergenceError, match="did not converge: residual"):
+        solve_rolling_3d(*args, law, mx=30, my=20, tolerance=1e-3, max_iterations=400)
