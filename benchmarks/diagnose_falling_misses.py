@@ -28,6 +28,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from scipy.interpolate import BarycentricInterpolator
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "fmu_src"), str(ROOT), str(ROOT / "benchmarks")]
@@ -67,12 +68,6 @@ def axis_nodes(axis, x):
     return nodes[lo:lo + k]
 
 
-def lagrange_weights(nodes, x):
-    return np.array([np.prod([(x - nodes[j]) / (nodes[i] - nodes[j])
-                              for j in range(nodes.size) if j != i])
-                     for i in range(nodes.size)])
-
-
 def diagnose(c, corr):
     """The miss at table coordinates ``c``: the table's error and each axis's."""
     true = table_residual(c)
@@ -81,7 +76,7 @@ def diagnose(c, corr):
     for ia, axis in enumerate(AXES):
         sel = axis_nodes(axis, c[ia])
         vals = np.array([table_residual(c[:ia] + [float(v)] + c[ia + 1:]) for v in sel])
-        est = lagrange_weights(sel, c[ia]) @ vals
+        est = BarycentricInterpolator(sel, vals, axis=0)(c[ia])   # (the Lagrange cubic)
         row[axis] = (100.0 * float(np.hypot(*(true - est))) if np.all(np.isfinite(est))
                      else None)
         row[axis + "_nodes"] = sel.tolist()

@@ -158,17 +158,19 @@ def _case(lg, nu, s, th, tau, m, kn):
     return a, mu0, m * mu0, kn / (mu0 * p0 / shear)
 
 
-def exact_point(lg, nu, s, th, tau, m, kn):
+def exact_point(lg, nu, s, th, tau, m, kn, **options):
     """``(T_x, T_y) / (mu_0 N)`` and ``M_z / (mu_0 N sqrt(a0 b0))`` of the exact theory with
     the smooth law at one node; NaN where the exact solver does not converge or the node is
-    beyond its domain."""
+    beyond its domain. ``options``: of ``creep_solution_3d(method="exact")`` (default: its
+    default grid)."""
     from railcontact import creep_solution_3d
     from railcontact.errors import RollingConvergenceError
     from railcontact.friction import SmoothFriction
 
     a, mu0, mu_k, kappa = _case(lg, nu, s, th, tau, m, kn)
     try:
-        ex = creep_solution_3d(*a[:8], SmoothFriction(mu0, mu_k, kappa), method="exact")
+        ex = creep_solution_3d(*a[:8], SmoothFriction(mu0, mu_k, kappa), method="exact",
+                               **options)
     except (RollingConvergenceError, ValueError):
         return np.full(3, np.nan)
     scale = mu0 * a[3]
@@ -199,32 +201,22 @@ def ladder_point(lg, nu, s, th, tau, m, kn):
     """The exact theory with the smooth law at one node by the ladder of grids
     (:data:`LADDER_GRIDS`), normalised as :func:`exact_point`; NaN where fewer than
     :data:`LADDER_MIN_GRIDS` of its grids converge."""
-    from railcontact import creep_solution_3d
     from railcontact.creep3d import exact_default_grid
-    from railcontact.errors import RollingConvergenceError
-    from railcontact.friction import SmoothFriction
 
-    a, mu0, mu_k, kappa = _case(lg, nu, s, th, tau, m, kn)
-    law = SmoothFriction(mu0, mu_k, kappa)
+    a = _case(lg, nu, s, th, tau, m, kn)[0]
     mx0, my0 = exact_default_grid(a[4], a[5], tau)
-    scale = mu0 * a[3]
-    rows = []
-    for mx in LADDER_GRIDS:
-        grid = (mx, max(4, int(round(my0 * mx / mx0))))
-        try:
-            with warnings.catch_warnings():     # (a coarse grid may touch the area's edge)
-                warnings.simplefilter("ignore", RuntimeWarning)
-                ex = creep_solution_3d(*a[:8], law, method="exact", grid=grid,
-                                       extrapolate=False, grid_shifts=2)
-        except (RollingConvergenceError, ValueError):
-            continue
-        rows.append((1.0 / mx, ex.tx / scale, ex.ty / scale,
-                     ex.spin_moment / (scale * math.sqrt(a[4] * a[5]))))
-    if len(rows) < LADDER_MIN_GRIDS:
+    with warnings.catch_warnings():     # (a coarse grid may touch the area's edge)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        vals = np.array([exact_point(lg, nu, s, th, tau, m, kn,
+                                     grid=(mx, max(4, int(round(my0 * mx / mx0)))),
+                                     extrapolate=False, grid_shifts=2)
+                         for mx in LADDER_GRIDS])
+    ok = np.isfinite(vals[:, 0])
+    if ok.sum() < LADDER_MIN_GRIDS:
         return np.full(3, np.nan)
-    rows = np.array(rows)
-    design = np.stack([np.ones(len(rows)), rows[:, 0]], axis=1)
-    return np.linalg.lstsq(design, rows[:, 1:], rcond=None)[0][0]
+    inv = 1.0 / np.asarray(LADDER_GRIDS, dtype=float)[ok]
+    design = np.stack([np.ones(inv.size), inv], axis=1)
+    return np.linalg.lstsq(design, vals[ok], rcond=None)[0][0]
 
 
 def _known(m, kn, s):
@@ -402,15 +394,15 @@ def _ladder_work(workdir, i_g, i_nu, i_tau):
     return name, time.perf_counter() - t
 
 
-def _model_chunk(workdir, i_tau):
-    """The file of the model at one tau node's nodes (named by the model's hash and the
-    ln(a0/b0) and s nodes' too)."""
+def _model_chunk(workdir, i_tau, solved):
+    """The file of the model at one tau node's nodes (named by the model's hash, the
+    ln(a0/b0) and s nodes', and the nodes solved, ``solved`` of :func:`_solved_tau`, which the
+    ladder adds to)."""
     tau = float(NODES["spin_coordinate"][i_tau])
     nodes = hashlib.sha256()
     for k in ("log_aspect_ratio", "creepage_coordinate"):
         nodes.update(np.asarray(NODES[k], dtype=float).tobytes())
-    # (and by the nodes solved, which the ladder adds to)
-    nodes.update(np.isfinite(_solved_tau(workdir, i_tau)[0][0]).tobytes())
+    nodes.update(np.isfinite(solved[0]).tobytes())
     return Path(workdir) / f"model_{_model_hash()}_g{nodes.hexdigest()[:6]}_tau{tau!r}.npy"
 
 
@@ -459,11 +451,15 @@ def _exact_tau(workdir, i_tau):
 
 
 def _ladder_tau(workdir, i_tau):
-    """The ladder's estimates of one tau node, shaped as :func:`_exact_tau` (NaN where none)."""
+    """The ladder's estimates of one tau node, shaped as :func:`_exact_tau` (NaN where none,
+    and at every node of tau > :data:`LADDER_TAU_MAX`: files of a larger tau, from a run with
+    a larger bound, are not read)."""
     n = NODES
     out = np.full((3, n["log_aspect_ratio"].size, n["poisson_ratio"].size,
                    n["creepage_coordinate"].size, n["creepage_angle"].size,
                    n["friction_ratio"].size, n["friction_decay_number"].size), np.nan)
+    if n["spin_coordinate"][i_tau] > LADDER_TAU_MAX:
+        return out
     for i in range(out.shape[1]):
         for j in range(out.shape[2]):
             for k in range(out.shape[3]):
@@ -496,10 +492,10 @@ def _model_where(on, points, tau, fill):
 
 def _model_work(workdir, i_tau):
     """The model at one tau node's nodes where the exact theory is known (NaN elsewhere)."""
-    path = _model_chunk(workdir, i_tau)
+    ex = _solved_tau(workdir, i_tau)[0]
+    path = _model_chunk(workdir, i_tau, ex)
     if not path.exists():
         t = time.perf_counter()
-        ex = _solved_tau(workdir, i_tau)[0]
         n = NODES
         tau = n["spin_coordinate"][i_tau]
         lg, nu, s, th, m, kn = (g.ravel() for g in np.meshgrid(
@@ -513,28 +509,22 @@ def _model_work(workdir, i_tau):
 
 def assemble(workdir):
     """The whole grid of corrections (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn): the exact
-    solves minus the model (0 at the known nodes, NaN where either is missing), or None
-    while any chunk is missing."""
+    solves (the ladder's where they did not converge) minus the model (0 at the known nodes,
+    NaN where either is missing), and the mask of the ladder's nodes; or None while any
+    model chunk is missing."""
     n = NODES
     shape = tuple(n[k].size for k in AXES)
     out = np.empty((3,) + shape)
+    ladder = np.zeros(shape, dtype=bool)
     grids = np.meshgrid(*(n[k] for k in AXES if k != "spin_coordinate"), indexing="ij")
     known = _known(grids[4], grids[5], grids[2])
     for i_tau in range(shape[4]):
-        if not _model_chunk(workdir, i_tau).exists():
+        solved, ladder[:, :, :, :, i_tau] = _solved_tau(workdir, i_tau)
+        path = _model_chunk(workdir, i_tau, solved)
+        if not path.exists():
             return None
-        res = _solved_tau(workdir, i_tau)[0] - np.load(_model_chunk(workdir, i_tau))
-        out[:, :, :, :, :, i_tau] = np.where(known, 0.0, res)
-    return out
-
-
-def ladder_nodes(workdir):
-    """The nodes whose value is the ladder's (bool, the shape of one variable)."""
-    n = NODES
-    out = np.zeros(tuple(n[k].size for k in AXES), dtype=bool)
-    for i_tau in range(n["spin_coordinate"].size):
-        out[:, :, :, :, i_tau] = _solved_tau(workdir, i_tau)[1]
-    return out
+        out[:, :, :, :, :, i_tau] = np.where(known, 0.0, solved - np.load(path))
+    return out, ladder
 
 
 def write(values, path, seconds=None, ladder=None):
@@ -687,13 +677,14 @@ def build(workdir=None, workers=2, output=None, limit=None):
     missing = sum(bool(_ladder_missing(workdir, *b)) for b in _ladder_blocks())
     if missing:
         return done, missing, None
-    models = [(k,) for k in range(n_tau) if not _model_chunk(workdir, k).exists()]
+    models = [(k,) for k in range(n_tau)
+              if not _model_chunk(workdir, k, _solved_tau(workdir, k)[0]).exists()]
     if models:
         run(_model_work, models)
-    values = assemble(workdir)
+    values, ladder_mask = assemble(workdir)
     output = Path(output or Path.cwd() / "tables-build" / "falling_correction.nc")
     output.parent.mkdir(parents=True, exist_ok=True)
-    write(values, output, ladder=ladder_nodes(workdir))
+    write(values, output, ladder=ladder_mask)
     (workdir / "done.json").write_text(json.dumps({"output": str(output),
                                                    "model": _model_hash()}))
     return done, 0, output
