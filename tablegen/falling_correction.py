@@ -53,7 +53,11 @@ missing:
    copied or split to the new names, the values unchanged; the tau node 0.75 then took
    2.5 min on 2 cores, the s node 0.05 50 min (its second half with its nodes between two
    unconverged ones were not
-   tried, :func:`_between_unconverged`));
+   tried, :func:`_between_unconverged`)). A node added along an axis within the rows
+   (:data:`ROW_AXES`: theta, mu_k/mu_0, the kappa number; since 2026-11-29) changes the hash:
+   ``recover`` from the file of the nodes before writes the new work directory's rows with
+   the new nodes pending (``pending_<row file>``), and the build solves those only (a new
+   theta node between two unconverged ones is not tried, as along s; the ladder tries it);
 2. the ladder (since 2026-11-29, :func:`ladder_point`): at the nodes of step 1 that did not
    converge, of tau <= :data:`LADDER_TAU_MAX`, the exact theory on a ladder of coarser grids
    extrapolated to zero element size, one file ``ladder<tag>_exact_...npy`` per row of
@@ -224,29 +228,31 @@ def _known(m, kn, s):
     return (np.asarray(m) >= 1.0) | (np.asarray(kn) == 0.0) | (np.asarray(s) >= 1.0)
 
 
-def exact_row(i_g, i_nu, i_tau, i_s, skip=None):
+def exact_row(i_g, i_nu, i_tau, i_s, skip=None, todo=None, row=None):
     """The exact theory on one (ln(a0/b0), nu, tau, s) row of nodes: array (3, n_theta, n_m,
     n_kn) as :func:`exact_point` (0 at the known nodes; at s = 0 one solve for every theta).
     ``skip``: a boolean array (n_theta, n_m, n_kn) of nodes not attempted (NaN, as a node the
-    solver does not converge on)."""
+    solver does not converge on). ``todo`` (the same shape) and ``row`` (the row so far): only
+    the nodes of ``todo`` are computed, the others kept from ``row`` (nodes pending after
+    :func:`recover` from a file with fewer nodes along :data:`ROW_AXES`)."""
     warnings.simplefilter("ignore")
     n = NODES
     lg, nu, tau, s = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
                       n["spin_coordinate"][i_tau], n["creepage_coordinate"][i_s])
-    out = np.zeros((3, n["creepage_angle"].size, n["friction_ratio"].size,
-                    n["friction_decay_number"].size))
-    for i_t, th in enumerate(n["creepage_angle"]):
-        if s == 0.0 and i_t > 0:
-            out[:, i_t] = out[:, 0]
-            continue
-        for i_m, m in enumerate(n["friction_ratio"]):
-            for i_k, kn in enumerate(n["friction_decay_number"]):
-                if _known(m, kn, s):
-                    continue
-                if skip is not None and skip[i_t, i_m, i_k]:
-                    out[:, i_t, i_m, i_k] = np.nan
-                else:
-                    out[:, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
+    shape = tuple(n[k].size for k in ROW_AXES)
+    out = np.zeros((3,) + shape) if row is None else np.array(row, dtype=float)
+    todo = np.ones(shape, dtype=bool) if todo is None else todo
+    for i_t, i_m, i_k in zip(*np.nonzero(todo)):
+        th, m, kn = (n["creepage_angle"][i_t], n["friction_ratio"][i_m],
+                     n["friction_decay_number"][i_k])
+        if s == 0.0 and i_t > 0:            # (theta is void at s = 0: theta 0's node)
+            out[:, i_t, i_m, i_k] = out[:, 0, i_m, i_k]
+        elif _known(m, kn, s):
+            out[:, i_t, i_m, i_k] = 0.0
+        elif skip is not None and skip[i_t, i_m, i_k]:
+            out[:, i_t, i_m, i_k] = np.nan
+        else:
+            out[:, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
     return out
 
 
@@ -316,6 +322,10 @@ def _model_hash():
 #: The axes whose nodes name the chunks of exact solves (a node added to one of them later
 #: costs only its own solves); the others are in the work directory's hash.
 CHUNK_AXES = ("log_aspect_ratio", "spin_coordinate", "creepage_coordinate")
+#: The axes of the nodes within a chunk (a row): a node added to one of them later costs only
+#: its own solves too, after :func:`recover` from the file of the nodes before (the new nodes
+#: are pending in the recovered rows, :func:`_pending`).
+ROW_AXES = ("creepage_angle", "friction_ratio", "friction_decay_number")
 
 
 def _hash():
@@ -339,10 +349,19 @@ def _chunk(workdir, i_g, i_nu, i_tau, i_s):
     return Path(workdir) / f"exact_g{lg!r}_{i_nu}_tau{tau!r}_s{s!r}.npy"
 
 
+def _pending(path):
+    """The file of a row's pending nodes (a boolean array (n_theta, n_m, n_kn)) beside the
+    row's file ``path``: nodes :func:`recover` found no value for in its source, which has
+    fewer nodes along :data:`ROW_AXES` (the build computes them, then removes the file)."""
+    return path.with_name("pending_" + path.name)
+
+
 def _block_missing(workdir, i_g, i_nu, i_tau):
-    """The s rows of a (ln(a0/b0), nu, tau) block whose chunk is not there yet."""
+    """The s rows of a (ln(a0/b0), nu, tau) block whose chunk is not there yet or has
+    pending nodes."""
     return [i_s for i_s in range(NODES["creepage_coordinate"].size)
-            if not _chunk(workdir, i_g, i_nu, i_tau, i_s).exists()]
+            if not _chunk(workdir, i_g, i_nu, i_tau, i_s).exists()
+            or _pending(_chunk(workdir, i_g, i_nu, i_tau, i_s)).exists()]
 
 
 def _ladder_tag():
@@ -365,10 +384,19 @@ def _ladder_blocks():
 
 
 def _ladder_missing(workdir, i_g, i_nu, i_tau):
-    """The s rows of a block with unconverged nodes and no ladder file yet."""
-    return [i_s for i_s in range(NODES["creepage_coordinate"].size)
-            if not _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s).exists()
-            and np.isnan(np.load(_chunk(workdir, i_g, i_nu, i_tau, i_s))[0]).any()]
+    """The s rows of a block with unconverged nodes and no ladder file yet, or a ladder file
+    with pending nodes (:func:`_pending`) that did not converge."""
+    out = []
+    for i_s in range(NODES["creepage_coordinate"].size):
+        path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
+        bad = np.isnan(np.load(_chunk(workdir, i_g, i_nu, i_tau, i_s))[0])
+        if _pending(path).exists() and path.exists():
+            bad &= np.load(_pending(path))
+        elif path.exists():
+            continue
+        if bad.any():
+            out.append(i_s)
+    return out
 
 
 def _ladder_work(workdir, i_g, i_nu, i_tau):
@@ -381,7 +409,12 @@ def _ladder_work(workdir, i_g, i_nu, i_tau):
     for i_s in _ladder_missing(workdir, i_g, i_nu, i_tau):
         s = n["creepage_coordinate"][i_s]
         bad = np.isnan(np.load(_chunk(workdir, i_g, i_nu, i_tau, i_s))[0])
+        path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
+        pending = _pending(path)
         out = np.full((3,) + bad.shape, np.nan)
+        if pending.exists() and path.exists():
+            out = np.load(path)
+            bad &= np.load(pending)
         for i_t, i_m, i_k in zip(*np.nonzero(bad)):
             if s == 0.0 and i_t > 0:        # theta is void at s = 0: the row of theta 0
                 out[:, i_t, i_m, i_k] = out[:, 0, i_m, i_k]
@@ -389,7 +422,8 @@ def _ladder_work(workdir, i_g, i_nu, i_tau):
             out[:, i_t, i_m, i_k] = ladder_point(lg, nu, s, n["creepage_angle"][i_t], tau,
                                                  n["friction_ratio"][i_m],
                                                  n["friction_decay_number"][i_k])
-        _save(_ladder_chunk(workdir, i_g, i_nu, i_tau, i_s), out)
+        _save(path, out)
+        pending.unlink(missing_ok=True)
     name = _ladder_chunk(workdir, i_g, i_nu, i_tau, 0).name.rsplit("_s", 1)[0]
     return name, time.perf_counter() - t
 
@@ -400,7 +434,7 @@ def _model_chunk(workdir, i_tau, solved):
     ladder adds to)."""
     tau = float(NODES["spin_coordinate"][i_tau])
     nodes = hashlib.sha256()
-    for k in ("log_aspect_ratio", "creepage_coordinate"):
+    for k in ("log_aspect_ratio", "creepage_coordinate") + ROW_AXES:
         nodes.update(np.asarray(NODES[k], dtype=float).tobytes())
     nodes.update(np.isfinite(solved[0]).tobytes())
     return Path(workdir) / f"model_{_model_hash()}_g{nodes.hexdigest()[:6]}_tau{tau!r}.npy"
@@ -424,18 +458,44 @@ def _between_unconverged(workdir, i_g, i_nu, i_tau, i_s):
             "creepage_coordinate"].size else None
         if path is None or not path.exists():
             return None
-        rows.append(np.isnan(np.load(path)[0]))
+        bad = np.isnan(np.load(path)[0])
+        if _pending(path).exists():     # (a pending node is not known to be unconverged)
+            bad &= ~np.load(_pending(path))
+        rows.append(bad)
     return rows[0] & rows[1]
 
 
+def _between_unconverged_theta(row, todo):
+    """The pending nodes of a row (``todo``) whose two neighbours along theta (periodic) are
+    both not pending and both unconverged: not attempted, as :func:`_between_unconverged`
+    along s (the ladder tries them)."""
+    bad = np.isnan(row[0]) & ~todo
+    return todo & np.roll(bad, 1, axis=0) & np.roll(bad, -1, axis=0)
+
+
 def _work(workdir, i_g, i_nu, i_tau):
-    """The missing rows of one (ln(a0/b0), nu, tau) block, each saved when done (nodes
-    between two unconverged ones along s not attempted: :func:`_between_unconverged`)."""
+    """The missing rows of one (ln(a0/b0), nu, tau) block, or their pending nodes, each
+    saved when done (nodes between two unconverged ones along s, or along theta for the
+    pending ones, not attempted: :func:`_between_unconverged`,
+    :func:`_between_unconverged_theta`)."""
     t = time.perf_counter()
     for i_s in _block_missing(workdir, i_g, i_nu, i_tau):
+        path = _chunk(workdir, i_g, i_nu, i_tau, i_s)
+        pending = _pending(path)
+        if pending.exists() and path.exists():
+            row, todo = np.load(path), np.load(pending)
+            row = exact_row(i_g, i_nu, i_tau, i_s, _between_unconverged_theta(row, todo),
+                            todo, row)
+            _save(path, row)
+            ladder = _pending(_ladder_chunk(workdir, i_g, i_nu, i_tau, i_s))
+            if ladder.exists():     # (the ladder's pending nodes: those that did not converge)
+                left = np.load(ladder) & np.isnan(row[0])
+                _save(ladder, left) if left.any() else ladder.unlink()
+            pending.unlink()
+            continue
         skip = _between_unconverged(workdir, i_g, i_nu, i_tau, i_s)
-        _save(_chunk(workdir, i_g, i_nu, i_tau, i_s),
-              exact_row(i_g, i_nu, i_tau, i_s, skip))
+        _save(path, exact_row(i_g, i_nu, i_tau, i_s, skip))
+        pending.unlink(missing_ok=True)
     name = _chunk(workdir, i_g, i_nu, i_tau, 0).name.rsplit("_s", 1)[0]
     return name, time.perf_counter() - t
 
@@ -584,9 +644,12 @@ def recover(source, workdir=None):
     without the work directory): the exact theory at a node is the file's correction plus the
     model at that node (0 at the known nodes; NaN, unconverged, where the file has NaN). The
     file must be of the current model (its ``method`` attribute names the model's hash) and of
-    the current nodes on every axis but :data:`CHUNK_AXES`, whose nodes in the file must be
-    nodes of :data:`NODES`. A chunk already there is kept. The values come back to float32's
-    rounding of the correction (some 1e-9 of mu_0 N). Returns (n_written, workdir)."""
+    the current nodes on every axis but :data:`CHUNK_AXES` and :data:`ROW_AXES`, whose nodes
+    in the file must be nodes of :data:`NODES`: the nodes of a row the file does not have are
+    written pending (:func:`_pending`, in the ladder's files too), which the build then
+    computes, and only those. A chunk already there is kept. The values come back to
+    float32's rounding of the correction (some 1e-9 of mu_0 N). Returns (n_written,
+    workdir)."""
     import xarray as xr  # noqa: PLC0415
 
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
@@ -600,7 +663,7 @@ def recover(source, workdir=None):
         for k in AXES:
             got = np.asarray(ds[k].values, dtype=float)
             pos = [np.flatnonzero(np.isclose(NODES[k], v, rtol=0.0, atol=1e-12)) for v in got]
-            if k not in CHUNK_AXES and (got.size != NODES[k].size or not all(
+            if k not in CHUNK_AXES + ROW_AXES and (got.size != NODES[k].size or not all(
                     p.size == 1 and p[0] == i for i, p in enumerate(pos))):
                 raise ValueError(f"source: the file's nodes of {k} {got.tolist()} are not the "
                                  f"builder's {NODES[k].tolist()}")
@@ -614,6 +677,17 @@ def recover(source, workdir=None):
                   else np.zeros(corr.shape[1:], dtype=bool))
         ladder_tau_max = float(ds.attrs.get("ladder_tau_max", -1.0))
     written = 0
+    at_row = np.ix_(*(index[k] for k in ROW_AXES))
+    todo = np.ones(tuple(NODES[k].size for k in ROW_AXES), dtype=bool)
+    todo[at_row] = False
+
+    def put(path, vals):    # (a row of the file's nodes into the builder's, the rest pending)
+        row = np.full((3,) + todo.shape, np.nan)
+        row[(slice(None),) + at_row] = vals
+        if todo.any():      # (first: a row is never there without its pending nodes)
+            _save(_pending(path), todo)
+        _save(path, row)
+
     for j_tau, i_tau in enumerate(index["spin_coordinate"]):
         c = corr[:, :, :, :, :, j_tau]     # (3, g, nu, s, theta, m, kn)
         lg, nu, s, th, m, kn = (g.ravel() for g in np.meshgrid(
@@ -629,11 +703,11 @@ def recover(source, workdir=None):
                     row, at = exact[:, j_g, i_nu, j_s], lad[j_g, i_nu, j_s]
                     path = _chunk(workdir, i_g, i_nu, i_tau, i_s)
                     if not path.exists():   # (the ladder's nodes were not converged)
-                        _save(path, np.where(at, np.nan, row))
+                        put(path, np.where(at, np.nan, row))
                         written += 1
                     path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
                     if tried and not path.exists():
-                        _save(path, np.where(at, row, np.nan))
+                        put(path, np.where(at, row, np.nan))
     return written, workdir
 
 

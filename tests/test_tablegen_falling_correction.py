@@ -266,3 +266,94 @@ def test_ladder_point_agrees_with_the_default_grid_where_that_converges():
     assert np.isfinite(ex).all()
     np.testing.assert_allclose(lad, ex, atol=5e-3)
     np.testing.assert_allclose(lad[0], ex[0], atol=2e-3)
+
+
+def _theta_nodes(n):
+    nodes = _small_nodes()
+    nodes["creepage_angle"] = np.linspace(-np.pi, np.pi, n + 1)[:-1]
+    return nodes
+
+
+def _counted(fun, log):
+    """``fun``, each call's arguments appended to the file ``log`` (the build's workers are
+    processes)."""
+    def counted(*args):
+        with open(log, "a") as f:
+            f.write(" ".join(repr(float(a)) for a in args) + "\n")
+        return fun(*args)
+    return counted
+
+
+def _calls(log):
+    return [tuple(float(v) for v in line.split()) for line in open(log)] if log.exists() else []
+
+
+def test_a_theta_node_added_later_costs_only_its_own_solves(builder, tmp_path):
+    """Theta nodes every 45 instead of 90 degrees: ``recover`` from the file of the 4 nodes
+    writes their rows with the 4 new nodes pending, and the build solves those only (half the
+    solves of a build from scratch) and writes the same table, flags and counts as that
+    build (the ladder's nodes too)."""
+    builder.setattr(fc, "LADDER_TAU_MAX", 2.0)
+    builder.setattr(fc, "ladder_point", _ladder)
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    builder.setattr(fc, "NODES", _theta_nodes(8))
+    builder.setattr(fc, "exact_point", _no_ladder)
+    n_written, workdir = fc.recover(tmp_path / "t.nc", tmp_path / "w2")
+    assert n_written == 4 * 2 * 4 * 4
+    assert len(list(workdir.glob("pending_exact_*.npy"))) == n_written
+    builder.setattr(fc, "exact_point", _counted(_exact, tmp_path / "extended"))
+    builder.setattr(fc, "ladder_point", _counted(_ladder, tmp_path / "ladder"))
+    fc.build(tmp_path / "w2", workers=1, output=tmp_path / "t2.nc")
+    extended = _calls(tmp_path / "extended")
+    assert not list(workdir.glob("pending_*"))
+    # the new thetas' unknown nodes: 4 thetas x (2 m x 3 kn) x s 0.3 and 0.6 (s = 0 takes
+    # theta 0's values, s = 1 is known) x 4 ln(a0/b0) x 2 nu x 4 tau
+    assert len(extended) == 4 * 6 * 2 * 4 * 2 * 4
+    assert {round(a[3], 12) for a in extended} == {round(v, 12) for v in
+                                                  np.pi * np.array([-0.75, -0.25, 0.25, 0.75])}
+    assert _calls(tmp_path / "ladder") == []       # (no new node failed)
+    builder.setattr(fc, "exact_point", _counted(_exact, tmp_path / "scratch"))
+    fc.build(tmp_path / "w3", workers=1, output=tmp_path / "t3.nc")
+    # (and at s = 0 the one theta of every row, which the extension took from the file)
+    assert len(_calls(tmp_path / "scratch")) == 2 * len(extended) + 4 * 2 * 4 * 6
+    (a, la, aa), (b, lb, ab) = _read(tmp_path / "t2.nc"), _read(tmp_path / "t3.nc")
+    assert a.shape[4] == 8
+    np.testing.assert_array_equal(la, lb)
+    np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-9)
+    assert (aa["n_ladder"], aa["n_unconverged"]) == (ab["n_ladder"], ab["n_unconverged"])
+
+
+def test_a_theta_node_between_two_unconverged_ones_is_left_to_the_ladder(builder, tmp_path):
+    """A new theta node whose old neighbours both did not converge is not solved (stored
+    unconverged, as along s); the ladder tries it (tau 2 here), and only it."""
+    def exact(lg, nu, s, th, tau, m, kn):
+        if (m, kn, tau, s) == (0.3, 2.0, 2.0, 0.3) and (np.isclose(th, 0.0)
+                                                        or np.isclose(th, np.pi / 2)):
+            return np.full(3, np.nan)
+        return _exact(lg, nu, s, th, tau, m, kn)
+
+    builder.setattr(fc, "exact_point", exact)
+    builder.setattr(fc, "LADDER_TAU_MAX", 2.0)
+    builder.setattr(fc, "ladder_point", _ladder)
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    builder.setattr(fc, "NODES", _theta_nodes(8))
+    workdir = fc.recover(tmp_path / "t.nc", tmp_path / "w2")[1]
+    builder.setattr(fc, "exact_point", _counted(exact, tmp_path / "solved"))
+    builder.setattr(fc, "ladder_point", _counted(_ladder, tmp_path / "ladder"))
+    fc.build(tmp_path / "w2", workers=1, output=tmp_path / "t2.nc")
+    solved, ladder_calls = _calls(tmp_path / "solved"), _calls(tmp_path / "ladder")
+    between = [a for a in solved if (a[5], a[6], a[4], a[2]) == (0.3, 2.0, 2.0, 0.3)
+               and np.isclose(a[3], np.pi / 4)]
+    assert between == []
+    assert len(solved) == 4 * 6 * 2 * 4 * 2 * 4 - 4 * 2
+    assert {(round(a[3], 12), a[2], a[4], a[5], a[6]) for a in ladder_calls} == {
+        (round(np.pi / 4, 12), 0.3, 2.0, 0.3, 2.0)}
+    assert len(ladder_calls) == 4 * 2
+    vals, ladder, _ = _read(tmp_path / "t2.nc")
+    i = (0, 0, 1, 5, 2, 0, 3)               # s 0.3, theta pi/4, tau 2, m 0.3, kn 2
+    assert ladder[i]
+    p = [fc.NODES[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None), *i)],
+                               _ladder(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
+    assert np.isnan(np.load(fc._chunk(workdir, 0, 0, 2, 1))[0, 5, 0, 3])
