@@ -16,7 +16,8 @@ and 37 min for the ln(a0/b0) nodes 0.25 and 0.75 ln 5), most of it the
 cases of the most strongly falling laws that the exact solver does not converge on (each runs
 to its iteration limit), then the ladder at the nodes that did not converge (:func:`ladder_point`;
 2026-11-29: 80 min on 2 cores for those of tau <= 2, 2,432 nodes, 2,011 of them estimated;
-the 3,672 of larger tau some 2.5 h more), then seconds for the model at the nodes.
+some 95 min for those of tau 2.25-5.5, 2,406 nodes, 1,988 estimated; the 1,266 of larger tau
+not yet), then seconds for the model at the nodes.
 
 What is tabulated, at every node of (ln(a0/b0), nu, s, theta, tau, mu_k/mu_0, kappa mu_0 p0/G)
 (the exact table's coordinates of :func:`railcontact.exact_table.exact_table_coordinates`,
@@ -195,10 +196,13 @@ def exact_point(lg, nu, s, th, tau, m, kn, **options):
 #: 3.7 % of mu_0 N.
 LADDER_GRIDS = (20, 24, 30, 36, 40, 48)
 LADDER_MIN_GRIDS = 3
-#: The ladder is tried at the unconverged nodes of tau <= this (the region where the stick
-#: zone collapses with spin under a strong law first: about 4 s a node on one core; the nodes
-#: of larger tau, some 4,500, are the next step).
-LADDER_TAU_MAX = 2.0
+#: The ladder is tried at the unconverged nodes of tau <= this: first tau <= 2, where the stick
+#: zone collapses with spin under a strong law (80 min on 2 cores, 2,432 nodes, 2,011
+#: estimated), then to 5.5 (2026-11-29: 2,406 nodes, 1,988 estimated, some 95 min on 2
+#: cores); the 1,266 unconverged nodes of tau 7.5-20 are left to the fill. At 12 converged
+#: nodes of tau 5.5-20 (2026-11-29) the ladder is within 0.28 % of mu_0 N of the default
+#: grid (RMS 0.08 / 0.03 / 0.08 % for T_x, T_y, M_z).
+LADDER_TAU_MAX = 5.5
 
 
 def ladder_point(lg, nu, s, th, tau, m, kn):
