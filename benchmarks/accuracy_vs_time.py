@@ -810,9 +810,9 @@ def family_falling_3d(quick):
                      "its correction table (the exact theory minus that model over the law's "
                      "normalised parameters); over 30 x 150 random cases with the smooth law "
                      "0.96 % of mu_0 N without spin, 1.03 % at |tau| <= 1, 1.32 % beyond "
-                     "(4,487 of the 4,491 within 1 %; 2.4 % where a strong law's stick zone "
+                     "(4,487 of the 4,491 within 1 %; 1.8 % where a strong law's stick zone "
                      "collapses with spin); with Polach's law (10 x 150) 0.87, "
-                     "1.42, 1.90 % (docs/reference_solvers.md; "
+                     "1.41, 1.90 % (docs/reference_solvers.md; "
                      "SmoothFriction and PolachFriction take a compiled path, 9-10 us a "
                      "scalar call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
                      "the law: the local bound mu(q) p per element, a crude theory")

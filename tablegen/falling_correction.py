@@ -387,20 +387,23 @@ def _ladder_blocks():
             for i in range(n["log_aspect_ratio"].size) for j in range(n["poisson_ratio"].size)]
 
 
+def _ladder_todo(workdir, i_g, i_nu, i_tau, i_s):
+    """A row's nodes for the ladder and its ladder values so far: the nodes that did not
+    converge where the row has no ladder file yet (values NaN), those of them pending
+    (:func:`_pending`) where its file has pending nodes, none where its file is done."""
+    path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
+    bad = np.isnan(np.load(_chunk(workdir, i_g, i_nu, i_tau, i_s))[0])
+    if not path.exists():
+        return bad, np.full((3,) + bad.shape, np.nan)
+    if _pending(path).exists():
+        return bad & np.load(_pending(path)), np.load(path)
+    return np.zeros_like(bad), None
+
+
 def _ladder_missing(workdir, i_g, i_nu, i_tau):
-    """The s rows of a block with unconverged nodes and no ladder file yet, or a ladder file
-    with pending nodes (:func:`_pending`) that did not converge."""
-    out = []
-    for i_s in range(NODES["creepage_coordinate"].size):
-        path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
-        bad = np.isnan(np.load(_chunk(workdir, i_g, i_nu, i_tau, i_s))[0])
-        if _pending(path).exists() and path.exists():
-            bad &= np.load(_pending(path))
-        elif path.exists():
-            continue
-        if bad.any():
-            out.append(i_s)
-    return out
+    """The s rows of a block with nodes for the ladder (:func:`_ladder_todo`)."""
+    return [i_s for i_s in range(NODES["creepage_coordinate"].size)
+            if _ladder_todo(workdir, i_g, i_nu, i_tau, i_s)[0].any()]
 
 
 def _ladder_work(workdir, i_g, i_nu, i_tau):
@@ -412,13 +415,8 @@ def _ladder_work(workdir, i_g, i_nu, i_tau):
                    n["spin_coordinate"][i_tau])
     for i_s in _ladder_missing(workdir, i_g, i_nu, i_tau):
         s = n["creepage_coordinate"][i_s]
-        bad = np.isnan(np.load(_chunk(workdir, i_g, i_nu, i_tau, i_s))[0])
+        bad, out = _ladder_todo(workdir, i_g, i_nu, i_tau, i_s)
         path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
-        pending = _pending(path)
-        out = np.full((3,) + bad.shape, np.nan)
-        if pending.exists() and path.exists():
-            out = np.load(path)
-            bad &= np.load(pending)
         for i_t, i_m, i_k in zip(*np.nonzero(bad)):
             if s == 0.0 and i_t > 0:        # theta is void at s = 0: the row of theta 0
                 out[:, i_t, i_m, i_k] = out[:, 0, i_m, i_k]
@@ -427,7 +425,7 @@ def _ladder_work(workdir, i_g, i_nu, i_tau):
                                                  n["friction_ratio"][i_m],
                                                  n["friction_decay_number"][i_k])
         _save(path, out)
-        pending.unlink(missing_ok=True)
+        _pending(path).unlink(missing_ok=True)
     name = _ladder_chunk(workdir, i_g, i_nu, i_tau, 0).name.rsplit("_s", 1)[0]
     return name, time.perf_counter() - t
 
@@ -494,7 +492,10 @@ def _work(workdir, i_g, i_nu, i_tau):
             ladder = _pending(_ladder_chunk(workdir, i_g, i_nu, i_tau, i_s))
             if ladder.exists():     # (the ladder's pending nodes: those that did not converge)
                 left = np.load(ladder) & np.isnan(row[0])
-                _save(ladder, left) if left.any() else ladder.unlink()
+                if left.any():
+                    _save(ladder, left)
+                else:
+                    ladder.unlink()
             pending.unlink()
             continue
         skip = _between_unconverged(workdir, i_g, i_nu, i_tau, i_s)
