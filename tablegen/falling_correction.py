@@ -232,14 +232,16 @@ def _known(m, kn, s):
     return (np.asarray(m) >= 1.0) | (np.asarray(kn) == 0.0) | (np.asarray(s) >= 1.0)
 
 
-def exact_row(i_g, i_nu, i_tau, i_s, skip=None, todo=None, row=None):
+def exact_row(i_g, i_nu, i_tau, i_s, skip=None, todo=None, row=None, point=None):
     """The exact theory on one (ln(a0/b0), nu, tau, s) row of nodes: array (3, n_theta, n_m,
     n_kn) as :func:`exact_point` (0 at the known nodes; at s = 0 one solve for every theta).
     ``skip``: a boolean array (n_theta, n_m, n_kn) of nodes not attempted (NaN, as a node the
     solver does not converge on). ``todo`` (the same shape) and ``row`` (the row so far): only
     the nodes of ``todo`` are computed, the others kept from ``row`` (nodes pending after
-    :func:`recover` from a file with fewer nodes along :data:`ROW_AXES`)."""
+    :func:`recover` from a file with fewer nodes along :data:`ROW_AXES`). ``point``: the
+    solve at a node (default :func:`exact_point`; the ladder passes :func:`ladder_point`)."""
     warnings.simplefilter("ignore")
+    point = point or exact_point
     n = NODES
     lg, nu, tau, s = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
                       n["spin_coordinate"][i_tau], n["creepage_coordinate"][i_s])
@@ -256,7 +258,7 @@ def exact_row(i_g, i_nu, i_tau, i_s, skip=None, todo=None, row=None):
         elif skip is not None and skip[i_t, i_m, i_k]:
             out[:, i_t, i_m, i_k] = np.nan
         else:
-            out[:, i_t, i_m, i_k] = exact_point(lg, nu, s, th, tau, m, kn)
+            out[:, i_t, i_m, i_k] = point(lg, nu, s, th, tau, m, kn)
     return out
 
 
@@ -408,23 +410,11 @@ def _ladder_missing(workdir, i_g, i_nu, i_tau):
 
 def _ladder_work(workdir, i_g, i_nu, i_tau):
     """The ladder at the unconverged nodes of one block's rows, each row saved when done."""
-    warnings.simplefilter("ignore")
     t = time.perf_counter()
-    n = NODES
-    lg, nu, tau = (n["log_aspect_ratio"][i_g], n["poisson_ratio"][i_nu],
-                   n["spin_coordinate"][i_tau])
     for i_s in _ladder_missing(workdir, i_g, i_nu, i_tau):
-        s = n["creepage_coordinate"][i_s]
         bad, out = _ladder_todo(workdir, i_g, i_nu, i_tau, i_s)
         path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
-        for i_t, i_m, i_k in zip(*np.nonzero(bad)):
-            if s == 0.0 and i_t > 0:        # theta is void at s = 0: the row of theta 0
-                out[:, i_t, i_m, i_k] = out[:, 0, i_m, i_k]
-                continue
-            out[:, i_t, i_m, i_k] = ladder_point(lg, nu, s, n["creepage_angle"][i_t], tau,
-                                                 n["friction_ratio"][i_m],
-                                                 n["friction_decay_number"][i_k])
-        _save(path, out)
+        _save(path, exact_row(i_g, i_nu, i_tau, i_s, todo=bad, row=out, point=ladder_point))
         _pending(path).unlink(missing_ok=True)
     name = _ladder_chunk(workdir, i_g, i_nu, i_tau, 0).name.rsplit("_s", 1)[0]
     return name, time.perf_counter() - t

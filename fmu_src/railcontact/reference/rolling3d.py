@@ -811,7 +811,7 @@ _SWITCH_RATIO = 0.8  # a sweep reducing the residual by less than this switches 
 _NEWTON_FORCING = 0.1  # a line is solved when its Newton step is < 0.1 x its first step
 _RELAX_STALL = 10  # sweeps without halving the best residual that count as a stall
 _RELAX_FACTOR = 0.5  # each stall halves the relaxation factor of the sweeps ...
-_RELAX_MIN = 0.05  # ... down to 1/32
+_RELAX_MIN = 1.0 / 32.0  # ... down to this
 _HISTORY = np.zeros(0)  # diagnostics: set to np.zeros(n) to record the first n sweep residuals
 _FRICTION_TABLE_SLIP = np.concatenate([[0.0], np.logspace(-8, 1, 361)])
 
