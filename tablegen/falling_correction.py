@@ -562,15 +562,64 @@ def _model_work(workdir, i_tau):
     return path.name, 0.0
 
 
-def assemble(workdir):
+def _pending_tau(workdir, i_tau):
+    """The nodes of one tau node not computed yet, shaped as :func:`_exact_tau` without the
+    variables: pending in their chunk of exact solves (:func:`_pending`), or unconverged and
+    pending in their ladder's file (tau <= :data:`LADDER_TAU_MAX`)."""
+    n = NODES
+    shape = tuple(n[k].size for k in AXES if k != "spin_coordinate")
+    out = np.zeros(shape, dtype=bool)
+    for i in range(shape[0]):
+        for j in range(shape[1]):
+            for k in range(shape[2]):
+                path = _chunk(workdir, i, j, i_tau, k)
+                if _pending(path).exists():
+                    out[i, j, k] = np.load(_pending(path))
+                elif n["spin_coordinate"][i_tau] <= LADDER_TAU_MAX:
+                    out[i, j, k] = _ladder_todo(workdir, i, j, i_tau, k)[0]
+    return out
+
+
+def source_fill(source):
+    """The correction of a table file with fewer theta nodes (every other axis the builder's,
+    its theta nodes among :data:`NODES`'), at the builder's nodes: the file's node values
+    (unconverged ones filled as the reader fills them,
+    :func:`railcontact.falling_table._filled`) along theta by the periodic spline the reader
+    fits (:func:`railcontact.falling_table.pack_correction`), which is the file's table at
+    those nodes. Array (3, ...) of :data:`AXES`. The value :func:`build` gives a node not
+    computed yet when it writes a partial table (``partial_from``)."""
+    import xarray as xr  # noqa: PLC0415
+    from scipy.interpolate import make_interp_spline  # noqa: PLC0415
+
+    from railcontact.falling_table import _filled  # noqa: PLC0415
+
+    with xr.open_dataset(source) as ds:
+        for k in AXES:
+            got = np.asarray(ds[k].values, dtype=float)
+            same = got.size == NODES[k].size and np.allclose(got, NODES[k], rtol=0.0,
+                                                              atol=1e-12)
+            if k != "creepage_angle" and not same:
+                raise ValueError(f"source: the file's nodes of {k} {got.tolist()} are not the "
+                                 f"builder's {NODES[k].tolist()} (only theta may differ)")
+        theta = np.asarray(ds["creepage_angle"].values, dtype=float)
+        vals = np.stack([ds[v].values.astype(float) for v in VARIABLES])
+    vals = _filled(vals, NODES["friction_ratio"], NODES["friction_decay_number"])
+    sp = make_interp_spline(np.append(theta, np.pi), np.concatenate(
+        [vals, vals[:, :, :, :, :1]], axis=4), k=3, bc_type="periodic", axis=4)
+    return sp(NODES["creepage_angle"])
+
+
+def assemble(workdir, fill=None):
     """The whole grid of corrections (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn): the exact
     solves (the ladder's where they did not converge) minus the model (0 at the known nodes,
     NaN where either is missing), and the mask of the ladder's nodes; or None while any
-    model chunk is missing."""
+    model chunk is missing. ``fill`` (the grid's shape, :func:`source_fill`): the values of
+    the nodes not computed yet (:func:`_pending_tau`), then also returned as their mask."""
     n = NODES
     shape = tuple(n[k].size for k in AXES)
     out = np.empty((3,) + shape)
     ladder = np.zeros(shape, dtype=bool)
+    pending = np.zeros(shape, dtype=bool)
     grids = np.meshgrid(*(n[k] for k in AXES if k != "spin_coordinate"), indexing="ij")
     known = _known(grids[4], grids[5], grids[2])
     for i_tau in range(shape[4]):
@@ -579,13 +628,19 @@ def assemble(workdir):
         if not path.exists():
             return None
         out[:, :, :, :, :, i_tau] = np.where(known, 0.0, solved - np.load(path))
-    return out, ladder
+        if fill is not None:
+            pending[:, :, :, :, i_tau] = _pending_tau(workdir, i_tau) & ~known
+    if fill is None:
+        return out, ladder
+    return np.where(pending, fill, out), ladder, pending
 
 
-def write(values, path, seconds=None, ladder=None):
+def write(values, path, seconds=None, ladder=None, source=None):
     """The table file (netCDF-4): the axes, the three variables on the computed grid
     (float32), ``ladder_node`` (1 where the value is the ladder's, :func:`ladder_point`;
-    ``ladder``: that mask, default none), and ``packed_bspline``, the fitted spline the reader
+    ``ladder``: that mask, default none), ``source_node`` (1 where the node was not computed
+    yet and the value is an earlier table's, :func:`source_fill`; ``source``: (that mask, the
+    earlier file's name), default none), and ``packed_bspline``, the fitted spline the reader
     evaluates (:func:`railcontact.falling_table.pack_correction`: its layout in the
     attribute)."""
     import xarray as xr  # noqa: PLC0415
@@ -602,6 +657,11 @@ def write(values, path, seconds=None, ladder=None):
         "1: the exact theory by the ladder of grids " + repr(LADDER_GRIDS) + " (at least "
         f"{LADDER_MIN_GRIDS} converged, extrapolated in 1/mx) where the default grid did not "
         "converge; 0: the default grid, or known, or NaN (not converged: filled by the reader)")
+    if source is not None:
+        ds["source_node"] = (AXES, source[0].astype(np.int8))
+        ds["source_node"].attrs["meaning"] = (
+            "1: not computed yet (a partial build): the value is the table " + str(source[1])
+            + " (fewer theta nodes) at the node, its spline along theta; 0: computed")
     from railcontact.falling_table import CORRECTION_HEADER  # noqa: PLC0415
 
     counts = packed[:CORRECTION_HEADER].astype(int)
@@ -623,6 +683,7 @@ def write(values, path, seconds=None, ladder=None):
         method=SOLVER + "; model falling_friction_table " + _model_hash(),
         grid_hash=_hash(), n_unconverged=int(np.isnan(values[0]).sum()),
         n_ladder=int(ladder.sum()), ladder_tau_max=float(LADDER_TAU_MAX),
+        n_source_nodes=int(0 if source is None else source[0].sum()),
         references="J.B. Nielsen 1998, Eq. (5.16); J.J. Kalker 1990 (exact theory); "
                    "railcontact.falling_table (the model)",
         spin_coordinate_symmetry="tau < 0: mirror y -> -y (theta -> -theta, tau -> -tau; "
@@ -642,7 +703,8 @@ def recover(source, workdir=None):
     the current nodes on every axis but :data:`CHUNK_AXES` and :data:`ROW_AXES`, whose nodes
     in the file must be nodes of :data:`NODES`: the nodes of a row the file does not have are
     written pending (:func:`_pending`, in the ladder's files too), which the build then
-    computes, and only those. A chunk already there is kept. The values come back to
+    computes, and only those; so are the file's own nodes not computed yet (a partial
+    table's ``source_node``, :func:`build`). A chunk already there is kept. The values come back to
     float32's rounding of the correction (some 1e-9 of mu_0 N). Returns (n_written,
     workdir)."""
     import xarray as xr  # noqa: PLC0415
@@ -671,16 +733,20 @@ def recover(source, workdir=None):
         ladder = (ds["ladder_node"].values.astype(bool) if "ladder_node" in ds
                   else np.zeros(corr.shape[1:], dtype=bool))
         ladder_tau_max = float(ds.attrs.get("ladder_tau_max", -1.0))
+        source = (ds["source_node"].values.astype(bool) if "source_node" in ds
+                  else np.zeros(corr.shape[1:], dtype=bool))
     written = 0
     at_row = np.ix_(*(index[k] for k in ROW_AXES))
     todo = np.ones(tuple(NODES[k].size for k in ROW_AXES), dtype=bool)
     todo[at_row] = False
 
-    def put(path, vals):    # (a row of the file's nodes into the builder's, the rest pending)
-        row = np.full((3,) + todo.shape, np.nan)
-        row[(slice(None),) + at_row] = vals
-        if todo.any():      # (first: a row is never there without its pending nodes)
-            _save(_pending(path), todo)
+    def put(path, vals, src):   # (a row of the file's nodes into the builder's, the rest
+        row = np.full((3,) + todo.shape, np.nan)    # pending, and the file's nodes from
+        row[(slice(None),) + at_row] = np.where(src, np.nan, vals)  # its source: source_node)
+        pending = todo.copy()
+        pending[at_row] |= src
+        if pending.any():   # (first: a row is never there without its pending nodes)
+            _save(_pending(path), pending)
         _save(path, row)
 
     for j_tau, i_tau in enumerate(index["spin_coordinate"]):
@@ -696,28 +762,35 @@ def recover(source, workdir=None):
             for i_nu in range(nodes["poisson_ratio"].size):
                 for j_s, i_s in enumerate(index["creepage_coordinate"]):
                     row, at = exact[:, j_g, i_nu, j_s], lad[j_g, i_nu, j_s]
+                    src = source[j_g, i_nu, j_s, :, j_tau]
                     path = _chunk(workdir, i_g, i_nu, i_tau, i_s)
                     if not path.exists():   # (the ladder's nodes were not converged)
-                        put(path, np.where(at, np.nan, row))
+                        put(path, np.where(at, np.nan, row), src)
                         written += 1
                     path = _ladder_chunk(workdir, i_g, i_nu, i_tau, i_s)
                     if tried and not path.exists():
-                        put(path, np.where(at, row, np.nan))
+                        put(path, np.where(at, row, np.nan), src)
     return written, workdir
 
 
-def build(workdir=None, workers=2, output=None, limit=None):
+def build(workdir=None, workers=2, output=None, limit=None, partial_from=None):
     """Compute the missing chunks of exact solves, a (ln(a0/b0), nu, tau) block's missing s
     rows a job (``limit``: at most that many blocks in this run), then the model at the nodes
     (per tau node, kept under the model's hash), and, once all are there, write the file.
-    Returns (n_done, n_missing, path or None): jobs done and blocks still missing."""
+    Returns (n_done, n_missing, path or None): jobs done and blocks still missing.
+
+    ``partial_from`` (a table file with fewer theta nodes, the one the work directory was
+    recovered from): nothing is solved; the file is written now, the nodes not computed yet
+    taking that file's values (:func:`source_fill`, flagged ``source_node``), so that a
+    refinement along theta of many hours ships what is done at the end of a session.
+    Returns (n_done, n_source_nodes, path)."""
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
     workdir.mkdir(parents=True, exist_ok=True)
     n = NODES
     n_tau = n["spin_coordinate"].size
     blocks = [(i, j, k) for k in range(n_tau) for i in range(n["log_aspect_ratio"].size)
               for j in range(n["poisson_ratio"].size)]
-    todo = [b for b in blocks if _block_missing(workdir, *b)]
+    todo = [b for b in blocks if _block_missing(workdir, *b)] if partial_from is None else []
     if limit is not None:
         todo = todo[:limit]
     t0 = time.perf_counter()
@@ -736,23 +809,28 @@ def build(workdir=None, workers=2, output=None, limit=None):
     if todo:
         run(_work, todo)
     missing = sum(bool(_block_missing(workdir, *b)) for b in blocks)
-    if missing:
+    if missing and partial_from is None:
         return done, missing, None
-    ladder = [b for b in _ladder_blocks() if _ladder_missing(workdir, *b)]
+    ladder = [b for b in _ladder_blocks() if _ladder_missing(workdir, *b)
+              ] if partial_from is None else []
     if limit is not None:
         ladder = ladder[:max(0, limit - len(todo))]
     if ladder:
         run(_ladder_work, ladder)
     missing = sum(bool(_ladder_missing(workdir, *b)) for b in _ladder_blocks())
-    if missing:
+    if missing and partial_from is None:
         return done, missing, None
     models = [(k,) for k in range(n_tau)
               if not _model_chunk(workdir, k, _solved_tau(workdir, k)[0]).exists()]
     if models:
         run(_model_work, models)
-    values, ladder_mask = assemble(workdir)
     output = Path(output or Path.cwd() / "tables-build" / "falling_correction.nc")
     output.parent.mkdir(parents=True, exist_ok=True)
+    if partial_from is not None:
+        values, ladder_mask, pending = assemble(workdir, source_fill(partial_from))
+        write(values, output, ladder=ladder_mask, source=(pending, Path(partial_from).name))
+        return done, int(pending.sum()), output
+    values, ladder_mask = assemble(workdir)
     write(values, output, ladder=ladder_mask)
     (workdir / "done.json").write_text(json.dumps({"output": str(output),
                                                    "model": _model_hash()}))
@@ -768,6 +846,8 @@ def main(argv=None):
     p.add_argument("--workdir", default=None)
     p.add_argument("--output", default=None)
     p.add_argument("--limit", type=int, default=None, help="at most this many chunks now")
+    p.add_argument("--partial-from", default=None, help="build: write the table now, the nodes "
+                   "not computed yet from this file (fewer theta nodes; solves nothing)")
     a = p.parse_args(argv)
     if a.command == "recover":
         from railcontact import falling_table  # noqa: PLC0415
@@ -776,7 +856,10 @@ def main(argv=None):
         n, where = recover(a.source or shipped, a.workdir)
         print(f"{n} chunks recovered into {where}")
         return 0
-    done, missing, path = build(a.workdir, a.workers, a.output, a.limit)
+    done, missing, path = build(a.workdir, a.workers, a.output, a.limit, a.partial_from)
+    if a.partial_from:
+        print(f"wrote {path}; {missing} nodes from {a.partial_from}")
+        return 0
     print(f"{done} chunks computed; {missing} missing" + (f"; wrote {path}" if path else ""))
     return 0
 

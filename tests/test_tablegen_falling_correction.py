@@ -357,3 +357,66 @@ def test_a_theta_node_between_two_unconverged_ones_is_left_to_the_ladder(builder
                                _ladder(*p) - _model(*[np.array(v) for v in p]),
                                rtol=1e-6, atol=1e-8)
     assert np.isnan(np.load(fc._chunk(workdir, 0, 0, 2, 1))[0, 5, 0, 3])
+
+
+def _exact_theta(lg, nu, s, th, tau, m, kn):
+    """The stand-in, varying along theta too."""
+    return _exact(lg, nu, s, th, tau, m, kn) + np.array(
+        [0.004 * np.cos(th), 0.002 * np.sin(2.0 * th), 0.001 * np.sin(th)]) * (1.0 - m)
+
+
+def test_a_partial_build_ships_what_is_done_and_the_table_before_elsewhere(builder, tmp_path):
+    """Theta nodes every 45 instead of 90 degrees, 3 of the 32 blocks solved: the partial
+    file (``partial_from``) holds the solves there, the 90-degree table elsewhere (its
+    periodic spline along theta at the new nodes, flagged ``source_node``); recovered from
+    it, the build solves the rest only and writes the table a build from scratch writes."""
+    from scipy.interpolate import CubicSpline
+
+    builder.setattr(fc, "exact_point", _exact_theta)
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    before = _read(tmp_path / "t.nc")[0]
+    builder.setattr(fc, "NODES", _theta_nodes(8))
+    fc.recover(tmp_path / "t.nc", tmp_path / "w2")
+    fc.build(tmp_path / "w2", workers=1, limit=3)
+    done, n_source, path = fc.build(tmp_path / "w2", workers=1, output=tmp_path / "p.nc",
+                                    partial_from=tmp_path / "t.nc")
+    assert path == tmp_path / "p.nc"
+    vals, _, attrs = _read(path)
+    with netCDF4.Dataset(path) as ds:
+        source = ds.variables["source_node"][:].astype(bool)
+    # the new thetas' unknown nodes (2 m x 3 kn) at s 0, 0.3 and 0.6 of the 29 blocks not
+    # solved (blocks run tau first: the 3 solved are tau 0's (g, nu) (0, 0), (0, 1), (1, 0))
+    assert n_source == attrs["n_source_nodes"] == source.sum() == 29 * 3 * 4 * 6
+    assert not source[:, :, :, 1::2].any() or not source[:, :, :, ::2].any()
+    assert not source[0, :, :, :, 0].any() and not source[1, 0, :, :, 0].any()
+    n = fc.NODES
+    i = (0, 1, 1, 1, 0, 1, 2)           # solved: s 0.3, theta -3 pi / 4, tau 0, m 0.65, kn 1.125
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None), *i)],
+                               _exact_theta(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
+    assert not source[i]
+    # a node not computed: the 90-degree table's periodic spline along theta there, and
+    # that table at its own nodes
+    th4 = np.linspace(-np.pi, np.pi, 5)
+    row = before[:, 2, 1, 2, :, 3, 0, 1]          # (var, theta): s 0.6, tau 4, m 0.3, kn 0.5
+    spline = CubicSpline(th4, np.concatenate([row, row[:, :1]], axis=1), axis=1,
+                         bc_type="periodic")
+    assert source[2, 1, 2, 1::2, 3, 0, 1].all()
+    np.testing.assert_allclose(vals[:, 2, 1, 2, 1::2, 3, 0, 1], spline(n["creepage_angle"][1::2]),
+                               rtol=1e-5, atol=1e-8)
+    np.testing.assert_allclose(vals[:, 2, 1, 2, ::2, 3, 0, 1], row, rtol=1e-6, atol=1e-9)
+    assert abs(vals[0, 2, 1, 2, 3, 3, 0, 1] - (_exact_theta(*[n[k][j] for k, j in zip(
+        fc.AXES, (2, 1, 2, 3, 3, 0, 1))]) - _model(*[np.array(n[k][j]) for k, j in zip(
+            fc.AXES, (2, 1, 2, 3, 3, 0, 1))]))[0]) > 2e-5    # (the spline is not the truth)
+    # recovered from the partial file: its computed nodes kept, the others solved
+    builder.setattr(fc, "exact_point", _counted(_exact_theta, tmp_path / "rest"))
+    fc.recover(path, tmp_path / "w3")
+    fc.build(tmp_path / "w3", workers=1, output=tmp_path / "t3.nc")
+    assert len(_calls(tmp_path / "rest")) == 29 * 2 * 4 * 6    # (s = 0 takes theta -pi's)
+    builder.setattr(fc, "exact_point", _exact_theta)
+    fc.build(tmp_path / "w4", workers=1, output=tmp_path / "t4.nc")
+    (a, la, aa), (b, lb, ab) = _read(tmp_path / "t3.nc"), _read(tmp_path / "t4.nc")
+    np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-9)
+    with netCDF4.Dataset(tmp_path / "t3.nc") as ds:
+        assert "source_node" not in ds.variables and ds.n_source_nodes == 0
