@@ -545,9 +545,10 @@ def _model_where(on, points, tau, fill):
     return out
 
 
-def _model_work(workdir, i_tau):
-    """The model at one tau node's nodes where the exact theory is known (NaN elsewhere)."""
-    ex = _solved_tau(workdir, i_tau)[0]
+def _model_work(workdir, i_tau, solved=None):
+    """The model at one tau node's nodes where the exact theory is known (NaN elsewhere;
+    ``solved``: those solves, default the work directory's now)."""
+    ex = _solved_tau(workdir, i_tau)[0] if solved is None else solved
     path = _model_chunk(workdir, i_tau, ex)
     if not path.exists():
         t = time.perf_counter()
@@ -614,7 +615,8 @@ def assemble(workdir, fill=None):
     solves (the ladder's where they did not converge) minus the model (0 at the known nodes,
     NaN where either is missing), and the mask of the ladder's nodes; or None while any
     model chunk is missing. ``fill`` (the grid's shape, :func:`source_fill`): the values of
-    the nodes not computed yet (:func:`_pending_tau`), then also returned as their mask."""
+    the nodes not computed yet (:func:`_pending_tau`), then also returned as their mask (and
+    a missing model chunk computed: a build running beside changes what is solved)."""
     n = NODES
     shape = tuple(n[k].size for k in AXES)
     out = np.empty((3,) + shape)
@@ -623,13 +625,15 @@ def assemble(workdir, fill=None):
     grids = np.meshgrid(*(n[k] for k in AXES if k != "spin_coordinate"), indexing="ij")
     known = _known(grids[4], grids[5], grids[2])
     for i_tau in range(shape[4]):
+        if fill is not None:    # (first: a build running beside may finish a row meanwhile)
+            pending[:, :, :, :, i_tau] = _pending_tau(workdir, i_tau) & ~known
         solved, ladder[:, :, :, :, i_tau] = _solved_tau(workdir, i_tau)
         path = _model_chunk(workdir, i_tau, solved)
+        if not path.exists() and fill is not None:
+            _model_work(workdir, i_tau, solved)
         if not path.exists():
             return None
         out[:, :, :, :, :, i_tau] = np.where(known, 0.0, solved - np.load(path))
-        if fill is not None:
-            pending[:, :, :, :, i_tau] = _pending_tau(workdir, i_tau) & ~known
     if fill is None:
         return out, ladder
     return np.where(pending, fill, out), ladder, pending

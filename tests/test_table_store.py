@@ -211,3 +211,37 @@ def test_the_exact_table_is_mapped_float32_and_loaded_once_per_process():
     with tempfile.TemporaryDirectory() as extraction:
         copy = shutil.copy(path, extraction)
         assert creep3d.load_exact_table(copy) is first
+
+
+def test_the_falling_correction_is_one_mapped_copy_for_two_extractions(tmp_path, monkeypatch):
+    """The falling-friction correction (package data, its packed spline in float64): two
+    copies of its file (two FMU extractions) share one mapped cache entry, written once and
+    equal to the file read directly; a second process would read nothing (the entry is
+    there)."""
+    from pathlib import Path
+
+    from railcontact import falling_table
+
+    monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE, raising=False)
+    source = Path(falling_table.__file__).parent / "data" / f"{falling_table.CORRECTION_TABLE}.nc"
+    copies = []
+    for k in (1, 2):
+        copy = tmp_path / f"extraction{k}" / source.name
+        copy.parent.mkdir()
+        shutil.copy(source, copy)
+        copies.append(copy)
+    reads = []
+    monkeypatch.setattr(falling_table, "_read_packed",
+                        lambda path, read=falling_table._read_packed: reads.append(path)
+                        or read(path))
+    a = falling_table.load_falling_correction(copies[0])
+    b = falling_table.load_falling_correction(copies[1])
+    assert reads == [copies[0]]
+    assert np.shares_memory(a, b)
+    root = a
+    while isinstance(getattr(root, "base", None), np.ndarray):
+        root = root.base
+    assert isinstance(root, np.memmap)
+    assert len(list((tmp_path / "cache" / "tables").glob("*-falling-packed.npy"))) == 1
+    np.testing.assert_array_equal(a, falling_table._read_packed(source))

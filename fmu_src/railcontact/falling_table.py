@@ -551,6 +551,9 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
         if len(_AT) >= CORRECTION_AT_KEPT:
             _AT.pop(next(iter(_AT)))
         got = _AT[key] = _collapsed(corr, poisson_ratio, friction_ratio)
+        from ._table_store import release_pages  # noqa: PLC0415
+
+        release_pages(corr)     # (the mapped table's pages back: the sum is what is used)
     return got
 
 
@@ -690,10 +693,13 @@ def _mirrored(vals, nodes):
 
 def load_falling_correction(path=None):
     """The correction table, packed for :func:`railcontact._falling_kernels._correction`
-    (read once per path and kept; the file's ``packed_bspline``, made by
-    :func:`pack_correction` when the table was built): the exact theory with the smooth law
-    (5.16) minus this module's model (``tablegen.falling_correction``). An empty array where
-    there is no such file (the model alone).
+    (the file's ``packed_bspline``, made by :func:`pack_correction` when the table was
+    built): the exact theory with the smooth law (5.16) minus this module's model
+    (``tablegen.falling_correction``). An empty array where there is no such file (the model
+    alone). Read once per machine: decompressed into the user cache and memory-mapped
+    (:func:`railcontact._table_store.derived`), so that every process and FMU instance shares
+    its pages and a process after the first reads nothing (in memory, once per process,
+    where the cache cannot be written).
 
     Parameters
     ----------
@@ -718,18 +724,27 @@ def load_falling_correction(path=None):
         if path is None:
             got = np.zeros(0)
         else:
-            import netCDF4  # noqa: PLC0415
+            from ._table_store import derived  # noqa: PLC0415
 
-            with netCDF4.Dataset(path) as ds:
-                # (into one float64 array as read, without masked-array copies: the file's
-                # float32 coefficients are the one transient, 23 MiB of the 46 MiB table)
-                ds.set_auto_mask(False)
-                head = np.asarray(ds.variables["packed_bspline"][:], dtype=float)
-                coef = ds.variables["packed_bspline_coefficients"]
-                got = np.empty(head.size + coef.shape[0])
-                got[:head.size] = head
-                got[head.size:] = coef[:]
+            # (decompressed once per machine into the user cache and mapped: every process
+            # and FMU instance shares its pages, and a process after the first reads nothing)
+            got = derived(path, "falling-packed", lambda: _read_packed(path))
         _CORRECTION[key] = got
+    return got
+
+
+def _read_packed(path):
+    """The packed table of the file ``path`` (float64, 1-D), read into one array without
+    masked-array copies (the file's float32 coefficients the one transient)."""
+    import netCDF4  # noqa: PLC0415
+
+    with netCDF4.Dataset(path) as ds:
+        ds.set_auto_mask(False)
+        head = np.asarray(ds.variables["packed_bspline"][:], dtype=float)
+        coef = ds.variables["packed_bspline_coefficients"]
+        got = np.empty(head.size + coef.shape[0])
+        got[:head.size] = head
+        got[head.size:] = coef[:]
     return got
 
 
