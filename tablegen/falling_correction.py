@@ -127,12 +127,20 @@ __all__ = ["NODES", "AXES", "CHUNK_AXES", "exact_row", "model_points", "build"]
 #: 2,989 of 2,991 (the same), max 1.33 % (1.31); Polach's law, seeds 11-20, 1,467 of 1,493
 #: (1,466), max 1.90 % (1.95). The node 0.25 ln 5 alone: 581, 4,486, 2,989, 1,468; max
 #: 2.43, 1.33, 1.34, 1.90 %. (The node 3.34 alone, solved 2026-11-29 with the earlier model
-#: and again with the blend, had gained nothing: see above.)
+#: and again with the blend, had gained nothing: see above.) Theta every 15 degrees (was 30)
+#: since 2026-11-29: with spin the correction swings along theta faster than a cubic through
+#: nodes 30 degrees apart follows (at the new nodes, a spline through the old ones missed by
+#: up to 1.5-2.0 % of mu_0 N at tau 1.125-1.25, 0.1 % at tau 0); solved so far at tau <= 7.5
+#: (the rest of the new nodes, and the 6,168 the default grid did not converge on, waiting
+#: for the ladder, are the 30-degree table's spline there, flagged source_node: a partial
+#: build, see :func:`build`). Collapse region 591 of 591 within 1 % (589), max 0.91 % (1.79);
+#: seeds 11-40 4,489 (4,487), 1.02 % (1.32); seeds 41-60 2,991 (2,990), 1.08 % (1.08);
+#: Polach's law 1,473 (1,471), 1.80 % (1.90).
 NODES = {
     "log_aspect_ratio": np.log(5.0) * np.array([-1.0, -0.75, -0.5, 0.0, 0.25, 0.5, 0.75, 1.0]),
     "poisson_ratio": np.array([0.0, 0.25, 0.5]),
     "creepage_coordinate": np.array([0.0, 0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0]),
-    "creepage_angle": np.linspace(-np.pi, np.pi, 13)[:-1],
+    "creepage_angle": np.linspace(-np.pi, np.pi, 25)[:-1],
     "spin_coordinate": np.array([0.0, 0.5, 0.75, 1.0, 1.125, 1.25, 1.375, 1.5, 1.625, 1.75, 1.875,
                                  2.0, 2.25, 2.5, 3.0, 4.0, 5.5, 7.5, 10.0, 14.0, 20.0]),
     "friction_ratio": np.array([0.3, 0.65, 1.0]),

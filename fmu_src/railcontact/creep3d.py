@@ -392,9 +392,9 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         per element at the element's slip q: :mod:`railcontact.fastsim`, a crude theory) and
         ``"exact_table"`` (a fast path on the Coulomb table, :mod:`railcontact.falling_table`:
         a model and a correction table of what it misses; within 1 % of mu(0) N of the exact
-        theory on 99.9 % of random cases, up to 0.96 % without spin, 1.03 % with spin
-        coordinate |tau| <= 1, up to 1.3 % with larger spin and up to 1.8 % where a strong
-        law's stick zone collapses with spin (the smooth law; Polach's up to 1.9 %); about
+        theory on 99.96 % of random cases, up to 0.96 % without spin, 1.00 % with spin
+        coordinate |tau| <= 1, up to 1.08 % with larger spin and 0.91 % where a strong
+        law's stick zone collapses with spin (the smooth law; Polach's up to 1.8 %); about
         9 us a scalar call with a
         :class:`SmoothFriction`, 10 us with a :class:`PolachFriction`, on a contact the
         table keeps a buffer for); every other method raises ValueError. The law must give a
@@ -643,8 +643,8 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
                    law, speed, solution=False):
     """``method="exact_table"`` with a friction law: :mod:`railcontact.falling_table` on the
     Coulomb exact table and its correction table (an approximation: within 1 % of mu_0 N on
-    99.9 % of random cases, up to 0.96 % without spin, 1.03 % with |tau| <= 1, 1.3 % with
-    larger spin, 1.8 % where a strong law's stick zone collapses with spin). Plain floats
+    99.96 % of random cases, up to 0.96 % without spin, 1.00 % with |tau| <= 1, 1.08 % with
+    larger spin, 0.91 % where a strong law's stick zone collapses with spin). Plain floats
     take the table's scalar path."""
     from .falling_table import falling_friction_table, law_shape  # noqa: PLC0415
 
