@@ -31,14 +31,19 @@ def fresh(tmp_path, monkeypatch):
     monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path / "cache"))
     monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE, raising=False)
     monkeypatch.setattr(_table_store, "MAPPED_MIN_BYTES", 0)
-    source = tables.default_table_path(SMALL)
+    return tmp_path / "cache" / "tables", _two_extractions(tables.default_table_path(SMALL),
+                                                           tmp_path)
+
+
+def _two_extractions(source, root):
+    """Copies of the file ``source`` in two 'FMU extractions' under ``root``."""
     copies = []
     for k in (1, 2):
-        copy = tmp_path / f"extraction{k}" / source.name
+        copy = root / f"extraction{k}" / source.name
         copy.parent.mkdir()
         shutil.copy(source, copy)
         copies.append(copy)
-    return tmp_path / "cache" / "tables", copies
+    return copies
 
 
 def _reads(monkeypatch):
@@ -225,12 +230,7 @@ def test_the_falling_correction_is_one_mapped_copy_for_two_extractions(tmp_path,
     monkeypatch.setenv("RAILCONTACT_CACHE_DIR", str(tmp_path / "cache"))
     monkeypatch.delitem(sys.modules, _table_store.REGISTRY_MODULE, raising=False)
     source = Path(falling_table.__file__).parent / "data" / f"{falling_table.CORRECTION_TABLE}.nc"
-    copies = []
-    for k in (1, 2):
-        copy = tmp_path / f"extraction{k}" / source.name
-        copy.parent.mkdir()
-        shutil.copy(source, copy)
-        copies.append(copy)
+    copies = _two_extractions(source, tmp_path)
     reads = []
     monkeypatch.setattr(falling_table, "_read_packed",
                         lambda path, read=falling_table._read_packed: reads.append(path)
