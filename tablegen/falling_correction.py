@@ -752,9 +752,11 @@ def recover(source, workdir=None):
     todo = np.ones(tuple(NODES[k].size for k in ROW_AXES), dtype=bool)
     todo[at_row] = False
 
-    def put(path, vals, src):   # (a row of the file's nodes into the builder's, the rest
-        row = np.full((3,) + todo.shape, np.nan)    # pending, and the file's nodes from
-        row[(slice(None),) + at_row] = np.where(src, np.nan, vals)  # its source: source_node)
+    def put(path, vals, src):
+        # a row of the file's nodes into the builder's, the rest pending, and pending too the
+        # file's nodes it took from its source (``src``: its source_node)
+        row = np.full((3,) + todo.shape, np.nan)
+        row[(slice(None),) + at_row] = np.where(src, np.nan, vals)
         pending = todo.copy()
         pending[at_row] |= src
         if pending.any():   # (first: a row is never there without its pending nodes)
@@ -802,9 +804,6 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None):
     n_tau = n["spin_coordinate"].size
     blocks = [(i, j, k) for k in range(n_tau) for i in range(n["log_aspect_ratio"].size)
               for j in range(n["poisson_ratio"].size)]
-    todo = [b for b in blocks if _block_missing(workdir, *b)] if partial_from is None else []
-    if limit is not None:
-        todo = todo[:limit]
     t0 = time.perf_counter()
     done = 0
 
@@ -818,20 +817,21 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None):
                 print(f"{name} {sec:.1f} s ({done}, {time.perf_counter() - t0:.0f} s)",
                       flush=True)
 
-    if todo:
-        run(_work, todo)
-    missing = sum(bool(_block_missing(workdir, *b)) for b in blocks)
-    if missing and partial_from is None:
-        return done, missing, None
-    ladder = [b for b in _ladder_blocks() if _ladder_missing(workdir, *b)
-              ] if partial_from is None else []
-    if limit is not None:
-        ladder = ladder[:max(0, limit - len(todo))]
-    if ladder:
-        run(_ladder_work, ladder)
-    missing = sum(bool(_ladder_missing(workdir, *b)) for b in _ladder_blocks())
-    if missing and partial_from is None:
-        return done, missing, None
+    if partial_from is None:    # (a partial table solves nothing)
+        todo = [b for b in blocks if _block_missing(workdir, *b)][:limit]
+        if todo:
+            run(_work, todo)
+        missing = sum(bool(_block_missing(workdir, *b)) for b in blocks)
+        if missing:
+            return done, missing, None
+        ladder = [b for b in _ladder_blocks() if _ladder_missing(workdir, *b)]
+        if limit is not None:
+            ladder = ladder[:max(0, limit - len(todo))]
+        if ladder:
+            run(_ladder_work, ladder)
+        missing = sum(bool(_ladder_missing(workdir, *b)) for b in _ladder_blocks())
+        if missing:
+            return done, missing, None
     models = [(k,) for k in range(n_tau)
               if not _model_chunk(workdir, k, _solved_tau(workdir, k)[0]).exists()]
     if models:
