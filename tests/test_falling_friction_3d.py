@@ -379,17 +379,20 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     law = SmoothFriction(0.3, 0.1, 0.8 / SAT)
     values = _scalar_values(table, args)
     ref = falling_friction_table(values, *args[:6], law, 0.3, (E, NU, 0.1 / 0.3, 0.8 / SAT))
-    got = falling_friction_table_smooth(table, *args, 0.3, 0.1, 0.8 / SAT, eager=True)
-    assert got is not None
-    np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
-    np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
     polach = PolachFriction(0.3, 0.4, 0.6)       # at 30 m/s: the law in s is polach(30 s)
-    ref = falling_friction_table(values, *args[:6],
-                                 lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
-                                 (E, NU, 0.4, 0.6 * 30.0))
-    got = falling_friction_table_compiled(table, *args, 1, 0.3, 0.4, 0.6, 30.0, eager=True)
-    np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
-    np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
+    ref_polach = falling_friction_table(values, *args[:6],
+                                        lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
+                                        (E, NU, 0.4, 0.6 * 30.0))
+    # both compiled paths: the contact's buffer, and the five-dimensional spline with no
+    # buffer (a contact whose a0/b0 changes at every call; the FMU's step)
+    for path in ("contact_buffer", "table_point"):
+        got = falling_friction_table_smooth(table, *args, 0.3, 0.1, 0.8 / SAT, path=path)
+        assert got is not None
+        np.testing.assert_allclose(got[:2], ref[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
+        np.testing.assert_allclose(got[2:], ref[2:], rtol=1e-12, atol=1e-14)
+        got = falling_friction_table_compiled(table, *args, 1, 0.3, 0.4, 0.6, 30.0, path=path)
+        np.testing.assert_allclose(got[:2], ref_polach[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
+        np.testing.assert_allclose(got[2:], ref_polach[2:], rtol=1e-12, atol=1e-14)
 
 
 #: Off-node cases with large spin where the model without its correction table missed most
@@ -806,15 +809,48 @@ def test_any_law_takes_the_compiled_path_on_its_table(case, monkeypatch):
         assert again.ty == pytest.approx(ref[1], abs=2e-4 * 0.3 * N)
     # the kernel itself: the tabulated law against the closed form of the same law
     tab = falling_table.law_table(smooth_like)
-    got = falling_table.falling_friction_table_compiled(table, *args, 2, 0.3, 0.0, 0.0, 0.0,
-                                                        eager=True, tabulated=tab)
-    closed = falling_table.falling_friction_table_smooth(table, *args, 0.3, 0.1, kappa,
-                                                         eager=True)
-    np.testing.assert_allclose(got[:2], closed[:2], rtol=0.0, atol=2e-4 * 0.3 * N)
+    for path in ("contact_buffer", "table_point"):
+        got = falling_table.falling_friction_table_compiled(
+            table, *args, 2, 0.3, 0.0, 0.0, 0.0, path=path, tabulated=tab)
+        closed = falling_table.falling_friction_table_smooth(table, *args, 0.3, 0.1, kappa,
+                                                             path=path)
+        np.testing.assert_allclose(got[:2], closed[:2], rtol=0.0, atol=2e-4 * 0.3 * N)
 
 
 def _unavailable(*_args, **_kwargs):
     raise AssertionError("the numpy path was taken")
+
+
+def test_a_contact_whose_shape_changes_at_every_call_stays_compiled(monkeypatch):
+    """A vehicle's contact: a0/b0 new at every scalar call (the table never keeps a buffer
+    for it). The public call with the package's laws takes the compiled kernel on the
+    table's five-dimensional spline, not the numpy function, and gives the numpy
+    function's numbers to round-off (Coulomb table at mu, correction table summed per
+    point)."""
+    from railcontact import falling_table
+    from railcontact.creep3d import load_exact_table
+
+    table = load_exact_table()
+    smooth, polach = SmoothFriction(0.3, 0.1, 0.8 / SAT), PolachFriction(0.3, 0.4, 0.6)
+    rng = np.random.default_rng(23)
+    cases = [(float(rng.uniform(-4e-3, 4e-3)), float(rng.uniform(-2e-3, 2e-3)),
+              float(rng.uniform(-0.5, 0.5)), N, 6e-3, float(b0), E, NU)
+             for b0 in 9e-3 * (1.0 + 0.05 * rng.standard_normal(12))]
+    refs = []
+    for args in cases:
+        values = _scalar_values(table, args)
+        refs.append((falling_table.falling_friction_table(
+            values, *args[:6], smooth, 0.3, (E, NU, 0.1 / 0.3, 0.8 / SAT)),
+            falling_table.falling_friction_table(
+                values, *args[:6], lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
+                (E, NU, 0.4, 0.6 * 30.0))))
+    monkeypatch.setattr(falling_table, "falling_friction_table", _unavailable)
+    for args, (ref_smooth, ref_polach) in zip(cases, refs):
+        assert (args[4] / args[5], NU) not in table._buffers
+        got = rc.creep_force_3d(*args, smooth, method="exact_table")
+        np.testing.assert_allclose(got, ref_smooth[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
+        got = rc.creep_force_3d(*args, polach, method="exact_table", rolling_speed=30.0)
+        np.testing.assert_allclose(got, ref_polach[:2], rtol=1e-12, atol=1e-12 * 0.3 * N)
 
 
 #: Scalar calls after which the exact table keeps a contact's buffer (its ski rental:

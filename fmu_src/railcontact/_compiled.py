@@ -31,7 +31,7 @@ __all__ = ["EXPORTS", "BATCH_EXPORTS", "SOLVER_EXPORTS", "matches", "aot_kernel"
            "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
            "creep_contact", "creep_contact_force", "creep_table_point", "creep_table_force",
            "superposed_response", "exact_kernels", "unit_ellipses_kernel", "batch_kernel",
-           "falling_contact", "falling_correction_batch", "build_aot"]
+           "falling_contact", "falling_table_point", "falling_correction_batch", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -63,6 +63,15 @@ EXPORTS = (
     ("falling_contact", "_falling_kernels",
      "b1(f8[::1], f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, f8[:, ::1], f8[::1], "
      "f8[:, ::1], i8, f8, f8[::1], f8[::1])"),
+    # the same for any contact, without a contact buffer: the exact table's 5-D spline at
+    # each point (a contact whose a0/b0 changes at every call; a vehicle FMU's contacts), on
+    # the file's coefficients and on those summed over nu
+    ("falling_table_point", "_falling_kernels",
+     "b1(f8[::1], f4[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, "
+     "f8[:, ::1], f8[::1], f8[:, ::1], i8, f8, f8[::1], f8[::1])"),
+    ("falling_table_point_nu", "_falling_kernels",
+     "b1(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, "
+     "f8[:, ::1], f8[::1], f8[:, ::1], i8, f8, f8[::1], f8[::1])"),
     # its correction table at many points (the array path of railcontact.falling_table)
     ("falling_correction_batch", "_falling_kernels",
      "void(f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
@@ -344,6 +353,20 @@ def falling_contact():
     from ._falling_kernels import falling_contact as kernel  # noqa: PLC0415  (numba)
 
     return kernel
+
+
+def falling_table_point(coef):
+    """Falling friction on any contact, on the exact table's five-dimensional spline
+    (``_falling_kernels.falling_table_point``) for the coefficients ``coef``: the file's
+    (float32) or those summed over nu (float64, its copy ``falling_table_point_nu``). The
+    ahead-of-time copy, or numba's dispatcher (as :func:`falling_contact`)."""
+    name = "falling_table_point" + ("" if coef.dtype == np.float32 else "_nu")
+    aot = aot_module()
+    if aot is not None:
+        return getattr(aot, name)
+    from . import _falling_kernels  # noqa: PLC0415  (numba)
+
+    return getattr(_falling_kernels, name)
 
 
 def falling_correction_batch():

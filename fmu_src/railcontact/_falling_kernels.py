@@ -23,11 +23,12 @@ import numpy as np
 from numba import njit
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
-from ._exact_kernels import (buffer_views, creep_contact, cubic_basis, saturation_creepage,
+from ._exact_kernels import (_kalker_coefficients, _table_views, buffer_views, creep_contact,
+                             creep_table_point, cubic_basis, saturation_creepage,
                              table_coordinates)
 from ._spline_kernels import find_span
 
-__all__ = ["falling_contact", "falling_correction_batch", "LAW_SMOOTH", "LAW_POLACH",
+__all__ = ["falling_contact", "falling_table_point", "falling_correction_batch", "LAW_SMOOTH", "LAW_POLACH",
            "LAW_TABLE", "CORRECTION_HEADER"]
 
 #: Law kinds of :func:`falling_contact`.
@@ -270,8 +271,56 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     ``corr``: the packed correction table of :func:`_correction` (empty: none), added to the
     model's force and moment at the table coordinates of the contact at mu_0 and the law's
     :func:`_law_shape`."""
-    views = buffer_views(buf)
-    res, work = views[7], views[8]
+    return _falling(buf, buf, buf[:1].reshape((1, 1, 1, 1, 1, 1)), False, 0.0, xi_x, xi_y,
+                    phi, normal_load, a0, b0, youngs_modulus, kind, p0, p1, p2, p3, tab, corr,
+                    gauss, steps, share_min, model, out)
+
+
+@njit(cache=True)
+def falling_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                        poisson_ratio, kind, p0, p1, p2, p3, tab, corr, gauss, steps, share_min,
+                        model, out):
+    """:func:`falling_contact` for any contact, without a contact buffer: the exact table's
+    five-dimensional spline at each of its points
+    (:func:`railcontact._exact_kernels.creep_table_point` on the table buffer ``tbuf`` and the
+    coefficients ``coef``: the file's, float32, or those summed over nu at ``poisson_ratio``,
+    float64), Kalker's coefficients from their interpolant at the contact's a0/b0 and
+    ``poisson_ratio`` [-]. The path of a contact whose a0/b0 changes at every call (a
+    vehicle's wheel on its rail), which never pays a buffer's slab. Arguments and results as
+    :func:`falling_contact`; also False for a0/b0 beyond the table's axis or nu outside
+    [0, 0.5]."""
+    return _falling(tbuf, tbuf, coef, True, poisson_ratio, xi_x, xi_y, phi, normal_load,
+                    a0, b0, youngs_modulus, kind, p0, p1, p2, p3, tab, corr, gauss, steps,
+                    share_min, model, out)
+
+
+#: (the same kernel on the coefficients summed over nu, float64: its own export name)
+falling_table_point_nu = falling_table_point
+
+
+@njit(cache=True)
+def _falling(buf, tbuf, coef, on_table, poisson_ratio, xi_x, xi_y, phi, normal_load, a0, b0,
+             youngs_modulus, kind, p0, p1, p2, p3, tab, corr, gauss, steps, share_min, model,
+             out):
+    """The body of :func:`falling_contact` (``on_table`` False: the contact buffer ``buf``)
+    and :func:`falling_table_point` (True: the table buffer ``tbuf``, ``coef`` and
+    ``poisson_ratio``); the other's arrays are placeholders (views of the one passed: a
+    global array would be a read-only constant, another type)."""
+    if on_table:
+        nu = poisson_ratio
+        if not (0.0 <= nu <= 0.5 and 0.0 < a0 < math.inf and 0.0 < b0 < math.inf):
+            return False
+        tv = _table_views(tbuf)
+        res, work = tv[13], tv[14]
+        log_g = math.log(a0 / b0)
+        if not tbuf[6] <= log_g <= tbuf[7]:
+            return False
+        c11, c22, c23 = _kalker_coefficients(tv[10], tv[11], tv[12], log_g, nu)
+    else:
+        bv = buffer_views(buf)
+        res, work = bv[7], bv[8]
+        nu = buf[7]
+        c11, c22, c23 = buf[4], buf[5], buf[6]
     gx, gy, gw = gauss[0], gauss[1], gauss[2]
     n = gw.shape[0]
     fmax = 1.7976931348623157e308
@@ -299,20 +348,24 @@ def falling_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, k
     mu0 = _law(kind, p0, p1, p2, p3, tab, 0.0)
     mu = mu0
     # the contact's table coordinates at mu_0: for the spin floor and the correction table
-    nu = buf[7]
     w_sat = saturation_creepage(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu0, nu)
     root_ab, tau, s_c, theta = 0.0, 0.0, 0.0, 0.0
     if w_sat > 0.0:
         root_ab, _, _, _, tau, _, _, _, s_c, theta = table_coordinates(
-            xi_x, xi_y, phi, a0, b0, w_sat, buf[4], buf[5], buf[6])
+            xi_x, xi_y, phi, a0, b0, w_sat, c11, c22, c23)
     mu_f = _spin_floor(mu0, tau, w_sat, model[1])
     blend = _spin_blend_weight(abs(tau), model[3], model[4])
     st0 = st1 = st2 = st3 = 0.0     # the Coulomb solution at mu_0 (the first step)
     lam = 0.0
     for step in range(steps + 1):
         mu_t = _table_mu(mu, mu_f, model[2])
-        if not creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, mu_t,
-                             False):
+        if on_table:
+            done = creep_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0,
+                                     youngs_modulus, nu, mu_t, False)
+        else:
+            done = creep_contact(buf, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                                 mu_t, False)
+        if not done:
             return False
         q = mu / mu_t
         res[0] *= q

@@ -827,53 +827,106 @@ def law_table(law_s):
 
 
 def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
-                                  poisson_ratio, mu0, mu_k, kappa, eager=False):
+                                  poisson_ratio, mu0, mu_k, kappa, path="auto"):
     """One contact (plain floats, checked), the smooth law (5.16), compiled: see
     :func:`falling_friction_table_compiled` (``mu0, mu_k, kappa`` [-])."""
     return falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
                                            youngs_modulus, poisson_ratio, 0, mu0, mu_k, kappa,
-                                           0.0, eager)
+                                           0.0, path)
+
+
+#: The evaluation paths of :func:`falling_friction_table_compiled`.
+COMPILED_PATHS = ("auto", "contact_buffer", "table_point")
 
 
 def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
                                     youngs_modulus, poisson_ratio, kind, p0, p1, p2, p3,
-                                    eager=False, tabulated=None):
-    """One contact (plain floats, checked), a closed-form or tabulated law, compiled
-    (:func:`railcontact._falling_kernels.falling_contact`: ``kind`` 0 the smooth law with
-    ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with ``(mu_0, A, B [s/m], V [m/s])``,
-    2 the table ``tabulated`` of :func:`law_table` (None for the others) with ``p0`` = mu_0 and
-    ``p1 .. p3`` 0):
+                                    path="auto", tabulated=None):
+    """One contact (plain floats, checked), a closed-form or tabulated law, compiled: ``kind``
+    0 the smooth law with ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with
+    ``(mu_0, A, B [s/m], V [m/s])``, 2 the table ``tabulated`` of :func:`law_table` (None for
+    the others) with ``p0`` = mu_0 and ``p1 .. p3`` 0.
     ``[tx, ty, mz, stick_area_fraction, normalised_creepage, mu_effective]`` (a list of
-    floats) as :func:`falling_friction_table`, or None where the table has no contact buffer for
-    (a0/b0, nu) yet (its first points of a contact, a0/b0 beyond it) or hands the case to its
-    array path: the caller then takes :func:`falling_friction_table`. ``table`` is a
-    :class:`railcontact.exact_table.ExactCreepTable` (its contact buffers are read). The
-    buffer of a new contact is made at once with ``eager`` (the FMU: some 10 ms once), else
-    after the table's ski rental (its :data:`~railcontact.exact_table.SLAB_AFTER_POINTS`
-    points, each call counting its ``EFFECTIVE_MU_STEPS + 1`` table points)."""
+    floats) as :func:`falling_friction_table`, or None where the table hands the case to its
+    array path (a0/b0 beyond its axis, |tau| beyond it, overflow): the caller then takes
+    :func:`falling_friction_table`. ``table`` is a
+    :class:`railcontact.exact_table.ExactCreepTable`.
+
+    ``path`` chooses how the table is evaluated, all to round-off the same numbers:
+
+    - ``"auto"`` (the public scalar call): the contact's buffer where the table has it or its
+      ski rental makes it (:data:`~railcontact.exact_table.SLAB_AFTER_POINTS` points of one
+      a0/b0, each call counting its ``EFFECTIVE_MU_STEPS + 1``;
+      :func:`railcontact._falling_kernels.falling_contact`), else the five-dimensional
+      spline (:func:`railcontact._falling_kernels.falling_table_point`), so that a contact
+      whose a0/b0 changes at every call never pays a buffer's slab;
+    - ``"contact_buffer"``: the contact's buffer, made at once for a new a0/b0 (some 10 ms);
+    - ``"table_point"``: always the five-dimensional spline, on the coefficients summed over
+      nu (made now if need be: :meth:`~railcontact.exact_table.ExactCreepTable.prepare`),
+      the correction table summed over nu and mu_k/mu_0 only. Its numbers depend on the
+      inputs alone, not on what was called before (the FMU: a restored state replays bit for
+      bit, whether or not the contact's shape changes)."""
     g = a0 / b0
-    entry = table._buffers.get((g, poisson_ratio))
-    if entry is None:
-        key = (g, poisson_ratio)
-        entry = table._buffer(*key) if eager else table._entry(key, EFFECTIVE_MU_STEPS + 1)
-        if entry is None:
-            return None
-    kernel = _KERNEL[0]
-    if kernel is None:     # (compiled ahead of time in a wheel or FMU; else numba's, imported
-        from . import _compiled  # noqa: PLC0415                 on the first call only)
-        kernel = _KERNEL[0] = _compiled.falling_contact()
-    out = _OUT
     if kind == 0:
         ratio = p1 / p0
     elif kind == 1:
         ratio = p1
     else:
         ratio = tabulated[1, -1] / tabulated[1, 0] if tabulated[1, 0] > 0.0 else 1.0
-    corr = _AT.get((poisson_ratio, ratio, g))     # (a contact of fixed shape: kept)
-    if corr is None:
-        corr = correction_at(poisson_ratio, ratio, g, eager)
-    if not kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind, p0,
-                  p1, p2, p3, _NO_LAW_TABLE if tabulated is None else tabulated, corr, _GAUSS,
-                  EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL, out):
+    law = _NO_LAW_TABLE if tabulated is None else tabulated
+    out = _OUT
+    entry = None
+    if path != "table_point":
+        key = (g, poisson_ratio)
+        entry = table._buffers.get(key)
+        if entry is None:
+            entry = (table._buffer(*key) if path == "contact_buffer"
+                     else table._entry(key, EFFECTIVE_MU_STEPS + 1))
+    if entry is not None:
+        kernel = _KERNEL[0]
+        if kernel is None:   # (compiled ahead of time in a wheel or FMU; else numba's,
+            from . import _compiled  # noqa: PLC0415          imported on the first call only)
+            kernel = _KERNEL[0] = _compiled.falling_contact()
+        corr = _AT.get((poisson_ratio, ratio, g))     # (a contact of fixed shape: kept)
+        if corr is None:
+            corr = correction_at(poisson_ratio, ratio, g, path == "contact_buffer")
+        done = kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind,
+                      p0, p1, p2, p3, law, corr, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN,
+                      _MODEL, out)
+    else:
+        if path == "contact_buffer":    # (a0/b0 beyond the table, nu outside [0, 0.5])
+            return None
+        coef, kernel = _point_kernel(table, poisson_ratio, path == "table_point")
+        if kernel is None:
+            return None
+        corr = correction_at(poisson_ratio, ratio, g if path == "auto" else None)
+        done = kernel(table._tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
+                      poisson_ratio, kind, p0, p1, p2, p3, law, corr, _GAUSS,
+                      EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL, out)
+    if not done:
         return None
     return out.tolist()     # (floats, one call)
+
+
+_POINT_KERNELS = {}
+
+
+def _point_kernel(table, poisson_ratio, now):
+    """``(coefficients, falling_table_point kernel)`` of ``table`` at ``poisson_ratio``: the
+    coefficients summed over nu where the table has them (made at once with ``now``, else by
+    its ski rental, :meth:`~railcontact.exact_table.ExactCreepTable._nu_coefficients`), else
+    the file's; ``(None, None)`` for nu outside [0, 0.5]."""
+    if not 0.0 <= poisson_ratio <= 0.5:
+        return None, None
+    if now:
+        table.prepare(poisson_ratio)
+    if table._tbuf is None:
+        table._make_table_buffer()
+    summed = table._nu_coefficients(poisson_ratio, EFFECTIVE_MU_STEPS + 1)
+    coef = table._coef if summed is None else summed[0]
+    kernel = _POINT_KERNELS.get(coef.dtype)
+    if kernel is None:
+        from . import _compiled  # noqa: PLC0415
+
+        kernel = _POINT_KERNELS[coef.dtype] = _compiled.falling_table_point(coef)
+    return coef, kernel

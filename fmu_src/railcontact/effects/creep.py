@@ -191,10 +191,11 @@ class Creep3D(Effect):
             try:
                 self._table.step_values(1e-4, 1e-4, 0.1, 1e5, 6e-3, 6e-3, self._e, self._nu,
                                         0.3)
-                if self._smooth_law is not None:    # (its compiled kernel loaded now too)
+                if self._smooth_law is not None:    # (its compiled kernel loaded now too,
+                    #                                    the table summed over nu made now)
                     falling_friction_table_smooth(self._table, 1e-4, 1e-4, 0.1, 1e5, 6e-3,
                                                   6e-3, self._e, self._nu, 0.3,
-                                                  *self._smooth_law, eager=True)
+                                                  *self._smooth_law, path="table_point")
             except ValueError:
                 pass            # (a scene outside the table's range: the step will say so)
         else:
@@ -271,9 +272,13 @@ class Creep3D(Effect):
         the arguments ``args`` (mu_0 = ``args[8]``)."""
         mu0 = args[8]
         mu_k, kappa = self._smooth_law
+        # the smooth law, compiled, on the table's five-dimensional spline at every step: the
+        # same cost whether or not the contact's a0/b0 changes (geometry inputs, a vehicle),
+        # and numbers that depend on the step's inputs alone (a restored state replays bit
+        # for bit)
         got = falling_friction_table_compiled(self._table, *args[:8], 0, mu0, mu_k, kappa,
-                                              0.0, True)  # the smooth law, compiled, eager
-        if got is None:     # no contact buffer (a0/b0 beyond the table) or its array path
+                                              0.0, "table_point")
+        if got is None:     # a0/b0 beyond the table, or its array path
             cap = _SLIP_CAP / max(kappa, 1.0)    # kappa s stays finite (any creepage)
 
             def law(slip):

@@ -92,7 +92,10 @@ class Vehicle:
                        for p in self.pipelines]
         self._creeps = [p.effects[names[i]] for p in self.pipelines] if i < len(names) else []
         self._batch = None
-        if self._creeps and getattr(creep, "source", None) == "table":
+        # (falling friction: each contact's own creep step, the law's compiled fast path on
+        # the shared table; the batch evaluates the Coulomb table)
+        if (self._creeps and getattr(creep, "source", None) == "table"
+                and getattr(creep, "_smooth_law", None) is None):
             self._batch = self._exact_batch if creep._exact else self._strip_batch
             self._table = table
             self._use_spin = creep.use_spin
