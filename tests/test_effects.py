@@ -1910,6 +1910,56 @@ def test_falling_friction_jacobian_is_the_slope_of_the_public_fast_path():
     assert slave.get_real(refs) == [0.0] * 9
 
 
+def test_falling_friction_step_holds_a_buffer_only_for_a_shape_that_stays(monkeypatch):
+    """The falling scene's step on a contact whose a0/b0 changes at every step (curvature
+    inputs): the table's five-dimensional spline, no contact buffer made; a shape held for
+    FALLING_BUFFER_AFTER_STEPS steps (5 here): its buffer from then on. Either way the forces
+    are the public call's on the same inputs (the numpy function's, to round-off), and a state
+    saved before the switch and restored replays the steps bit for bit."""
+    from railcontact.effects import creep as creep_effect
+    from railcontact.falling_table import falling_friction_table
+    from railcontact.friction import SmoothFriction
+
+    monkeypatch.setattr(creep_effect, "FALLING_BUFFER_AFTER_STEPS", 5)
+    slave = _scene_slave("creep_exact_table_falling")
+    effect = slave._pipeline.effects["creep"]
+    table = effect._table
+    scene_buffer = effect._held
+    assert scene_buffer is not None and scene_buffer[0] == pytest.approx(1.33, rel=1e-2)
+    c = slave._contact
+    law = SmoothFriction(0.3, 0.15, 300.0)
+    c.creepage_longitudinal, c.creepage_lateral, c.spin = 4e-3, 1e-3, 0.3
+
+    def step_and_check(curvature):
+        c.curvature_lateral = curvature
+        assert slave.do_step(0.0, 1e-3) is True
+        args = (4e-3, 1e-3, 0.3, c.normal_force, c.a0, c.b0, 210e9, 0.28)
+        got = creep3d.creep_force_3d(*args, law, method="exact_table")
+        ref = falling_friction_table(
+            lambda mu: (table.step_values(*args, float(mu), False)
+                        or table.step(*args, float(mu), False))[:5],
+            *args[:6], law, 0.3, (210e9, 0.28, 0.5, 300.0))
+        assert (c.Fx, c.Fy) == pytest.approx(tuple(got), rel=1e-12, abs=1e-12 * c.normal_force)
+        assert (c.Fx, c.Fy) == pytest.approx(ref[:2], rel=1e-12, abs=1e-12 * c.normal_force)
+        return c.Fx, c.Fy
+
+    n_buffers = len(table._buffers)
+    for k in range(8):                          # a new shape at every step
+        step_and_check(1.667 * (1.0 + 0.03 * (k + 1)))
+        assert effect._held is scene_buffer      # (only the scene's, from its setup)
+    assert len(table._buffers) == n_buffers
+    for _ in range(3):                          # a shape that stays: 4 of 5 steps so far
+        step_and_check(2.5)
+    state = slave._pipeline.get_state()
+    first = [step_and_check(2.5) for _ in range(4)]
+    held = effect._held
+    assert held is not scene_buffer and held[0] == pytest.approx(c.a0 / c.b0, rel=1e-12)
+    slave._pipeline.set_state(json.loads(json.dumps(state)))
+    assert [step_and_check(2.5) for _ in range(4)] == first
+    step_and_check(1.667)                      # the scene's own shape: its buffer again
+    assert effect._held is scene_buffer or effect._held[0] == scene_buffer[0]
+
+
 def test_a_lifted_wheel_reads_a_zero_jacobian_not_the_last_steps():
     """The exact-table scene: a step with N = 0 after one in contact gives zero forces and a
     zero Jacobian (it kept the previous step's before)."""

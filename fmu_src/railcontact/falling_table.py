@@ -841,7 +841,7 @@ COMPILED_PATHS = ("auto", "contact_buffer", "table_point")
 
 def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
                                     youngs_modulus, poisson_ratio, kind, p0, p1, p2, p3,
-                                    path="auto", tabulated=None):
+                                    path="auto", tabulated=None, buffer=None):
     """One contact (plain floats, checked), a closed-form or tabulated law, compiled: ``kind``
     0 the smooth law with ``(p0, p1, p2) = (mu_0, mu_k, kappa)``, 1 Polach's with
     ``(mu_0, A, B [s/m], V [m/s])``, 2 the table ``tabulated`` of :func:`law_table` (None for
@@ -860,12 +860,18 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
       :func:`railcontact._falling_kernels.falling_contact`), else the five-dimensional
       spline (:func:`railcontact._falling_kernels.falling_table_point`), so that a contact
       whose a0/b0 changes at every call never pays a buffer's slab;
-    - ``"contact_buffer"``: the contact's buffer, made at once for a new a0/b0 (some 10 ms);
+    - ``"contact_buffer"``: the contact's buffer, made at once for a new a0/b0 (some 20 ms);
     - ``"table_point"``: always the five-dimensional spline, on the coefficients summed over
       nu (made now if need be: :meth:`~railcontact.exact_table.ExactCreepTable.prepare`),
       the correction table summed over nu and mu_k/mu_0 only. Its numbers depend on the
-      inputs alone, not on what was called before (the FMU: a restored state replays bit for
-      bit, whether or not the contact's shape changes)."""
+      inputs alone, not on what was called before.
+
+    ``buffer``: ``(shape, entry)``, a contact buffer the caller holds
+    (``table._buffer(shape, poisson_ratio)``, ``shape`` an a0/b0 [-]) for a contact whose
+    a0/b0 stays within round-off of ``shape``; evaluated on it, with the correction table
+    summed out at ``shape`` too (``path`` then unused). The FMU's step: its numbers depend on
+    the inputs and the held shape alone (a restored state replays bit for bit), and a vehicle
+    of many held shapes does not rebuild them when the table's own store of buffers is full."""
     g = a0 / b0
     if kind == 0:
         ratio = p1 / p0
@@ -875,27 +881,29 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         ratio = tabulated[1, -1] / tabulated[1, 0] if tabulated[1, 0] > 0.0 else 1.0
     law = _NO_LAW_TABLE if tabulated is None else tabulated
     out = _OUT
-    entry = None
-    if path != "table_point":
+    if buffer is None and path != "table_point":
         key = (g, poisson_ratio)
         entry = table._buffers.get(key)
         if entry is None:
             entry = (table._buffer(*key) if path == "contact_buffer"
                      else table._entry(key, EFFECTIVE_MU_STEPS + 1))
-    if entry is not None:
+        if entry is not None:
+            buffer = (g, entry)
+        elif path == "contact_buffer":    # (a0/b0 beyond the table, nu outside [0, 0.5])
+            return None
+    if buffer is not None:
+        shape, entry = buffer
         kernel = _KERNEL[0]
         if kernel is None:   # (compiled ahead of time in a wheel or FMU; else numba's,
             from . import _compiled  # noqa: PLC0415          imported on the first call only)
             kernel = _KERNEL[0] = _compiled.falling_contact()
-        corr = _AT.get((poisson_ratio, ratio, g))     # (a contact of fixed shape: kept)
+        corr = _AT.get((poisson_ratio, ratio, shape))     # (a contact of fixed shape: kept)
         if corr is None:
-            corr = correction_at(poisson_ratio, ratio, g, path == "contact_buffer")
+            corr = correction_at(poisson_ratio, ratio, shape, path != "auto")
         done = kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind,
                       p0, p1, p2, p3, law, corr, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN,
                       _MODEL, out)
     else:
-        if path == "contact_buffer":    # (a0/b0 beyond the table, nu outside [0, 0.5])
-            return None
         coef, kernel = _point_kernel(table, poisson_ratio, path == "table_point")
         if kernel is None:
             return None

@@ -11,12 +11,14 @@ import numpy as np
 from .. import creep3d
 from .._scalar import (carter_scalar, creep_force_3d_scalar, creep_stick_3d_scalar,
                        spin_coefficient_scalar)
-from ..falling_table import (falling_friction_table, falling_friction_table_compiled,
-                             falling_friction_table_smooth)
+from ..exact_table import SLAB_AFTER_POINTS
+from ..falling_table import (EFFECTIVE_MU_STEPS, falling_friction_table,
+                             falling_friction_table_compiled, falling_friction_table_smooth)
 from ..scene import POLACH_KEYS, SceneError
 from .base import JACOBIAN_FIELDS, NOT_ESTIMATED, Effect, EffectUnavailable
 
-__all__ = ["Creep3D", "Creep2D", "table_error_estimate"]
+__all__ = ["Creep3D", "Creep2D", "table_error_estimate", "FALLING_BUFFER_AFTER_STEPS",
+           "SAME_SHAPE_RTOL"]
 
 
 def table_error_estimate(table):
@@ -60,6 +62,19 @@ def table_error_estimate(table):
 #: Slips beyond this over max(kappa, 1) are evaluated there by the smooth law (its value is
 #: then mu_k to round-off): kappa s stays finite for any finite creepage. [-]
 _SLIP_CAP = 1e300
+
+#: Steps a contact's a0/b0 must hold (to :data:`SAME_SHAPE_RTOL`) before its falling-friction
+#: step takes the exact table's contact buffer for that shape (some 20 ms and 4.7 MB to make,
+#: a third of the step's kernel time after): the table's own ski rental
+#: (:data:`railcontact.exact_table.SLAB_AFTER_POINTS` points, three a step), counted in the
+#: effect's state. A contact whose a0/b0 changes at every step (a vehicle's on its track)
+#: never pays it; one that holds its shape pays at most about twice the least. The scene's
+#: own shape has its buffer from the start.
+FALLING_BUFFER_AFTER_STEPS = SLAB_AFTER_POINTS // (EFFECTIVE_MU_STEPS + 1)
+
+#: Relative change of a0/b0 within which a contact keeps its shape: a0 and b0 scale with the
+#: cube root of the load, which leaves a0/b0 within an ulp or two of the unit ellipse's. [-]
+SAME_SHAPE_RTOL = 1e-12
 
 
 class Creep3D(Effect):
@@ -137,6 +152,11 @@ class Creep3D(Effect):
         self._warn = warn if warn is not None else (lambda key, msg: None)
         self._aux_args = None
         self._jac_args = None     # falling friction: the step's arguments (jacobian, on demand)
+        # falling friction: the contact's shape a0/b0 and the steps it has held it (state), the
+        # scene's own shape, and the contact buffer held for a shape: (shape, entry) or None
+        self._shape_run = (0.0, 0)
+        self._scene_shape = None
+        self._held = None
         self._table = None
         # the forces of the analytic theories and of the modified-strip table, (tx, ty) from
         # the step's arguments; their stick measures are set when read (auxiliary)
@@ -157,7 +177,7 @@ class Creep3D(Effect):
         self.table_error_estimate = NOT_ESTIMATED
         # the forces of one source, chosen here (``step`` calls it when there is contact)
         if self.source == "table":
-            self._table_setup(opts, table_path, tables_dir, table)
+            self._table_setup(opts, table_path, tables_dir, table, scene)
             self._forces = self._exact_table     # (modified strip: self._force, in step)
         elif self.method in creep3d.COMPARISON_METHODS:
             self._forces = self._comparison
@@ -165,7 +185,7 @@ class Creep3D(Effect):
             self._force = self._analytic_force
             self._stick_measures = self._analytic_stick
 
-    def _table_setup(self, opts, table_path, tables_dir, table=None):
+    def _table_setup(self, opts, table_path, tables_dir, table=None, scene=None):
         if self.method not in ("modified_strip", "exact"):
             raise SceneError(f"effects.creep.method must be 'modified_strip' or 'exact' "
                              f"with source = 'table' (the shipped creep tables); got "
@@ -191,11 +211,14 @@ class Creep3D(Effect):
             try:
                 self._table.step_values(1e-4, 1e-4, 0.1, 1e5, 6e-3, 6e-3, self._e, self._nu,
                                         0.3)
-                if self._smooth_law is not None:    # (its compiled kernel loaded now too,
-                    #                                    the table summed over nu made now)
+                if self._smooth_law is not None:    # (its compiled kernels loaded now too,
+                    #                 the table summed over nu and the scene's shape made now)
                     falling_friction_table_smooth(self._table, 1e-4, 1e-4, 0.1, 1e5, 6e-3,
                                                   6e-3, self._e, self._nu, 0.3,
                                                   *self._smooth_law, path="table_point")
+                    self._scene_shape = None if scene is None else scene_shape(scene)
+                    if self._scene_shape is not None:
+                        self._hold(self._scene_shape)
             except ValueError:
                 pass            # (a scene outside the table's range: the step will say so)
         else:
@@ -267,17 +290,47 @@ class Creep3D(Effect):
             return self._table.step(*args[:8], mu, False)[:5]
         return values[:5]
 
+    def _hold(self, shape):
+        """The contact buffer of the table for a0/b0 = ``shape`` (made now if the table has
+        none), held: ``(shape, entry)``, or None (beyond the table)."""
+        if self._held is None or self._held[0] != shape:
+            entry = self._table._buffers.get((shape, self._nu)) or self._table._buffer(
+                shape, self._nu)
+            self._held = None if entry is None else (shape, entry)
+        return self._held
+
+    def _count_shape(self, a0, b0):
+        """Count the step's shape a0/b0 in the run of steps that held it (:meth:`step`)."""
+        g = a0 / b0
+        shape, n = self._shape_run
+        self._shape_run = ((shape, n + 1) if abs(g - shape) <= SAME_SHAPE_RTOL * shape
+                           else (g, 1))
+
+    def _shape_buffer(self, g):
+        """The held contact buffer for the step's a0/b0 = ``g``: the scene's shape, or a shape
+        held for :data:`FALLING_BUFFER_AFTER_STEPS` steps; else None (the table's
+        five-dimensional spline). A function of ``g`` and the effect's state alone."""
+        scene = self._scene_shape
+        if scene is not None and abs(g - scene) <= SAME_SHAPE_RTOL * scene:
+            return self._hold(scene)
+        shape, n = self._shape_run
+        if n >= FALLING_BUFFER_AFTER_STEPS and abs(g - shape) <= SAME_SHAPE_RTOL * shape:
+            return self._hold(shape)
+        return None
+
     def _falling_forces(self, args):
         """``(tx, ty, mz, stick, z, mu_e)`` of the fast path with the scene's smooth law at
         the arguments ``args`` (mu_0 = ``args[8]``)."""
         mu0 = args[8]
         mu_k, kappa = self._smooth_law
-        # the smooth law, compiled, on the table's five-dimensional spline at every step: the
-        # same cost whether or not the contact's a0/b0 changes (geometry inputs, a vehicle),
-        # and numbers that depend on the step's inputs alone (a restored state replays bit
-        # for bit)
+        # the smooth law, compiled: on the contact buffer of a shape the contact holds (the
+        # scene's, or one held FALLING_BUFFER_AFTER_STEPS steps), else on the table's
+        # five-dimensional spline (a contact whose a0/b0 changes, a vehicle's). Its numbers
+        # depend on the step's inputs and the effect's state alone: a restored state replays
+        # bit for bit
         got = falling_friction_table_compiled(self._table, *args[:8], 0, mu0, mu_k, kappa,
-                                              0.0, "table_point")
+                                              0.0, "table_point",
+                                              buffer=self._shape_buffer(args[4] / args[5]))
         if got is None:     # a0/b0 beyond the table, or its array path
             cap = _SLIP_CAP / max(kappa, 1.0)    # kappa s stays finite (any creepage)
 
@@ -292,6 +345,7 @@ class Creep3D(Effect):
         # falling friction (smooth law (5.16), mu_0 the step's friction coefficient) on the
         # Coulomb table: railcontact.falling_table, three table calls plus one; the Jacobian
         # outputs when read (jacobian)
+        self._count_shape(args[4], args[5])
         tx, ty, mz, stick, z, _ = self._falling_forces(args)
         c.Fx, c.Fy, c.Mz = float(tx), float(ty), float(mz)
         zc = z if z < 1.0 else 1.0
@@ -382,7 +436,7 @@ class Creep3D(Effect):
         return {"calls": self.calls,
                 "aux_args": None if self._aux_args is None else list(self._aux_args),
                 "jac_args": None if self._jac_args is None else list(self._jac_args),
-                "solution": list(self._solution)}
+                "solution": list(self._solution), "shape_run": list(self._shape_run)}
 
     def set_state(self, state):
         self.calls = int(state["calls"])
@@ -391,6 +445,8 @@ class Creep3D(Effect):
         args = state.get("jac_args")
         self._jac_args = None if args is None else tuple(args)
         self._solution = tuple(state.get("solution", (0.0, 0.0, 0.0)))
+        shape, n = state.get("shape_run", (0.0, 0))
+        self._shape_run = (float(shape), int(n))
 
 
 class Creep2D(Effect):
@@ -438,3 +494,16 @@ class Creep2D(Effect):
         c.stick_width_ratio = 1.0 if c.r_a0 > 0.0 else 0.0
 
 
+def scene_shape(scene):
+    """a0/b0 [-] of a 3-D scene's own geometry (its curvatures' Hertz ellipse, or its semi-axes),
+    or None (a line contact)."""
+    geo = scene.geometry
+    if geo["kind"] == "curvatures":
+        from .normal import unit_ellipse  # noqa: PLC0415
+
+        a1, b1, _ = unit_ellipse(geo["curvature_longitudinal"], geo["curvature_lateral"],
+                                 scene.youngs_modulus, scene.poisson_ratio)
+        return float(a1) / float(b1)
+    if geo["kind"] == "semi_axes":
+        return float(geo["semi_axis_longitudinal"]) / float(geo["semi_axis_lateral"])
+    return None
