@@ -735,9 +735,10 @@ def test_model_is_smooth_through_the_spin_blend():
 
 
 def test_correction_summed_out_for_one_contact_equals_the_whole_table():
-    """correction_at sums the table's nu and mu_k/mu_0 axes out for a pair, and after
+    """correction_at sums the table's nu axis out for a nu, and after
     CORRECTION_AT_ASPECT_AFTER calls with one a0/b0 its a0/b0 axis too (a quarter of the work
-    per call): the compiled kernel on each gives the whole table's value to round-off."""
+    per call); the mu_k/mu_0 axis stays (any ratio, one table): the compiled kernel on each
+    gives the whole table's value to round-off, at ratios on and between its nodes."""
     from railcontact import falling_table as ft
     from railcontact._compiled import falling_correction_batch
 
@@ -747,11 +748,13 @@ def test_correction_summed_out_for_one_contact_equals_the_whole_table():
     for _ in range(ft.CORRECTION_AT_ASPECT_AFTER):
         one = ft.correction_at(0.28, 0.5, 1.7)
     assert one.size < pair.size < full.size
+    assert ft.correction_at(0.28, 0.8) is pair and ft.correction_at(0.28, 0.8, 1.7) is one
+    assert ft.correction_at(0.28, 1.0).size == 0
     rng = np.random.default_rng(8)
     n = 400
     pts = [np.full(n, np.log(1.7)), np.full(n, 0.28), rng.uniform(0.0, 1.0, n),
-           rng.uniform(-np.pi, np.pi, n), rng.uniform(-20.0, 20.0, n), np.full(n, 0.5),
-           rng.uniform(0.0, 2.5, n)]
+           rng.uniform(-np.pi, np.pi, n), rng.uniform(-20.0, 20.0, n),
+           rng.choice([0.3, 0.5, 0.65, 0.9, 1.0], n), rng.uniform(0.0, 2.5, n)]
     outs = []
     for corr in (full, pair, one):
         out = np.zeros((n, 3))

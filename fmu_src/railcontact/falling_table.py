@@ -507,29 +507,32 @@ def law_shape(law, speed, law_s):
 CORRECTION_HEADER = 7
 _EMPTY = np.zeros(0)
 _AT = {}
-#: Correction tables kept per (nu, mu_k / mu_0) by :func:`correction_at`.
+#: Correction tables kept by :func:`correction_at`: per nu, and per (nu, a0/b0).
 CORRECTION_AT_KEPT = 16
 
 
-#: Calls with one (nu, mu_k / mu_0, a0/b0) after which :func:`correction_at` sums out the
-#: a0/b0 axis too for them (a ski rental: about 0.2 ms once, then a quarter of the work per
-#: call; a contact whose a0/b0 changes at every call never pays it).
+#: Calls with one (nu, a0/b0) after which :func:`correction_at` sums out the a0/b0 axis too
+#: for them (a ski rental: about 0.2 ms once, then a quarter of the work per call; a contact
+#: whose a0/b0 changes at every call never pays it).
 CORRECTION_AT_ASPECT_AFTER = 64
 _SEEN = {}
 
 
 def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
-    """The correction table at one nu and one ``mu_k / mu_0`` (its two linear axes summed
-    out: a quarter of the numbers left for each call of the compiled kernel), packed as
-    :func:`load_falling_correction`; made once per pair and kept (the last
-    :data:`CORRECTION_AT_KEPT`: a contact's nu and its law's ratio seldom change). With
-    ``aspect_ratio`` (a0/b0) seen in :data:`CORRECTION_AT_ASPECT_AFTER` calls, its a0/b0 axis
-    summed out at that value too (a contact of fixed shape, as a scene's), or at once with
-    ``now`` (the FMU's eager path: its steps then take the same numbers from the first one,
-    so that a restored state replays bit for bit). Empty where there is no table or the law
-    does not fall (``friction_ratio >= 1``)."""
+    """The correction table at one nu (its nu axis summed out: a third of the numbers, made
+    once per nu and kept, the last :data:`CORRECTION_AT_KEPT`), packed as
+    :func:`load_falling_correction`, for a law of ``friction_ratio = mu_k / mu_0``. Its
+    mu_k/mu_0 axis stays (the kernel interpolates along it: a friction coefficient that
+    changes at every call, as a vehicle's, costs nothing to set up; summed out per ratio it
+    cost 11 ms a new ratio). With ``aspect_ratio`` (a0/b0) seen in
+    :data:`CORRECTION_AT_ASPECT_AFTER` calls, its a0/b0 axis summed out at that value too (a
+    contact of fixed shape, as a scene's), or at once with ``now`` (the FMU: its numbers then
+    depend on its inputs and state alone, so that a restored state replays bit for bit).
+    Empty where there is no table or the law does not fall (``friction_ratio >= 1``)."""
+    if not friction_ratio < 1.0:
+        return _EMPTY
     if aspect_ratio is not None:
-        key = (poisson_ratio, friction_ratio, aspect_ratio)
+        key = (poisson_ratio, aspect_ratio)
         got = _AT.get(key)
         if got is not None:
             return got
@@ -546,15 +549,14 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
                 _AT.pop(next(iter(_AT)))
             got = _AT[key] = _aspect_collapsed(base, math.log(aspect_ratio))
             return got
-    key = (poisson_ratio, friction_ratio)
-    got = _AT.get(key)
+    got = _AT.get(poisson_ratio)
     if got is None:
         corr = load_falling_correction()
-        if not (corr.size and friction_ratio < 1.0):
+        if not corr.size:
             return _EMPTY
         if len(_AT) >= CORRECTION_AT_KEPT:
             _AT.pop(next(iter(_AT)))
-        got = _AT[key] = _collapsed(corr, poisson_ratio, friction_ratio)
+        got = _AT[poisson_ratio] = _collapsed(corr, poisson_ratio)
         from ._table_store import release_pages  # noqa: PLC0415
 
         release_pages(corr)     # (the mapped table's pages back: the sum is what is used)
@@ -582,18 +584,19 @@ def _cubic_weights(t, n, x):
 
 
 def _aspect_collapsed(corr, log_g):
-    # the a0/b0 axis (the first cubic one) of a (nu, ratio)-collapsed table summed out at
-    # ln(a0/b0) = log_g: count 1 and five placeholder knots
+    # the a0/b0 axis (the first cubic one) of a nu-collapsed table summed out at
+    # ln(a0/b0) = log_g: count 1 and five placeholder knots (the mu_k/mu_0 axis kept)
     head = CORRECTION_HEADER
     counts = [int(v) for v in corr[:head]]
     n_g = counts[0]
     t = corr[head:head + n_g + 4]
     i, b = _cubic_weights(t, n_g, log_g)
     pos = head + sum(n + 4 for n in counts[:5]) + counts[5] + counts[6]
-    coef = corr[pos:].reshape(n_g, -1)
-    block = (b[0] * coef[i - 3] + b[1] * coef[i - 2]) + (b[2] * coef[i - 1] + b[3] * coef[i])
+    coef = corr[pos:].reshape(counts[5] * counts[6], n_g, -1)
+    block = ((b[0] * coef[:, i - 3] + b[1] * coef[:, i - 2])
+             + (b[2] * coef[:, i - 1] + b[3] * coef[:, i]))
     return np.ascontiguousarray(np.concatenate(
-        [[1.0], corr[1:head], np.zeros(5), corr[head + n_g + 4:pos], block]))
+        [[1.0], corr[1:head], np.zeros(5), corr[head + n_g + 4:pos], block.ravel()]))
 
 
 def _linear_weight(nodes, x):
@@ -609,18 +612,18 @@ def _linear_weight(nodes, x):
     return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
 
 
-def _collapsed(corr, nu, ratio):
+def _collapsed(corr, nu):
+    # the nu axis (the first linear one) summed out at nu: count 1, its node nu
     head = CORRECTION_HEADER
     counts = [int(v) for v in corr[:head]]
     pos = head + sum(n + 4 for n in counts[:5])
     n_nu, n_m = counts[5], counts[6]
     i_nu, f_nu = _linear_weight(corr[pos:pos + n_nu], nu)
-    i_m, f_m = _linear_weight(corr[pos + n_nu:pos + n_nu + n_m], ratio)
-    coef = corr[pos + n_nu + n_m:].reshape(n_nu, n_m, -1)
-    block = ((1.0 - f_nu) * ((1.0 - f_m) * coef[i_nu, i_m] + f_m * coef[i_nu, i_m + 1])
-             + f_nu * ((1.0 - f_m) * coef[i_nu + 1, i_m] + f_m * coef[i_nu + 1, i_m + 1]))
+    coef = corr[pos + n_nu + n_m:].reshape(n_nu, -1)
+    block = (1.0 - f_nu) * coef[i_nu] + f_nu * coef[min(i_nu + 1, n_nu - 1)]
     return np.ascontiguousarray(np.concatenate(
-        [corr[:5], [1.0, 1.0], corr[head:pos], [nu, ratio], block]))
+        [corr[:5], [1.0, n_m], corr[head:pos], [nu], corr[pos + n_nu:pos + n_nu + n_m],
+         block]))
 
 
 def _filled(vals, friction_ratio, friction_decay_number):
@@ -897,7 +900,7 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         if kernel is None:   # (compiled ahead of time in a wheel or FMU; else numba's,
             from . import _compiled  # noqa: PLC0415          imported on the first call only)
             kernel = _KERNEL[0] = _compiled.falling_contact()
-        corr = _AT.get((poisson_ratio, ratio, shape))     # (a contact of fixed shape: kept)
+        corr = _AT.get((poisson_ratio, shape))     # (a contact of fixed shape: kept)
         if corr is None:
             corr = correction_at(poisson_ratio, ratio, shape, path != "auto")
         done = kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind,
