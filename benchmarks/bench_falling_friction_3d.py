@@ -380,8 +380,6 @@ def main(argv=None):
     moving = {"coulomb exact table": ({"friction_coefficient": 0.3}),
               "SmoothFriction": ({"friction_coefficient": smooth}),
               "PolachFriction": ({"friction_coefficient": polach, "rolling_speed": 30.0})}
-    from railcontact.creep3d import load_exact_table  # noqa: PLC0415
-
     for stage in ("the file's coefficients", "summed over nu"):
         if stage == "summed over nu":
             load_exact_table().prepare(one[7])

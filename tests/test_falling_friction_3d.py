@@ -735,7 +735,8 @@ def test_model_is_smooth_through_the_spin_blend():
 
 
 def test_correction_summed_out_for_one_contact_equals_the_whole_table():
-    """correction_at sums the table's nu axis out for a nu, and after
+    """correction_at sums the table's nu axis out for a nu (at once with now, else after
+    CORRECTION_AT_NU_AFTER calls with it), and after
     CORRECTION_AT_ASPECT_AFTER calls with one a0/b0 its a0/b0 axis too (a quarter of the work
     per call); the mu_k/mu_0 axis stays (any ratio, one table): the compiled kernel on each
     gives the whole table's value to round-off, at ratios on and between its nodes."""
@@ -743,7 +744,10 @@ def test_correction_summed_out_for_one_contact_equals_the_whole_table():
     from railcontact._compiled import falling_correction_batch
 
     full = ft.load_falling_correction()
-    pair = ft.correction_at(0.28, 0.5)
+    # a nu asked fewer than CORRECTION_AT_NU_AFTER times: the whole table (a sweep over nu
+    # pays no sum); then, or at once with now, summed over nu
+    assert ft.correction_at(0.123, 0.5).size == full.size
+    pair = ft.correction_at(0.28, 0.5, now=True)
     assert ft.correction_at(0.28, 0.5, 1.7) is not None
     for _ in range(ft.CORRECTION_AT_ASPECT_AFTER):
         one = ft.correction_at(0.28, 0.5, 1.7)

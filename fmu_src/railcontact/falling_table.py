@@ -517,10 +517,16 @@ CORRECTION_AT_KEPT = 16
 CORRECTION_AT_ASPECT_AFTER = 64
 _SEEN = {}
 
+#: Calls with one nu after which :func:`correction_at` sums out the nu axis for it (a ski
+#: rental again: some 10 ms once, then a third of the work per call; a sweep over nu, one
+#: call each, never pays it).
+CORRECTION_AT_NU_AFTER = 16
+
 
 def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
-    """The correction table at one nu (its nu axis summed out: a third of the numbers, made
-    once per nu and kept, the last :data:`CORRECTION_AT_KEPT`), packed as
+    """The correction table at one nu (its nu axis summed out once the nu has been asked
+    :data:`CORRECTION_AT_NU_AFTER` times, or at once with ``now``: a third of the numbers,
+    kept for the last :data:`CORRECTION_AT_KEPT`; before, the whole table), packed as
     :func:`load_falling_correction`, for a law of ``friction_ratio = mu_k / mu_0``. Its
     mu_k/mu_0 axis stays (the kernel interpolates along it: a friction coefficient that
     changes at every call, as a vehicle's, costs nothing to set up; summed out per ratio it
@@ -542,7 +548,7 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
                 _SEEN.clear()
             _SEEN[key] = seen
         else:
-            base = correction_at(poisson_ratio, friction_ratio)
+            base = correction_at(poisson_ratio, friction_ratio, now=True)
             if not base.size:
                 return base
             if len(_AT) >= CORRECTION_AT_KEPT:
@@ -554,6 +560,13 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
         corr = load_falling_correction()
         if not corr.size:
             return _EMPTY
+        key = ("nu", poisson_ratio)
+        seen = CORRECTION_AT_NU_AFTER if now else _SEEN.get(key, 0) + 1
+        if seen < CORRECTION_AT_NU_AFTER:   # (the whole table: the kernel sums nu itself)
+            if len(_SEEN) >= 4 * CORRECTION_AT_KEPT:
+                _SEEN.clear()
+            _SEEN[key] = seen
+            return corr
         if len(_AT) >= CORRECTION_AT_KEPT:
             _AT.pop(next(iter(_AT)))
         got = _AT[poisson_ratio] = _collapsed(corr, poisson_ratio)
@@ -910,7 +923,8 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         coef, kernel = _point_kernel(table, poisson_ratio, path == "table_point")
         if kernel is None:
             return None
-        corr = correction_at(poisson_ratio, ratio, g if path == "auto" else None)
+        corr = (correction_at(poisson_ratio, ratio, g) if path == "auto"
+                else correction_at(poisson_ratio, ratio, now=True))
         done = kernel(table._tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                       poisson_ratio, kind, p0, p1, p2, p3, law, corr, _GAUSS,
                       EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL, out)
