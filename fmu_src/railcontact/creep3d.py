@@ -395,11 +395,12 @@ def creep_force_3d(creepage_longitudinal, creepage_lateral, spin, normal_load, a
         theory on 99.96 % of random cases, up to 0.96 % without spin, 1.00 % with spin
         coordinate |tau| <= 1, up to 1.08 % with larger spin and 0.91 % where a strong
         law's stick zone collapses with spin (the smooth law; Polach's up to 1.8 %); about
-        9 us a scalar call with a
-        :class:`SmoothFriction`, 10 us with a :class:`PolachFriction`, on a contact the
-        table keeps a buffer for, one whose a0/b0 stays; where a0/b0 changes at every call,
-        as a vehicle's in a co-simulation, about 0.6 ms: the array path, no compiled kernel
-        without the buffer yet); every other method raises ValueError. The law must give a
+        8 us a scalar call with a
+        :class:`SmoothFriction`, 9 us with a :class:`PolachFriction`, on a contact the
+        table keeps a buffer for, one whose a0/b0 stays; 12-13 us where a0/b0 changes at
+        every call, as a vehicle's in a co-simulation (the compiled kernel on the table's
+        five-dimensional spline; 17-18 us until the table has summed itself over nu, after
+        some 7,000 calls of one nu); every other method raises ValueError. The law must give a
         finite ``mu >= 0`` at every slip and ``mu(0) > 0``. [-]
     method : {"modified_strip", "strip", "she", "linear", "exact", "exact_table", "fastsim", "polach", "fastrip"}
         Creep-force model (default "modified_strip", the thesis's method; the module docstring

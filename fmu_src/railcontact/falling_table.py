@@ -941,13 +941,15 @@ def _point_kernel(table, poisson_ratio, now):
     coefficients summed over nu where the table has them (made at once with ``now``, else by
     its ski rental, :meth:`~railcontact.exact_table.ExactCreepTable._nu_coefficients`), else
     the file's; ``(None, None)`` for nu outside [0, 0.5]."""
-    if not 0.0 <= poisson_ratio <= 0.5:
-        return None, None
-    if now:
-        table.prepare(poisson_ratio)
-    if table._tbuf is None:
-        table._make_table_buffer()
-    summed = table._nu_coefficients(poisson_ratio, EFFECTIVE_MU_STEPS + 1)
+    summed = table._nu_slabs.get(poisson_ratio)     # (the sum made: nothing else to do)
+    if summed is None:
+        if not 0.0 <= poisson_ratio <= 0.5:
+            return None, None
+        if now:
+            table.prepare(poisson_ratio)
+        if table._tbuf is None:
+            table._make_table_buffer()
+        summed = table._nu_coefficients(poisson_ratio, EFFECTIVE_MU_STEPS + 1)
     coef = table._coef if summed is None else summed[0]
     kernel = _POINT_KERNELS.get(coef.dtype)
     if kernel is None:
