@@ -1960,6 +1960,59 @@ def test_falling_friction_step_holds_a_buffer_only_for_a_shape_that_stays(monkey
     assert effect._held is scene_buffer or effect._held[0] == scene_buffer[0]
 
 
+def test_vehicle_falling_friction_batch_equals_each_contact_s_own_step():
+    """The vehicle's falling-friction batch (one compiled call: contacts at the scene's shape
+    on its contact buffer, the others on the table's five-dimensional spline) gives each
+    contact what its own pipeline gives with the same inputs, to round-off: loads, creepages
+    and friction new at every step, one contact's curvature changing from the fourth step,
+    one wheel lifted, one contact without friction."""
+    from railcontact import scene as scene_mod
+    from railcontact.effects import ContactPoint, Vehicle, build_pipeline
+
+    sc = scene_mod.load_scene(_SCENES / "creep_exact_table_falling.toml")
+
+    def contact():
+        c = ContactPoint()
+        c.friction_coefficient = sc.friction_coefficient
+        return c
+
+    k = 4
+    contacts = [contact() for _ in range(k)]
+    vehicle = Vehicle(sc, contacts)
+    singles = [(build_pipeline(sc), contact()) for _ in range(k)]
+    rng = np.random.default_rng(41)
+    fields = ("Fx", "Fy", "Mz", "stick_area_fraction", "r_a0")
+    paths = set()
+    for step in range(8):
+        for j in range(k):
+            values = dict(normal_force=float(rng.uniform(3e4, 1.2e5)),
+                          creepage_longitudinal=float(rng.uniform(-8e-3, 8e-3)),
+                          creepage_lateral=float(rng.uniform(-2e-3, 2e-3)),
+                          spin=float(rng.uniform(-0.4, 0.4)), rolling_speed=30.0,
+                          friction_coefficient=float(rng.uniform(0.2, 0.45)))
+            if j == 1 and step >= 3:
+                values["curvature_lateral"] = float(rng.uniform(1.0, 3.0))
+            if j == 2 and step in (4, 5):
+                values["normal_force"] = 0.0
+            if j == 3 and step == 6:
+                values["friction_coefficient"] = 0.0
+            for c in (contacts[j], singles[j][1]):
+                for name, v in values.items():
+                    setattr(c, name, v)
+        vehicle.step(1e-3)
+        for j, (pipe, c) in enumerate(singles):
+            pipe.step(c)
+            got, want = contacts[j], c
+            scale = 0.45 * max(want.normal_force, 1.0)
+            for name in fields:
+                assert getattr(got, name) == pytest.approx(getattr(want, name), rel=1e-12,
+                                                           abs=1e-12 * scale), (step, j, name)
+            paths.add(vehicle._creeps[j]._shape_buffer(got.a0 / got.b0) is not None
+                      if got.normal_force > 0.0 else None)
+    assert paths == {True, False, None}      # (both branches of the batch, and no contact)
+    assert abs(contacts[0].Fx) > 0.0
+
+
 def test_a_lifted_wheel_reads_a_zero_jacobian_not_the_last_steps():
     """The exact-table scene: a step with N = 0 after one in contact gives zero forces and a
     zero Jacobian (it kept the previous step's before)."""

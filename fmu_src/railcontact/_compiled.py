@@ -31,7 +31,8 @@ __all__ = ["EXPORTS", "BATCH_EXPORTS", "SOLVER_EXPORTS", "matches", "aot_kernel"
            "AOT_MODULE", "aot_module", "tensor_eval", "find_span", "cubic_basis",
            "creep_contact", "creep_contact_force", "creep_table_point", "creep_table_force",
            "superposed_response", "exact_kernels", "unit_ellipses_kernel", "batch_kernel",
-           "falling_contact", "falling_table_point", "falling_correction_batch", "build_aot"]
+           "falling_contact", "falling_table_point", "falling_contacts",
+           "falling_correction_batch", "build_aot"]
 
 #: Name of the ahead-of-time compiled extension module inside the package.
 AOT_MODULE = "_aot_kernels"
@@ -72,6 +73,11 @@ EXPORTS = (
     ("falling_table_point_nu", "_falling_kernels",
      "b1(f8[::1], f8[:, :, :, :, :, ::1], f8, f8, f8, f8, f8, f8, f8, f8, i8, f8, f8, f8, f8, "
      "f8[:, ::1], f8[::1], f8[:, ::1], i8, f8, f8[::1], f8[::1])"),
+    # a vehicle's contacts in one call (railcontact.effects.Vehicle: the table summed over nu)
+    ("falling_contacts", "_falling_kernels",
+     "void(f8[::1], f8[:, :, :, :, :, ::1], f8[::1], b1[::1], f8[::1], f8[::1], f8[::1], "
+     "f8[::1], f8[::1], f8[::1], f8, f8, i8, f8[::1], f8, f8, f8, f8[:, ::1], f8[::1], "
+     "f8[::1], f8[:, ::1], i8, f8, f8[::1], f8[:, ::1], b1[::1])"),
     # its correction table at many points (the array path of railcontact.falling_table)
     ("falling_correction_batch", "_falling_kernels",
      "void(f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], "
@@ -367,6 +373,17 @@ def falling_table_point(coef):
     from . import _falling_kernels  # noqa: PLC0415  (numba)
 
     return getattr(_falling_kernels, name)
+
+
+def falling_contacts():
+    """Falling friction on a vehicle's contacts in one call
+    (``_falling_kernels.falling_contacts``): the ahead-of-time copy, or numba's dispatcher."""
+    aot = aot_module()
+    if aot is not None:
+        return aot.falling_contacts
+    from ._falling_kernels import falling_contacts as kernel  # noqa: PLC0415  (numba)
+
+    return kernel
 
 
 def falling_correction_batch():

@@ -28,7 +28,8 @@ from ._exact_kernels import (_kalker_coefficients, _table_views, buffer_views, c
                              table_coordinates)
 from ._spline_kernels import find_span
 
-__all__ = ["falling_contact", "falling_table_point", "falling_correction_batch", "LAW_SMOOTH", "LAW_POLACH",
+__all__ = ["falling_contact", "falling_table_point", "falling_contacts",
+           "falling_correction_batch", "LAW_SMOOTH", "LAW_POLACH",
            "LAW_TABLE", "CORRECTION_HEADER"]
 
 #: Law kinds of :func:`falling_contact`.
@@ -296,6 +297,27 @@ def falling_table_point(tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs
 
 #: (the same kernel on the coefficients summed over nu, float64: its own export name)
 falling_table_point_nu = falling_table_point
+
+
+@njit(cache=True)
+def falling_contacts(tbuf, coef, buf, on_buffer, xi_x, xi_y, phi, normal_load, a0, b0,
+                     youngs_modulus, poisson_ratio, kind, mu0, p1, p2, p3, tab, corr,
+                     corr_buffer, gauss, steps, share_min, model, out, ok):
+    """:func:`falling_table_point` (``on_buffer[k]`` False) or :func:`falling_contact` on the
+    one contact buffer ``buf`` (True; with the correction table ``corr_buffer``) for each
+    contact k of the arrays (a vehicle's contacts in one call), mu_0 = ``mu0[k]`` and the
+    law's other parameters common; ``out[k, :6]`` as theirs, ``ok[k]`` whether it was
+    computed (else the caller takes the contact's own path)."""
+    dummy = buf[:1].reshape((1, 1, 1, 1, 1, 1))
+    for k in range(xi_x.shape[0]):
+        if on_buffer[k]:
+            ok[k] = _falling(buf, buf, dummy, False, 0.0, xi_x[k], xi_y[k], phi[k],
+                             normal_load[k], a0[k], b0[k], youngs_modulus, kind, mu0[k], p1,
+                             p2, p3, tab, corr_buffer, gauss, steps, share_min, model, out[k])
+        else:
+            ok[k] = _falling(tbuf, tbuf, coef, True, poisson_ratio, xi_x[k], xi_y[k], phi[k],
+                             normal_load[k], a0[k], b0[k], youngs_modulus, kind, mu0[k], p1,
+                             p2, p3, tab, corr, gauss, steps, share_min, model, out[k])
 
 
 @njit(cache=True)

@@ -346,7 +346,12 @@ class Creep3D(Effect):
         # Coulomb table: railcontact.falling_table, three table calls plus one; the Jacobian
         # outputs when read (jacobian)
         self._count_shape(args[4], args[5])
-        tx, ty, mz, stick, z, _ = self._falling_forces(args)
+        self.set_falling(c, args, self._falling_forces(args))
+
+    def set_falling(self, c, args, got):
+        """The contact's outputs from the fast path's ``got = (tx, ty, mz, stick, z, mu_e)`` at
+        the step's arguments ``args`` (the Jacobian then when read)."""
+        tx, ty, mz, stick, z, _ = got
         c.Fx, c.Fy, c.Mz = float(tx), float(ty), float(mz)
         zc = z if z < 1.0 else 1.0
         c.stick_area_fraction = float(stick)

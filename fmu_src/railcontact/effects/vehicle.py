@@ -43,6 +43,8 @@ from .normal import (NO_NORMAL_FORCE_MESSAGE, check_geometry_input, inverse_grid
                      unit_ellipses)
 from .pipeline import build_pipeline, inputs_plausible
 
+_EMPTY = np.zeros(0)
+
 __all__ = ["Vehicle", "MAX_CONTACTS"]
 
 #: The most contacts one instance serves (``build_fmu.py --contacts K``).
@@ -92,19 +94,19 @@ class Vehicle:
                        for p in self.pipelines]
         self._creeps = [p.effects[names[i]] for p in self.pipelines] if i < len(names) else []
         self._batch = None
-        # (falling friction: each contact's own creep step, the law's compiled fast path on
-        # the shared table; the batch evaluates the Coulomb table)
-        if (self._creeps and getattr(creep, "source", None) == "table"
-                and getattr(creep, "_smooth_law", None) is None):
+        if self._creeps and getattr(creep, "source", None) == "table":
             self._batch = self._exact_batch if creep._exact else self._strip_batch
             self._table = table
             self._use_spin = creep.use_spin
+            if getattr(creep, "_smooth_law", None) is not None:    # falling friction
+                self._batch = self._falling_batch
+                self._falling_setup(creep)
         self.summary = first.summary()
         self._pipeline_of = {id(c): p for c, p in zip(self.contacts, self.pipelines)}
         self._warn = warn if warn is not None else (lambda key, msg: None)
         self._lazy = True       # (outputs may be computed when read: auxiliary)
-        self._fast = (names == ["normal", "creep"] and self._batch is not None
-                      and creep._exact and self._curvatures)
+        self._fast = (names == ["normal", "creep"] and self._batch == self._exact_batch
+                      and self._curvatures)
         if self._fast:
             self._fast_setup(creep)
 
@@ -377,6 +379,75 @@ class Vehicle:
             (c.dFx_dxi_x, c.dFx_dxi_y, c.dFx_dphi, c.dFy_dxi_x, c.dFy_dxi_y, c.dFy_dphi,
              c.dMz_dxi_x, c.dMz_dxi_y, c.dMz_dphi) = jac[j]
             creep._aux_args = None
+
+    def _falling_setup(self, creep):
+        """Falling friction (the scene's smooth law) on the exact table: what
+        :meth:`_falling_batch` passes its kernel, made once (deterministic, as each contact's
+        own path: the table summed over nu, the correction table summed over nu and, for the
+        scene's shape, over a0/b0)."""
+        from ..falling_table import (_GAUSS, _MODEL, _NO_LAW_TABLE, EFFECTIVE_MU_STEPS,  # noqa: PLC0415
+                                     SLIP_SHARE_MIN, correction_at)
+
+        table = self._table
+        table.prepare(self._nu)
+        self._f_coef = table._nu_slabs[float(self._nu)][0]
+        held = creep._held          # (the scene's shape, its buffer made at setup)
+        self._f_shape = None if held is None else held[0]
+        self._f_buf = table._tbuf if held is None else held[1][0]
+        self._f_args = (
+            correction_at(self._nu, 0.0, now=True),
+            _EMPTY if held is None else correction_at(self._nu, 0.0, held[0], now=True),
+            _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL)
+        self._f_law = (0, *creep._smooth_law, 0.0, _NO_LAW_TABLE)
+        self._f_kernel = _compiled.falling_contacts()
+
+    def _falling_batch(self):
+        """Falling friction for every contact in contact: each contact's shape counted and its
+        path chosen as its own effect would (the scene's shape on its buffer, a changing one on
+        the table's five-dimensional spline), then one compiled call for all; a contact the
+        kernel hands back, one holding another shape for long, or one without friction takes
+        its own effect's path."""
+        live = self._live()
+        if not live:
+            return
+        spin, e_mod, nu = self._use_spin, self._e, self._nu
+        shape = self._f_shape
+        rows, batch, own = [], [], []
+        for k in live:
+            c, creep = self.contacts[k], self._creeps[k]
+            if not c.friction_coefficient > 0.0:
+                creep.step(c)
+                continue
+            creep.calls += 1
+            c.creep_table_error_estimate = creep.table_error_estimate
+            creep._count_shape(c.a0, c.b0)
+            held = creep._shape_buffer(c.a0 / c.b0)
+            args = (c.creepage_longitudinal, c.creepage_lateral, c.spin if spin else 0.0,
+                    c.normal_force, c.a0, c.b0, e_mod, nu, c.friction_coefficient)
+            if held is None or held[0] == shape:
+                rows.append(args)
+                batch.append((k, held is not None))
+            else:
+                own.append((k, args))
+        if rows:
+            x = np.array(rows).T.copy()
+            n = len(rows)
+            on_buffer = np.array([b for _, b in batch], dtype=bool)
+            out, ok = np.zeros((n, 6)), np.zeros(n, dtype=bool)
+            kind, mu_k, kappa, p3, tab = self._f_law
+            corr, corr_buf, gauss, steps, share, model = self._f_args
+            self._f_kernel(self._table._tbuf, self._f_coef, self._f_buf, on_buffer, x[0], x[1],
+                           x[2], x[3], x[4], x[5], e_mod, nu, kind, x[8], mu_k, kappa, p3, tab,
+                           corr, corr_buf, gauss, steps, share, model, out, ok)
+            values, ok = out.tolist(), ok.tolist()
+            for j, (k, _) in enumerate(batch):
+                if ok[j]:
+                    self._creeps[k].set_falling(self.contacts[k], rows[j], values[j])
+                else:
+                    own.append((k, rows[j]))
+        for k, args in own:
+            creep = self._creeps[k]
+            creep.set_falling(self.contacts[k], args, creep._falling_forces(args))
 
     def _strip_batch(self):
         """The modified strip theory's table for every contact in contact: one table call for
