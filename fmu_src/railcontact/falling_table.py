@@ -114,7 +114,12 @@ a0/b0 axis once a contact's a0/b0 has come back :data:`CORRECTION_AT_ASPECT_AFTE
 :class:`railcontact.friction.SmoothFriction`, 10.0 us with a
 :class:`~railcontact.friction.PolachFriction`, 11.0 us with a function of the user's,
 against 1.4 us for the Coulomb table in the same run (with 3 fixed-point steps and no spin
-floor: 9.3, 10.2, 12.5 us).
+floor: 9.3, 10.2, 12.5 us). That is on the contact buffer of a contact whose a0/b0 stays; a
+contact whose a0/b0 changes at every call (a vehicle's) takes the same steps on the table's
+five-dimensional spline (:func:`railcontact._falling_kernels.falling_table_point`): 12.1 us
+with a :class:`~railcontact.friction.SmoothFriction`, 12.8 us with a
+:class:`~railcontact.friction.PolachFriction` on the table summed over nu, 17.0 / 17.6 us
+before that sum is made (2026-11-29, night; the array path's 0.6 ms before that kernel).
 
 Also measured, not adopted (too slow for a table's call): the Coulomb table at mu_e plus the
 difference between the exact solver with the law and with mu_e on one coarse grid
