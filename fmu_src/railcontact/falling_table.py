@@ -77,10 +77,10 @@ A model in three steps, each one call of the Coulomb table
    zero element size where at least 3 of them converge (5,319 nodes, flagged
    ``ladder_node`` in the file; ``tablegen.falling_correction.ladder_point``: within
    0.16-0.28 % of mu_0 N of the default grid where that converges), the others filled
-   (:func:`_filled`; 3,355). The 15-degree nodes (2026-11-29) are solved at tau <= 7.5; at
-   larger tau, and where the default grid did not converge (the ladder not run there yet),
-   they hold the 30-degree table's spline (58,200 nodes, flagged ``source_node``: a partial
-   build, ``tablegen.falling_correction.build``). Interpolated by C2 cubic
+   (:func:`_filled`; 4,183). The 15-degree nodes (2026-11-29) are solved; where the default
+   grid did not converge at tau <= 5.5 (the ladder not run there yet) they hold the
+   30-degree table's spline (6,168 nodes, flagged ``source_node``: a partial build,
+   ``tablegen.falling_correction.build``). Interpolated by C2 cubic
    B-splines along the five axes a contact's state moves along in a simulation (no kink in
    the forces), linearly along nu and mu_k/mu_0 (a material's and a law's constants); held
    at the ends of each axis. A law other than the smooth one is taken as the smooth law of
