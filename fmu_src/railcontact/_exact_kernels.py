@@ -20,7 +20,8 @@ from .creep_common import JACOBIAN_RHO_MIN, SPIN_WEIGHT
 
 _TWO_OVER_PI = 2.0 / math.pi
 
-__all__ = ["buffer_views", "saturation_creepage", "table_coordinates", "cubic_basis",
+__all__ = ["buffer_views", "saturation_creepage", "table_coordinates", "table_views",
+           "kalker_coefficients", "cubic_basis",
            "spline_point", "creep_contact", "creep_contact_force",
            "creep_table_point", "creep_table_force", "creep_table_batch",
            "creep_table_batch_parallel",
@@ -898,3 +899,8 @@ buffer_views = _buffer_views
 #: (:func:`_table_coordinates`), for the same callers (the falling-friction correction table).
 saturation_creepage = _saturation_creepage
 table_coordinates = _table_coordinates
+#: The views of a table buffer (:func:`_table_views`) and Kalker's coefficients from their
+#: interpolant (:func:`_kalker_coefficients`), for the falling kernel without a contact buffer
+#: (:func:`railcontact._falling_kernels.falling_table_point`).
+table_views = _table_views
+kalker_coefficients = _kalker_coefficients

@@ -23,9 +23,9 @@ import numpy as np
 from numba import njit
 
 from . import _numba_cache  # noqa: F401  (the user cache, before any njit is compiled)
-from ._exact_kernels import (_kalker_coefficients, _table_views, buffer_views, creep_contact,
-                             creep_table_point, cubic_basis, saturation_creepage,
-                             table_coordinates)
+from ._exact_kernels import (buffer_views, creep_contact, creep_table_point, cubic_basis,
+                             kalker_coefficients, saturation_creepage, table_coordinates,
+                             table_views)
 from ._spline_kernels import find_span
 
 __all__ = ["falling_contact", "falling_table_point", "falling_contacts",
@@ -332,12 +332,12 @@ def _falling(buf, tbuf, coef, on_table, poisson_ratio, xi_x, xi_y, phi, normal_l
         nu = poisson_ratio
         if not (0.0 <= nu <= 0.5 and 0.0 < a0 < math.inf and 0.0 < b0 < math.inf):
             return False
-        tv = _table_views(tbuf)
+        tv = table_views(tbuf)
         res, work = tv[13], tv[14]
         log_g = math.log(a0 / b0)
         if not tbuf[6] <= log_g <= tbuf[7]:
             return False
-        c11, c22, c23 = _kalker_coefficients(tv[10], tv[11], tv[12], log_g, nu)
+        c11, c22, c23 = kalker_coefficients(tv[10], tv[11], tv[12], log_g, nu)
     else:
         bv = buffer_views(buf)
         res, work = bv[7], bv[8]

@@ -149,7 +149,7 @@ import numpy as np
 
 __all__ = ["falling_friction_table", "falling_friction_table_smooth", "spin_floor", "table_mu",
            "static_spin_coordinate", "spin_blend_weight", "SPIN_BLEND",
-           "falling_friction_table_compiled", "law_table", "law_shape",
+           "falling_friction_table_compiled", "kernel_model_arguments", "law_table", "law_shape",
            "load_falling_correction", "falling_correction", "CORRECTION_TABLE",
            "EFFECTIVE_MU_STEPS", "GAUSS_POINTS", "LAW_TABLE_SLIPS"]
 
@@ -939,6 +939,14 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
 
 
 _POINT_KERNELS = {}
+
+
+def kernel_model_arguments():
+    """The arguments of the compiled falling kernels (:mod:`railcontact._falling_kernels`)
+    that carry this module's model, in their order after the correction table: ``(gauss,
+    steps, share_min, model)``, and the placeholder law table of a closed-form law (for a
+    compiled caller of its own: the vehicle's batch, :mod:`railcontact.effects.vehicle`)."""
+    return (_GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL), _NO_LAW_TABLE
 
 
 def _point_kernel(table, poisson_ratio, now):

@@ -385,8 +385,7 @@ class Vehicle:
         :meth:`_falling_batch` passes its kernel, made once (deterministic, as each contact's
         own path: the table summed over nu, the correction table summed over nu and, for the
         scene's shape, over a0/b0)."""
-        from ..falling_table import (_GAUSS, _MODEL, _NO_LAW_TABLE, EFFECTIVE_MU_STEPS,  # noqa: PLC0415
-                                     SLIP_SHARE_MIN, correction_at)
+        from ..falling_table import correction_at, kernel_model_arguments  # noqa: PLC0415
 
         table = self._table
         table.prepare(self._nu)
@@ -394,11 +393,12 @@ class Vehicle:
         held = creep._held          # (the scene's shape, its buffer made at setup)
         self._f_shape = None if held is None else held[0]
         self._f_buf = table._tbuf if held is None else held[1][0]
+        model, no_law_table = kernel_model_arguments()
         self._f_args = (
             correction_at(self._nu, 0.0, now=True),
             _EMPTY if held is None else correction_at(self._nu, 0.0, held[0], now=True),
-            _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL)
-        self._f_law = (0, *creep._smooth_law, 0.0, _NO_LAW_TABLE)
+            *model)
+        self._f_law = (0, *creep._smooth_law, 0.0, no_law_table)
         self._f_kernel = _compiled.falling_contacts()
 
     def _falling_batch(self):
