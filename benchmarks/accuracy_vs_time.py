@@ -813,8 +813,9 @@ def family_falling_3d(quick):
                      "(4,489 of the 4,491 within 1 %; 0.91 % where a strong law's stick zone "
                      "collapses with spin); with Polach's law (10 x 150) 0.85, "
                      "1.41, 1.80 % (docs/reference_solvers.md; "
-                     "SmoothFriction and PolachFriction take a compiled path, 9-10 us a "
-                     "scalar call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
+                     "SmoothFriction and PolachFriction take a compiled path, 8-9 us a "
+                     "scalar call on a contact whose a0/b0 stays, 12-18 us where it changes "
+                     "at every call; benchmarks/bench_falling_friction_3d.py); FASTSIM with "
                      "the law: the local bound mu(q) p per element, a crude theory")
     return fam
 
