@@ -592,6 +592,9 @@ class ExactCreepTable:
         and ``creep_contact_force``, memoised, or None (a0/b0 beyond the table, nu outside
         [0, 0.5], not plain numbers)."""
         g, nu = float(g), float(nu)
+        got = self._buffers.get((g, nu))
+        if got is not None:
+            return got
         if not (0.0 <= nu <= 0.5 and 0.0 < g < math.inf):
             return None
         log_g = math.log(g)

@@ -856,10 +856,6 @@ def falling_friction_table_smooth(table, xi_x, xi_y, phi, normal_load, a0, b0, y
                                            0.0, path)
 
 
-#: The evaluation paths of :func:`falling_friction_table_compiled`.
-COMPILED_PATHS = ("auto", "contact_buffer", "table_point")
-
-
 def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
                                     youngs_modulus, poisson_ratio, kind, p0, p1, p2, p3,
                                     path="auto", tabulated=None, buffer=None):
@@ -884,7 +880,7 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
     - ``"contact_buffer"``: the contact's buffer, made at once for a new a0/b0 (some 20 ms);
     - ``"table_point"``: always the five-dimensional spline, on the coefficients summed over
       nu (made now if need be: :meth:`~railcontact.exact_table.ExactCreepTable.prepare`),
-      the correction table summed over nu and mu_k/mu_0 only. Its numbers depend on the
+      the correction table summed over nu only. Its numbers depend on the
       inputs alone, not on what was called before.
 
     ``buffer``: ``(shape, entry)``, a contact buffer the caller holds

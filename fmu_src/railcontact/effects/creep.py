@@ -294,8 +294,7 @@ class Creep3D(Effect):
         """The contact buffer of the table for a0/b0 = ``shape`` (made now if the table has
         none), held: ``(shape, entry)``, or None (beyond the table)."""
         if self._held is None or self._held[0] != shape:
-            entry = self._table._buffers.get((shape, self._nu)) or self._table._buffer(
-                shape, self._nu)
+            entry = self._table._buffer(shape, self._nu)
             self._held = None if entry is None else (shape, entry)
         return self._held
 
