@@ -1032,3 +1032,31 @@ def test_correction_table_fill_along_the_kappa_number_where_the_truth_is_known()
     assert rms < 0.45 and p95 < 0.9, (rms, p95)
     assert rms < 0.6 * np.sqrt(np.mean(err_m**2)), (rms, np.sqrt(np.mean(err_m**2)))
     assert np.all(np.isfinite(filled))
+
+
+def test_polach_law_takes_the_polach_table_or_the_smooth_one_where_there_is_none(monkeypatch):
+    """A PolachFriction takes the correction table of its own family (law_family "polach";
+    every other law "smooth"); where the package has no Polach table it takes the smooth
+    law's, and the fast path then gives what it gave before that table existed (the smooth
+    table at the same mu_k/mu_0 and slope at zero slip). An unknown family is a ValueError."""
+    from railcontact import falling_table as ft
+
+    law = PolachFriction(0.3, 0.4, 0.2)
+    assert ft.law_family(law) == "polach"
+    assert ft.law_family(SmoothFriction(0.3, 0.15, 300.0)) == "smooth"
+    assert ft.law_family(_SlipVelocityLaw()) == "smooth"
+    args = (2e-3, 1e-3, 0.5, 1e5, 6e-3, 5e-3, 2.1e11, 0.28, law)
+    own = rc.creep_force_3d(*args, method="exact_table", rolling_speed=30.0)
+    monkeypatch.setitem(ft.CORRECTION_FILES, "polach", "no_such_table")
+    monkeypatch.setattr(ft, "_CORRECTION", {})
+    monkeypatch.setattr(ft, "_AT", {})
+    assert ft.load_falling_correction(family="polach") is ft.load_falling_correction()
+    smooth = rc.creep_force_3d(*args, method="exact_table", rolling_speed=30.0)
+    corr = ft.falling_correction(*args[:8], 0.3, 0.4, 0.2 * 30.0)
+    assert np.max(np.abs(corr[:2])) > 0.0
+    np.testing.assert_allclose(ft.falling_correction(*args[:8], 0.3, 0.4, 6.0, "polach"),
+                               corr, rtol=0.0, atol=0.0)
+    if (Path(ft.__file__).parent / "data" / "falling_correction_polach.nc").is_file():
+        assert abs(own.tx - smooth.tx) + abs(own.ty - smooth.ty) > 0.0
+    with pytest.raises(ValueError, match="family must be one of .*got 'coulomb'"):
+        ft.load_falling_correction(family="coulomb")

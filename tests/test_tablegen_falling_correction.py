@@ -420,3 +420,70 @@ def test_a_partial_build_ships_what_is_done_and_the_table_before_elsewhere(build
     np.testing.assert_allclose(a, b, rtol=1e-6, atol=1e-9)
     with netCDF4.Dataset(tmp_path / "t3.nc") as ds:
         assert "source_node" not in ds.variables and ds.n_source_nodes == 0
+
+
+@pytest.fixture
+def polach(monkeypatch):
+    """The builder set to Polach's law family, restored after the test."""
+    monkeypatch.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
+    monkeypatch.setitem(fc.NODES, "creepage_angle", fc.NODES["creepage_angle"])
+    fc.set_law_family("polach")
+    return monkeypatch
+
+
+def test_polach_family_has_its_own_work_directory_file_and_theta_nodes(builder, tmp_path):
+    """--law polach: another work directory (the smooth law's hash unchanged, so its chunks
+    stay), its own file name and attribute, theta nodes every 30 degrees; an unknown family
+    is a ValueError naming the families."""
+    smooth_hash = fc._hash()
+    builder.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
+    builder.setitem(fc.NODES, "creepage_angle", fc.NODES["creepage_angle"])
+    fc.set_law_family("polach")
+    assert fc._hash() != smooth_hash
+    assert fc.table_name() == "falling_correction_polach"
+    assert fc.NODES["creepage_angle"].size == fc.THETA_NODES["polach"] == 12
+    builder.chdir(tmp_path)
+    done, missing, path = fc.build(tmp_path / "w", workers=1)
+    assert missing == 0 and path == tmp_path / "tables-build" / "falling_correction_polach.nc"
+    assert (tmp_path / "w" / f"falling_correction-{fc._hash()}").is_dir()
+    with netCDF4.Dataset(path) as ds:
+        assert ds.law_family == "polach" and "Polach" in ds.title
+        assert ds.variables["creepage_angle"].size == 12
+    with pytest.raises(ValueError, match="law family must be one of .*'smooth', 'polach'"):
+        fc.set_law_family("coulomb")
+
+
+def test_polach_family_solves_polach_s_law_in_the_slip(polach):
+    """The Polach family's node is Polach's law ``mu_0 ((1 - A) exp(-B w) + A)`` with A the
+    node's mu_k/mu_0 and B V its kappa (the same slope at zero slip as the smooth law's node):
+    the exact solve equals creep_solution_3d with PolachFriction at another rolling speed
+    (30 m/s, B scaled: the law in the slip is the same), and the model equals the package's
+    numpy function with that law; both differ from the smooth law's by more than 1 % of
+    mu_0 N here (the shapes differ)."""
+    from railcontact import creep_solution_3d
+    from railcontact.creep3d import load_exact_table
+    from railcontact.falling_table import falling_friction_table
+    from railcontact.friction import PolachFriction
+
+    node = (0.0, 0.25, 0.2, 0.5, 1.5, 0.3, 1.125)
+    got = fc.exact_point(*node)
+    model = fc.model_points(*(np.array([v]) for v in node))[:, 0]
+    a, mu0, mu_k, kappa = fc._case(*node)
+    law = PolachFriction(mu0, mu_k / mu0, kappa / 30.0)
+    ex = creep_solution_3d(*a[:8], law, method="exact", rolling_speed=30.0)
+    scale = mu0 * a[3]
+    np.testing.assert_allclose(got[:2], [ex.tx / scale, ex.ty / scale], rtol=1e-9, atol=1e-12)
+    table = load_exact_table()
+
+    def values(mu):
+        sol = table.creep_solution_3d(*a[:8], float(mu))
+        return sol.tx, sol.ty, sol.spin_moment, sol.stick_area_fraction, 0.0
+
+    tx, ty = falling_friction_table(values, *(np.asarray(v) for v in a[:6]),
+                                    lambda s: law(30.0 * s), np.asarray(mu0),
+                                    material=(a[6], a[7]))[:2]
+    np.testing.assert_allclose(model[:2], [tx / scale, ty / scale], rtol=1e-9, atol=1e-12)
+    fc.set_law_family("smooth")
+    assert np.hypot(*(fc.exact_point(*node) - got)[:2]) > 0.01
+    assert np.hypot(*(fc.model_points(*(np.array([v]) for v in node))[:2, 0]
+                      - model[:2])) > 0.01

@@ -649,7 +649,7 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
     99.96 % of random cases, up to 0.96 % without spin, 1.00 % with |tau| <= 1, 1.08 % with
     larger spin, 0.91 % where a strong law's stick zone collapses with spin). Plain floats
     take the table's scalar path."""
-    from .falling_table import falling_friction_table, law_shape  # noqa: PLC0415
+    from .falling_table import falling_friction_table, law_family, law_shape  # noqa: PLC0415
 
     table = _EXACT_TABLES.get(_DEFAULT_KEY) or load_exact_table()
     args = check_creep_inputs(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
@@ -684,7 +684,8 @@ def _falling_table(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson
                                 law_s) if scalar else None)
     if got is None:     # (arrays; a law the table cannot hold; slips beyond it; no buffer yet)
         got = falling_friction_table(values, *args[:6], law_s, args[8],
-                                     (args[6], args[7], *law_shape(law, speed, law_s)))
+                                     (args[6], args[7], *law_shape(law, speed, law_s),
+                                      law_family(law)))
     tx, ty, mz, stick, z, _ = (np.asarray(v, dtype=float) for v in got)
     if not solution:
         return CreepForce3D(tx[()] + 0.0, ty[()] + 0.0)

@@ -151,6 +151,7 @@ __all__ = ["falling_friction_table", "falling_friction_table_smooth", "spin_floo
            "static_spin_coordinate", "spin_blend_weight", "SPIN_BLEND",
            "falling_friction_table_compiled", "kernel_model_arguments", "law_table", "law_shape",
            "load_falling_correction", "falling_correction", "CORRECTION_TABLE",
+           "CORRECTION_FAMILIES", "CORRECTION_FILES", "law_family",
            "EFFECTIVE_MU_STEPS", "GAUSS_POINTS", "LAW_TABLE_SLIPS"]
 
 #: Fixed-point steps for the effective friction coefficient (relaxed by 1/2 from the second).
@@ -226,8 +227,9 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     mu0 : ndarray
         mu(0) per case, > 0. [-]
     correction : tuple of ndarray, optional
-        ``(youngs_modulus, poisson_ratio, friction_ratio, kappa)`` [Pa, -, -, -] of the cases:
-        the correction table's value (:func:`falling_correction`) is added to the force and
+        ``(youngs_modulus, poisson_ratio, friction_ratio, kappa)`` [Pa, -, -, -] of the cases,
+        and optionally the law family (:func:`law_family`, default ``"smooth"``): the
+        correction table's value (:func:`falling_correction`) is added to the force and
         the moment. None: the model alone (what the correction table is built against).
     material : tuple of ndarray, optional
         ``(youngs_modulus, poisson_ratio)`` [Pa, -] of the cases, for the table's spin edge
@@ -316,7 +318,7 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     mz = v[2]
     if correction is not None:
         d = falling_correction(xi_x, xi_y, phi, n_load, a0, b0, *correction[:2], mu0,
-                               *correction[2:])
+                               *correction[2:4], *correction[4:5])
         on = has_slip
         tx, ty, mz = tx + on * d[0], ty + on * d[1], mz + on * d[2]
     if not (np.all(np.isfinite(tx)) and np.all(np.isfinite(ty)) and np.all(np.isfinite(mu))):
@@ -420,11 +422,25 @@ CORRECTION_AXES = ("log_aspect_ratio", "poisson_ratio", "creepage_coordinate",
                    "friction_decay_number")
 CORRECTION_VARIABLES = ("force_correction_longitudinal", "force_correction_lateral",
                         "spin_moment_correction")
+#: The law families with a correction table of their own: the smooth law (5.16) and
+#: Polach's exponential law (2005), each ``(mu_k / mu_0, kappa)`` with the same slope at zero
+#: slip (:func:`law_shape`); every other law takes the smooth law's table.
+CORRECTION_FAMILIES = ("smooth", "polach")
+#: Their files' names (package data ``railcontact/data/<name>.nc``).
+CORRECTION_FILES = {"smooth": CORRECTION_TABLE, "polach": CORRECTION_TABLE + "_polach"}
 _CORRECTION = {}
 
 
+def law_family(law):
+    """The correction table's family of a friction law (:data:`CORRECTION_FAMILIES`):
+    ``"polach"`` for a :class:`railcontact.friction.PolachFriction`, else ``"smooth"``."""
+    from .friction import PolachFriction  # noqa: PLC0415
+
+    return "polach" if type(law) is PolachFriction else "smooth"
+
+
 def falling_correction(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poisson_ratio,
-                       mu0, friction_ratio, kappa):
+                       mu0, friction_ratio, kappa, family="smooth"):
     """The correction table's force and moment (:func:`load_falling_correction`) for the
     smooth law (5.16) ``(mu0, friction_ratio mu0, kappa)`` (or the smooth law a law is taken
     as, :func:`law_shape`) on the given contacts: ``(dtx, dty, dmz)`` [N, N, N m], zero where
@@ -436,6 +452,9 @@ def falling_correction(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poi
         The checked inputs ([-], [-], [1/m], [N], [m], [m], [Pa], [-]).
     mu0, friction_ratio, kappa : array_like
         mu_0 [-], mu_k / mu_0 [-] and kappa [-] of the smooth law.
+    family : str, optional
+        The law family's table (:data:`CORRECTION_FAMILIES`, :func:`law_family`): with
+        ``"polach"`` the three numbers are Polach's ``mu_0``, ``A`` and ``B V``.
     """
     from ._compiled import falling_correction_batch  # noqa: PLC0415
 
@@ -444,7 +463,7 @@ def falling_correction(xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, poi
         friction_ratio, kappa)))
     shape = args[0].shape
     xi_x, xi_y, phi, n_load, a0, b0, e_mod, nu, mu0, ratio, kappa = (a.ravel() for a in args)
-    corr = load_falling_correction()
+    corr = load_falling_correction(family=family)
     out = np.zeros((xi_x.size, 3))
     on = (ratio < 1.0) & (n_load > 0.0) & (mu0 > 0.0)
     if corr.size and on.any():
@@ -528,7 +547,16 @@ _SEEN = {}
 CORRECTION_AT_NU_AFTER = 16
 
 
-def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
+def _at_key(family, poisson_ratio, aspect_ratio=None):
+    """The key of :func:`correction_at`'s store for a family's table at nu (and a0/b0)."""
+    tag = () if family == "smooth" else (family,)
+    if aspect_ratio is None:
+        return (*tag, poisson_ratio) if tag else poisson_ratio
+    return (*tag, poisson_ratio, aspect_ratio)
+
+
+def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False,
+                  family="smooth"):
     """The correction table at one nu (its nu axis summed out once the nu has been asked
     :data:`CORRECTION_AT_NU_AFTER` times, or at once with ``now``: a third of the numbers,
     kept for the last :data:`CORRECTION_AT_KEPT`; before, the whole table), packed as
@@ -539,11 +567,12 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
     :data:`CORRECTION_AT_ASPECT_AFTER` calls, its a0/b0 axis summed out at that value too (a
     contact of fixed shape, as a scene's), or at once with ``now`` (the FMU: its numbers then
     depend on its inputs and state alone, so that a restored state replays bit for bit).
-    Empty where there is no table or the law does not fall (``friction_ratio >= 1``)."""
+    Empty where there is no table or the law does not fall (``friction_ratio >= 1``).
+    ``family``: the law family's table (:func:`load_falling_correction`)."""
     if not friction_ratio < 1.0:
         return _EMPTY
     if aspect_ratio is not None:
-        key = (poisson_ratio, aspect_ratio)
+        key = _at_key(family, poisson_ratio, aspect_ratio)
         got = _AT.get(key)
         if got is not None:
             return got
@@ -553,19 +582,20 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
                 _SEEN.clear()
             _SEEN[key] = seen
         else:
-            base = correction_at(poisson_ratio, friction_ratio, now=True)
+            base = correction_at(poisson_ratio, friction_ratio, now=True, family=family)
             if not base.size:
                 return base
             if len(_AT) >= CORRECTION_AT_KEPT:
                 _AT.pop(next(iter(_AT)))
             got = _AT[key] = _aspect_collapsed(base, math.log(aspect_ratio))
             return got
-    got = _AT.get(poisson_ratio)
+    at = _at_key(family, poisson_ratio)
+    got = _AT.get(at)
     if got is None:
-        corr = load_falling_correction()
+        corr = load_falling_correction(family=family)
         if not corr.size:
             return _EMPTY
-        key = ("nu", poisson_ratio)
+        key = ("nu", at)
         seen = CORRECTION_AT_NU_AFTER if now else _SEEN.get(key, 0) + 1
         if seen < CORRECTION_AT_NU_AFTER:   # (the whole table: the kernel sums nu itself)
             if len(_SEEN) >= 4 * CORRECTION_AT_KEPT:
@@ -574,7 +604,7 @@ def correction_at(poisson_ratio, friction_ratio, aspect_ratio=None, now=False):
             return corr
         if len(_AT) >= CORRECTION_AT_KEPT:
             _AT.pop(next(iter(_AT)))
-        got = _AT[poisson_ratio] = _collapsed(corr, poisson_ratio)
+        got = _AT[at] = _collapsed(corr, poisson_ratio)
         from ._table_store import release_pages  # noqa: PLC0415
 
         release_pages(corr)     # (the mapped table's pages back: the sum is what is used)
@@ -716,10 +746,10 @@ def _mirrored(vals, nodes):
             np.concatenate([-tau[:0:-1], tau]))
 
 
-def load_falling_correction(path=None):
+def load_falling_correction(path=None, family="smooth"):
     """The correction table, packed for :func:`railcontact._falling_kernels._correction`
     (the file's ``packed_bspline``, made by :func:`pack_correction` when the table was
-    built): the exact theory with the smooth law (5.16) minus this module's model
+    built): the exact theory with the law family's law minus this module's model
     (``tablegen.falling_correction``). An empty array where there is no such file (the model
     alone). Read once per machine: decompressed into the user cache and memory-mapped
     (:func:`railcontact._table_store.derived`), so that every process and FMU instance shares
@@ -732,19 +762,30 @@ def load_falling_correction(path=None):
         The file; default the package's ``railcontact/data/falling_correction.nc`` (package
         data, not one of the shipped ``tables/``: its two linear axes are not the tables'
         all-cubic format that other languages' readers take).
+    family : str, optional
+        The law family of the default file (:data:`CORRECTION_FAMILIES`): ``"smooth"`` the
+        smooth law (5.16), ``"polach"`` Polach's exponential law
+        (``railcontact/data/falling_correction_polach.nc``; where the package has no such
+        file, the smooth law's table, taken at the same mu_k/mu_0 and initial slope).
 
     Returns
     -------
     ndarray
         The packed table (float64, 1-D).
     """
-    key = None if path is None else str(path)
+    key = family if path is None else str(path)
     got = _CORRECTION.get(key)
     if got is None:
         if path is None:
             from pathlib import Path  # noqa: PLC0415
 
-            path = Path(__file__).resolve().parent / "data" / f"{CORRECTION_TABLE}.nc"
+            if family not in CORRECTION_FAMILIES:
+                raise ValueError(f"family must be one of {CORRECTION_FAMILIES}; got "
+                                 f"{family!r}")
+            path = Path(__file__).resolve().parent / "data" / f"{CORRECTION_FILES[family]}.nc"
+            if not path.is_file() and family != "smooth":
+                got = _CORRECTION[key] = load_falling_correction()
+                return got
             path = path if path.is_file() else None
         if path is None:
             got = np.zeros(0)
@@ -897,6 +938,7 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
     else:
         ratio = tabulated[1, -1] / tabulated[1, 0] if tabulated[1, 0] > 0.0 else 1.0
     law = _NO_LAW_TABLE if tabulated is None else tabulated
+    family = "polach" if kind == 1 else "smooth"
     out = _OUT
     if buffer is None and path != "table_point":
         key = (g, poisson_ratio)
@@ -914,9 +956,9 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         if kernel is None:   # (compiled ahead of time in a wheel or FMU; else numba's,
             from . import _compiled  # noqa: PLC0415          imported on the first call only)
             kernel = _KERNEL[0] = _compiled.falling_contact()
-        corr = _AT.get((poisson_ratio, shape))     # (a contact of fixed shape: kept)
+        corr = _AT.get(_at_key(family, poisson_ratio, shape))   # (a fixed shape: kept)
         if corr is None:
-            corr = correction_at(poisson_ratio, ratio, shape, path != "auto")
+            corr = correction_at(poisson_ratio, ratio, shape, path != "auto", family)
         done = kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind,
                       p0, p1, p2, p3, law, corr, _GAUSS, EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN,
                       _MODEL, out)
@@ -924,8 +966,8 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         coef, kernel = _point_kernel(table, poisson_ratio, path == "table_point")
         if kernel is None:
             return None
-        corr = (correction_at(poisson_ratio, ratio, g) if path == "auto"
-                else correction_at(poisson_ratio, ratio, now=True))
+        corr = (correction_at(poisson_ratio, ratio, g, family=family) if path == "auto"
+                else correction_at(poisson_ratio, ratio, now=True, family=family))
         done = kernel(table._tbuf, coef, xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus,
                       poisson_ratio, kind, p0, p1, p2, p3, law, corr, _GAUSS,
                       EFFECTIVE_MU_STEPS, SLIP_SHARE_MIN, _MODEL, out)

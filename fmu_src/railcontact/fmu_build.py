@@ -72,7 +72,11 @@ MODEL_NAME = "WheelRailContact"
 MAX_CONTACTS = 32
 REQUIREMENTS = "numpy>=1.26\nscipy>=1.13\nnumba>=0.59\nnetCDF4>=1.6\n"
 
-_IGNORE = shutil.ignore_patterns("__pycache__", "*.pyc", "*.pyo", "_aot_kernels.*")
+#: Files of the package not copied into the FMU: caches, the ahead-of-time module (built for
+#: it), and the correction table of Polach's law, which no scene takes (its falling-friction
+#: scene has the smooth law (5.16); the table is for the Python API).
+NOT_IN_FMU = ("__pycache__", "*.pyc", "*.pyo", "_aot_kernels.*", "falling_correction_polach.nc")
+_IGNORE = shutil.ignore_patterns(*NOT_IN_FMU)
 
 
 def _check_sources():
@@ -89,7 +93,8 @@ def _bundled_files():
     _check_sources()
     files = [SLAVE]
     files += sorted(p for p in PACKAGE.rglob("*") if p.is_file()
-                    and "__pycache__" not in p.parts and p.suffix not in (".pyc", ".pyo"))
+                    and "__pycache__" not in p.parts and p.suffix not in (".pyc", ".pyo")
+                    and p.name != "falling_correction_polach.nc")
     files += sorted(TABLES.glob("*.nc")) + sorted(SCENES.glob("*.toml"))
     files += sorted(SCENES.glob("*.csv"))          # data files the scenes name (profiles)
     return files
