@@ -318,7 +318,7 @@ def falling_friction_table(values, xi_x, xi_y, phi, normal_load, a0, b0, law_s, 
     mz = v[2]
     if correction is not None:
         d = falling_correction(xi_x, xi_y, phi, n_load, a0, b0, *correction[:2], mu0,
-                               *correction[2:4], *correction[4:5])
+                               *correction[2:])
         on = has_slip
         tx, ty, mz = tx + on * d[0], ty + on * d[1], mz + on * d[2]
     if not (np.all(np.isfinite(tx)) and np.all(np.isfinite(ty)) and np.all(np.isfinite(mu))):
