@@ -4,6 +4,13 @@ parameters (issue 38; read by :mod:`railcontact.falling_table`).
 
     python -m tablegen.falling_correction build [--workers 2] [--workdir DIR] [--output F]
     python -m tablegen.falling_correction recover [--source F] [--workdir DIR]
+    python -m tablegen.falling_correction build --law polach [--partial-from F] ...
+
+``--law polach`` (since 2026-11-30) builds the table of Polach's exponential law (2005,
+:data:`LAW_FAMILIES`) in its own work directory, file ``falling_correction_polach.nc``, with
+theta nodes every 30 degrees (:data:`THETA_NODES`); with ``--partial-from`` the smooth law's
+table, the chunks not solved yet take that table's values (the reader's fallback for
+Polach's law before its own table), flagged ``source_node``.
 
 The shipped file is the package data ``fmu_src/railcontact/data/falling_correction.nc``
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
@@ -670,6 +677,60 @@ def source_fill(source):
     return sp(NODES["creepage_angle"])
 
 
+def on_base(values, pending, base):
+    """A law family's table written on the smooth law's table ``base`` (a file with these
+    nodes on every axis but theta, whose theta nodes include these): the base's node values
+    plus the family's difference to it, ``D = C_family - C_base`` at this family's nodes,
+    interpolated along theta by the reader's periodic spline onto the base's theta nodes.
+    ``D`` is 0 at the nodes not computed yet (``pending``: the base's value, which the reader
+    took for the family before its table), and where the family's exact solve did not
+    converge it is filled from its neighbours (:func:`railcontact.falling_table._filled`:
+    along theta, then the kappa number, then mu_k/mu_0). The difference is smoother along
+    theta than the correction itself (Polach's law, 2026-11-30: at tau 0.5-1 a spline
+    through every other 30-degree node missed the 30-degree nodes between by RMS 0.8-0.9e-3
+    of mu_0 N for D against 1.7-3.3e-3 for the correction, max 0.022 against 0.050), so the
+    base's 15-degree resolution along theta carries over. Returns ``(values, nodes,
+    source)``: the values on the base's grid, its nodes, and the mask of its nodes whose
+    ``D`` is all fallback (a 15-degree node between two 30-degree ones: either pending)."""
+    import xarray as xr  # noqa: PLC0415
+    from scipy.interpolate import make_interp_spline  # noqa: PLC0415
+
+    from railcontact.falling_table import _filled  # noqa: PLC0415
+
+    with xr.open_dataset(base) as ds:
+        for k in AXES:
+            got = np.asarray(ds[k].values, dtype=float)
+            same = got.size == NODES[k].size and np.allclose(got, NODES[k], rtol=0.0,
+                                                              atol=1e-12)
+            if k != "creepage_angle" and not same:
+                raise ValueError(f"base: the file's nodes of {k} {got.tolist()} are not the "
+                                 f"builder's {NODES[k].tolist()} (only theta may differ)")
+        theta = np.asarray(ds["creepage_angle"].values, dtype=float)
+        vals = np.stack([ds[v].values.astype(float) for v in VARIABLES])
+    at = [np.flatnonzero(np.isclose(theta, t, rtol=0.0, atol=1e-12))
+          for t in NODES["creepage_angle"]]
+    if not all(i.size == 1 for i in at):
+        raise ValueError(f"base: its theta nodes {theta.tolist()} do not include the builder's "
+                         f"{NODES['creepage_angle'].tolist()}")
+    at = np.array([int(i[0]) for i in at])
+    d = np.where(pending, 0.0, values - vals[:, :, :, :, at])
+    d = _filled(d, NODES["friction_ratio"], NODES["friction_decay_number"])
+    th = NODES["creepage_angle"]
+    sp = make_interp_spline(np.append(th, np.pi), np.concatenate([d, d[:, :, :, :, :1]],
+                                                                  axis=4),
+                            k=3, bc_type="periodic", axis=4)
+    nodes = dict(NODES, creepage_angle=theta)
+    # a base node's D is all fallback where the family's nodes on either side are pending
+    k = np.searchsorted(np.append(th, np.pi), theta, side="right") - 1
+    left, right = k % th.size, (k + 1) % th.size
+    on = np.isin(np.arange(theta.size), at)
+    src = np.where(on[None, None, None, :, None, None, None],
+                   pending[:, :, :, np.clip(np.searchsorted(at, np.arange(theta.size)), 0,
+                                            at.size - 1)],
+                   pending[:, :, :, left] | pending[:, :, :, right])
+    return vals + sp(theta), nodes, src
+
+
 def assemble(workdir, fill=None):
     """The whole grid of corrections (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn): the exact
     solves (the ladder's where they did not converge) minus the model (0 at the known nodes,
@@ -699,7 +760,7 @@ def assemble(workdir, fill=None):
     return np.where(pending, fill, out), ladder, pending
 
 
-def write(values, path, seconds=None, ladder=None, source=None):
+def write(values, path, seconds=None, ladder=None, source=None, nodes=None, base=None):
     """The table file (netCDF-4): the axes, the three variables on the computed grid
     (float32), ``ladder_node`` (1 where the value is the ladder's, :func:`ladder_point`;
     ``ladder``: that mask, default none), ``source_node`` (1 where the node was not computed
@@ -711,8 +772,9 @@ def write(values, path, seconds=None, ladder=None, source=None):
 
     from railcontact.falling_table import pack_correction  # noqa: PLC0415
 
-    packed = pack_correction(values, NODES)
-    coords = {k: (k, np.asarray(v, dtype=float)) for k, v in NODES.items()}
+    nodes = NODES if nodes is None else nodes
+    packed = pack_correction(values, nodes)
+    coords = {k: (k, np.asarray(v, dtype=float)) for k, v in nodes.items()}
     ds = xr.Dataset({name: (AXES, values[i].astype(np.float32)) for i, name in
                      enumerate(VARIABLES)}, coords=coords)
     ladder = np.zeros(values.shape[1:], dtype=bool) if ladder is None else ladder
@@ -754,6 +816,8 @@ def write(values, path, seconds=None, ladder=None, source=None):
                    "railcontact.falling_table (the model)",
         spin_coordinate_symmetry="tau < 0: mirror y -> -y (theta -> -theta, tau -> -tau; "
                                  "the lateral force and spin moment corrections change sign)")
+    if base is not None:
+        ds.attrs["base_table"] = base
     if seconds is not None:
         ds.attrs["build_seconds"] = float(seconds)
     enc = {name: dict(zlib=True, complevel=6) for name in VARIABLES + (
@@ -856,7 +920,7 @@ def _in_family(family, fun, *args):
     return fun(*args)
 
 
-def build(workdir=None, workers=2, output=None, limit=None, partial_from=None):
+def build(workdir=None, workers=2, output=None, limit=None, partial_from=None, base=None):
     """Compute the missing chunks of exact solves, a (ln(a0/b0), nu, tau) block's missing s
     rows a job (``limit``: at most that many blocks in this run), then the model at the nodes
     (per tau node, kept under the model's hash), and, once all are there, write the file.
@@ -866,7 +930,10 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None):
     recovered from): nothing is solved; the file is written now, the nodes not computed yet
     taking that file's values (:func:`source_fill`, flagged ``source_node``), so that a
     refinement along theta of many hours ships what is done at the end of a session.
-    Returns (n_done, n_source_nodes, path)."""
+    Returns (n_done, n_source_nodes, path).
+    A law family other than the smooth law's (:func:`set_law_family`) is written on the
+    smooth law's table ``base`` (default ``partial_from``, else the package's; its theta
+    nodes, :func:`on_base`): its difference to that table, 0 where not computed yet."""
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
     workdir.mkdir(parents=True, exist_ok=True)
     n = NODES
@@ -907,6 +974,19 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None):
         run(_model_work, models)
     output = Path(output or Path.cwd() / "tables-build" / f"{table_name()}.nc")
     output.parent.mkdir(parents=True, exist_ok=True)
+    if LAW_FAMILY != "smooth":  # (on the smooth law's table: on_base)
+        from railcontact import falling_table  # noqa: PLC0415
+
+        base = Path(base or partial_from or Path(falling_table.__file__).parent / "data"
+                    / f"{falling_table.CORRECTION_TABLE}.nc")
+        values, _, pending = assemble(workdir, np.nan)
+        values, nodes, source = on_base(values, pending, base)
+        write(values, output, source=(source, base.name) if source.any() else None,
+              nodes=nodes, base=base.name)
+        if not pending.any():
+            (workdir / "done.json").write_text(json.dumps({"output": str(output),
+                                                           "model": _model_hash()}))
+        return done, int(source.sum()), output
     if partial_from is not None:
         values, ladder_mask, pending = assemble(workdir, source_fill(partial_from))
         write(values, output, ladder=ladder_mask, source=(pending, Path(partial_from).name))
@@ -930,7 +1010,10 @@ def main(argv=None):
     p.add_argument("--law", choices=LAW_FAMILIES, default="smooth", help="the law family "
                    "(default the smooth law (5.16); polach: Polach's exponential law)")
     p.add_argument("--partial-from", default=None, help="build: write the table now, the nodes "
-                   "not computed yet from this file (fewer theta nodes; solves nothing)")
+                   "not computed yet from this file (fewer theta nodes; solves nothing); "
+                   "with --law polach: the smooth law's table it is written on")
+    p.add_argument("--base", default=None, help="build --law polach: the smooth law's table "
+                   "it is written on (default --partial-from, else the package's)")
     a = p.parse_args(argv)
     if a.law != LAW_FAMILY:
         set_law_family(a.law)
@@ -941,7 +1024,8 @@ def main(argv=None):
         n, where = recover(a.source or shipped, a.workdir)
         print(f"{n} chunks recovered into {where}")
         return 0
-    done, missing, path = build(a.workdir, a.workers, a.output, a.limit, a.partial_from)
+    done, missing, path = build(a.workdir, a.workers, a.output, a.limit, a.partial_from,
+                                a.base)
     if a.partial_from:
         print(f"wrote {path}; {missing} nodes from {a.partial_from}")
         return 0

@@ -411,6 +411,9 @@ def test_bundled_names_cannot_collide(fmu_path):
     assert f"resources/{module}_railcontact/__init__.py" in names
     assert not any(n.startswith("resources/railcontact/") for n in names)
     assert "resources/requirements.txt" in names
+    # the falling-friction scene's correction table, not Polach's, which no scene takes
+    assert f"resources/{module}_railcontact/data/falling_correction.nc" in names
+    assert not any(n.endswith("falling_correction_polach.nc") for n in names)
 
 
 def _needs_missing_table(scene_path):

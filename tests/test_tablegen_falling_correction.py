@@ -431,24 +431,81 @@ def polach(monkeypatch):
     return monkeypatch
 
 
-def test_polach_family_has_its_own_work_directory_file_and_theta_nodes(builder, tmp_path):
+def _exact_polach(lg, nu, s, th, tau, m, kn):
+    """A stand-in for Polach's exact solve: the smooth stand-in's plus a part along theta
+    (unconverged where the smooth one is, and at one node of its own)."""
+    if m == 0.3 and kn == 1.125 and tau == 1.0 and s == 0.6 and th == 0.0:
+        return np.full(3, np.nan)
+    return _exact_theta(lg, nu, s, th, tau, m, kn) + np.array(
+        [0.003 * np.cos(th) + 0.002, 0.001 * np.sin(th), 0.0]) * (1.0 - m) * kn
+
+
+def test_polach_family_is_its_own_build_written_on_the_smooth_table(builder, tmp_path):
     """--law polach: another work directory (the smooth law's hash unchanged, so its chunks
-    stay), its own file name and attribute, theta nodes every 30 degrees; an unknown family
-    is a ValueError naming the families."""
-    smooth_hash = fc._hash()
+    stay), its own file and attributes, its own theta nodes (here 90 degrees apart against
+    the smooth table's 45); written on the smooth law's table (``base``, on_base): at its
+    solved nodes the family's exact minus model, between them along theta the base plus the
+    difference's periodic spline, and where not solved yet (a partial build: 3 of the 32
+    blocks) the base itself, flagged ``source_node``. An unknown family is a ValueError."""
+    from scipy.interpolate import CubicSpline
+
+    builder.setattr(fc, "THETA_NODES", {"smooth": 8, "polach": 4})
     builder.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
-    builder.setitem(fc.NODES, "creepage_angle", fc.NODES["creepage_angle"])
+    builder.setattr(fc, "NODES", _theta_nodes(8))
+    builder.setattr(fc, "exact_point", _exact_theta)
+    fc.build(tmp_path / "ws", workers=1, output=tmp_path / "smooth.nc")
+    base = _read(tmp_path / "smooth.nc")[0]
+    smooth_hash = fc._hash()
     fc.set_law_family("polach")
-    assert fc._hash() != smooth_hash
+    assert fc._hash() != smooth_hash and fc.NODES["creepage_angle"].size == 4
     assert fc.table_name() == "falling_correction_polach"
-    assert fc.NODES["creepage_angle"].size == fc.THETA_NODES["polach"] == 12
-    builder.chdir(tmp_path)
-    done, missing, path = fc.build(tmp_path / "w", workers=1)
-    assert missing == 0 and path == tmp_path / "tables-build" / "falling_correction_polach.nc"
+    builder.setattr(fc, "exact_point", _exact_polach)
+    assert fc.build(tmp_path / "w", workers=1, limit=3)[1] == 32 - 3
     assert (tmp_path / "w" / f"falling_correction-{fc._hash()}").is_dir()
+    builder.chdir(tmp_path)
+    done, n_source, path = fc.build(tmp_path / "w", workers=1, partial_from=tmp_path / "smooth.nc")
+    assert path == tmp_path / "tables-build" / "falling_correction_polach.nc"
+    vals, _, attrs = _read(path)
     with netCDF4.Dataset(path) as ds:
-        assert ds.law_family == "polach" and "Polach" in ds.title
-        assert ds.variables["creepage_angle"].size == 12
+        source = ds.variables["source_node"][:].astype(bool)
+        assert ds.variables["creepage_angle"].size == 8        # the base's theta nodes
+    assert attrs["law_family"] == "polach" and "Polach" in attrs["title"]
+    assert attrs["base_table"] == "smooth.nc" and n_source == source.sum() > 0
+    n = fc.NODES
+    th8 = np.linspace(-np.pi, np.pi, 9)[:-1]
+    # solved (tau 0's block (g, nu) = (0, 1)): at a Polach node exact minus model; between
+    # two, the base plus the periodic spline of the difference
+    i = (0, 1, 1, 2, 0, 1, 2)         # s 0.3, theta 0 (the Polach node 2, the base's 4)
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    want = _exact_polach(*p) - _model(*[np.array(v) for v in p])
+    np.testing.assert_allclose(vals[:, 0, 1, 1, 4, 0, 1, 2], want, rtol=1e-6, atol=1e-8)
+    d = []
+    for th in n["creepage_angle"]:
+        q = list(p)
+        q[3] = th
+        d.append(_exact_polach(*q) - _model(*[np.array(v) for v in q])
+                 - base[:, 0, 1, 1, list(th8).index(th), 0, 1, 2])
+    d = np.array(d).T
+    spline = CubicSpline(np.append(n["creepage_angle"], np.pi),
+                         np.concatenate([d, d[:, :1]], axis=1), axis=1, bc_type="periodic")
+    np.testing.assert_allclose(vals[:, 0, 1, 1, 1::2, 0, 1, 2],
+                               base[:, 0, 1, 1, 1::2, 0, 1, 2] + spline(th8[1::2]),
+                               rtol=1e-5, atol=1e-7)
+    assert not source[0, 1, 1, :, 0].any()
+    # not solved (tau 4): the base's values, flagged
+    np.testing.assert_allclose(vals[:, :, :, :, :, 3], base[:, :, :, :, :, 3], rtol=1e-6,
+                               atol=1e-9)
+    assert source[:, :, :3, :, 3, :2, 1:].all() and not source[..., 2, :].any()  # (not known)
+    # the whole build: nothing left from the base, and the family's exact at its nodes
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "full.nc",
+             base=tmp_path / "smooth.nc")
+    full, _, attrs = _read(tmp_path / "full.nc")
+    assert attrs["n_source_nodes"] == 0
+    i = (2, 0, 2, 1, 3, 0, 3)           # s 0.6, theta -pi/2, tau 4, m 0.3, kn 2
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(full[:, 2, 0, 2, 2, 3, 0, 3],
+                               _exact_polach(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
     with pytest.raises(ValueError, match="law family must be one of .*'smooth', 'polach'"):
         fc.set_law_family("coulomb")
 
