@@ -61,6 +61,7 @@ def builder(monkeypatch):
     monkeypatch.setattr(fc, "model_points", _model)
     monkeypatch.setattr(fc, "LADDER_TAU_MAX", -1.0)     # no ladder unless a test asks
     monkeypatch.setattr(fc, "ladder_point", _no_ladder)
+    monkeypatch.setattr(fc, "SKIP_AFTER_UNCONVERGED_TAU", False)   # (unless a test asks)
     return monkeypatch
 
 
@@ -544,3 +545,27 @@ def test_polach_family_solves_polach_s_law_in_the_slip(polach):
     assert np.hypot(*(fc.exact_point(*node) - got)[:2]) > 0.01
     assert np.hypot(*(fc.model_points(*(np.array([v]) for v in node))[:2, 0]
                       - model[:2])) > 0.01
+
+
+def test_a_node_unconverged_at_the_tau_below_is_not_tried(builder, tmp_path):
+    """SKIP_AFTER_UNCONVERGED_TAU: a node whose solve did not converge at the tau node below
+    (its row there solved) is not attempted (NaN, for the ladder), as a node between two
+    unconverged ones along s: here the stand-in's unconverged node at tau 2 (m 0.65, kn 0.5,
+    s 0.3 and 0.6, theta 0) is not solved again at tau 4, and nothing else is skipped."""
+    builder.setattr(fc, "SKIP_AFTER_UNCONVERGED_TAU", True)
+    builder.setattr(fc, "exact_point", _counted(_exact, tmp_path / "calls"))
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    calls = set(_calls(tmp_path / "calls"))
+    vals = _read(tmp_path / "t.nc")[0]
+    n = fc.NODES
+    for i_s in (1, 2):
+        node = (n["log_aspect_ratio"][0], 0.0, n["creepage_coordinate"][i_s], 0.0, 4.0, 0.65,
+                0.5)
+        assert node not in calls and (node[:4] + (2.0,) + node[5:]) in calls
+        i_t = int(np.flatnonzero(n["creepage_angle"] == 0.0)[0])
+        assert np.isnan(vals[0, 0, 0, i_s, i_t, 3, 1, 1])
+    # every other node of the grid was tried once: (g, nu, tau) x the unknown nodes of a
+    # block (s 0: one theta; s 0.3, 0.6: every theta; m 0.3, 0.65; kn 0.5, 1.125, 2) less the
+    # 2 x 8 (g, nu) skipped at tau 4
+    per_block = (1 + 2 * 4) * 2 * 3
+    assert len(calls) == 4 * 2 * 4 * per_block - 2 * 8
