@@ -859,6 +859,11 @@ def recover(source, workdir=None):
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
     workdir.mkdir(parents=True, exist_ok=True)
     with xr.open_dataset(source) as ds:
+        if ds.attrs.get("law_family", "smooth") != "smooth" or LAW_FAMILY != "smooth":
+            raise ValueError(f"source: recover takes the smooth law's table; got law family "
+                             f"{ds.attrs.get('law_family', 'smooth')!r} (building "
+                             f"{LAW_FAMILY!r}): a family's table is written on the smooth "
+                             "one (on_base), its own solves are in its work directory only")
         model = ds.attrs.get("method", "").rsplit(" ", 1)[-1]
         if model != _model_hash():
             raise ValueError(f"source: the file's model {model!r} is not the current model "

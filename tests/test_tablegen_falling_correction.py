@@ -509,6 +509,9 @@ def test_polach_family_is_its_own_build_written_on_the_smooth_table(builder, tmp
                                rtol=1e-6, atol=1e-8)
     with pytest.raises(ValueError, match="law family must be one of .*'smooth', 'polach'"):
         fc.set_law_family("coulomb")
+    with pytest.raises(ValueError, match="recover takes the smooth law's table; got law "
+                                         "family 'polach'"):
+        fc.recover(tmp_path / "full.nc", tmp_path / "w5")
 
 
 def test_polach_family_solves_polach_s_law_in_the_slip(polach):

@@ -85,14 +85,17 @@ A model in three steps, each one call of the Coulomb table
    the forces), linearly along nu and mu_k/mu_0 (a material's and a law's constants); held
    at the ends of each axis. **Polach's law** has a table of its own (since 2026-11-30,
    :data:`CORRECTION_FAMILIES`, ``railcontact/data/falling_correction_polach.nc``, built by
-   ``python -m tablegen.falling_correction build --law polach``): the same grid with
+   ``python -m tablegen.falling_correction build --law polach``): the exact theory with
    Polach's ``mu_0 ((1 - A) exp(-B w) + A)`` at ``A`` = mu_k/mu_0 and ``B V`` = kappa (the
-   same slope at zero slip), theta every 30 degrees; its exponential falls faster than the
-   smooth law's ``1 / (1 + kappa s)`` at the same slope, and the smooth law's table
-   taken for it (before; still where the package has no Polach table) missed by up to
-   2.3 % of mu_0 N (max over 4,486 random cases; no mapping of Polach's two numbers onto the
-   smooth law's did better than 1.24 % even case by case). Any other law is taken as the
-   smooth law of :func:`law_shape`. Without the table the model's
+   same slope at zero slip) minus the model, solved at theta every 30 degrees and written
+   on the smooth law's table (its difference to it, interpolated along theta onto the
+   smooth table's 15-degree nodes, ``tablegen.falling_correction.on_base``; the smooth
+   table's value where not solved yet, flagged ``source_node``). The exponential falls
+   faster than the smooth law's ``1 / (1 + kappa s)`` at the same slope: the smooth law's
+   table taken for Polach's law (before; still where the package has no Polach table)
+   missed by up to 2.3 % of mu_0 N over 4,486 random cases, and no choice of the smooth
+   law's two numbers for it did better than 1.24 % even case by case (1,496 cases). Any
+   other law is taken as the smooth law of :func:`law_shape`. Without the table the model's
    errors were 0.90 / 0.83 % without spin, 0.93 / 0.83 % with |tau| <= 1 and 5.44 / 5.34 %
    beyond (RMS 0.84 / 0.99 %; Polach's law 1.48 / 0.99, 1.35 / 1.29, 6.87 / 7.27 %): mostly
    where spin dominates and the stick zone shrinks (the model's rigid-slip spread puts the
