@@ -665,6 +665,23 @@ def _pending_tau(workdir, i_tau):
     return out
 
 
+def _theta_and_values(path, name):
+    """A table file's theta nodes and node values (3, ...), checked to have the builder's
+    nodes on every other axis (``name``: the argument, for the error)."""
+    import xarray as xr  # noqa: PLC0415
+
+    with xr.open_dataset(path) as ds:
+        for k in AXES:
+            got = np.asarray(ds[k].values, dtype=float)
+            same = got.size == NODES[k].size and np.allclose(got, NODES[k], rtol=0.0,
+                                                              atol=1e-12)
+            if k != "creepage_angle" and not same:
+                raise ValueError(f"{name}: the file's nodes of {k} {got.tolist()} are not the "
+                                 f"builder's {NODES[k].tolist()} (only theta may differ)")
+        return (np.asarray(ds["creepage_angle"].values, dtype=float),
+                np.stack([ds[v].values.astype(float) for v in VARIABLES]))
+
+
 def source_fill(source):
     """The correction of a table file with fewer theta nodes (every other axis the builder's,
     its theta nodes among :data:`NODES`'), at the builder's nodes: the file's node values
@@ -673,21 +690,11 @@ def source_fill(source):
     fits (:func:`railcontact.falling_table.pack_correction`), which is the file's table at
     those nodes. Array (3, ...) of :data:`AXES`. The value :func:`build` gives a node not
     computed yet when it writes a partial table (``partial_from``)."""
-    import xarray as xr  # noqa: PLC0415
     from scipy.interpolate import make_interp_spline  # noqa: PLC0415
 
     from railcontact.falling_table import _filled  # noqa: PLC0415
 
-    with xr.open_dataset(source) as ds:
-        for k in AXES:
-            got = np.asarray(ds[k].values, dtype=float)
-            same = got.size == NODES[k].size and np.allclose(got, NODES[k], rtol=0.0,
-                                                              atol=1e-12)
-            if k != "creepage_angle" and not same:
-                raise ValueError(f"source: the file's nodes of {k} {got.tolist()} are not the "
-                                 f"builder's {NODES[k].tolist()} (only theta may differ)")
-        theta = np.asarray(ds["creepage_angle"].values, dtype=float)
-        vals = np.stack([ds[v].values.astype(float) for v in VARIABLES])
+    theta, vals = _theta_and_values(source, "source")
     vals = _filled(vals, NODES["friction_ratio"], NODES["friction_decay_number"])
     sp = make_interp_spline(np.append(theta, np.pi), np.concatenate(
         [vals, vals[:, :, :, :, :1]], axis=4), k=3, bc_type="periodic", axis=4)
@@ -709,21 +716,11 @@ def on_base(values, pending, base):
     base's 15-degree resolution along theta carries over. Returns ``(values, nodes,
     source)``: the values on the base's grid, its nodes, and the mask of its nodes whose
     ``D`` is all fallback (a 15-degree node between two 30-degree ones: either pending)."""
-    import xarray as xr  # noqa: PLC0415
     from scipy.interpolate import make_interp_spline  # noqa: PLC0415
 
     from railcontact.falling_table import _filled  # noqa: PLC0415
 
-    with xr.open_dataset(base) as ds:
-        for k in AXES:
-            got = np.asarray(ds[k].values, dtype=float)
-            same = got.size == NODES[k].size and np.allclose(got, NODES[k], rtol=0.0,
-                                                              atol=1e-12)
-            if k != "creepage_angle" and not same:
-                raise ValueError(f"base: the file's nodes of {k} {got.tolist()} are not the "
-                                 f"builder's {NODES[k].tolist()} (only theta may differ)")
-        theta = np.asarray(ds["creepage_angle"].values, dtype=float)
-        vals = np.stack([ds[v].values.astype(float) for v in VARIABLES])
+    theta, vals = _theta_and_values(base, "base")
     at = [np.flatnonzero(np.isclose(theta, t, rtol=0.0, atol=1e-12))
           for t in NODES["creepage_angle"]]
     if not all(i.size == 1 for i in at):
