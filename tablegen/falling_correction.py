@@ -7,10 +7,13 @@ parameters (issue 38; read by :mod:`railcontact.falling_table`).
     python -m tablegen.falling_correction build --law polach [--partial-from F] ...
 
 ``--law polach`` (since 2026-11-30) builds the table of Polach's exponential law (2005,
-:data:`LAW_FAMILIES`) in its own work directory, file ``falling_correction_polach.nc``, with
-theta nodes every 30 degrees (:data:`THETA_NODES`); with ``--partial-from`` the smooth law's
-table, the chunks not solved yet take that table's values (the reader's fallback for
-Polach's law before its own table), flagged ``source_node``.
+:data:`LAW_FAMILIES`) in its own work directory, file ``falling_correction_polach.nc``: solved
+at theta every 30 degrees (:data:`THETA_NODES`) and written on the smooth law's table
+(``--base``, default ``--partial-from``, else the package's): its difference to that table,
+interpolated along theta onto the smooth table's nodes and added to it (:func:`on_base`); 0
+where not solved yet, so that a partial table (``--partial-from`` the smooth law's table:
+solves nothing) is the smooth table there, the reader's fallback for Polach's law before
+its own table, flagged ``source_node``.
 
 The shipped file is the package data ``fmu_src/railcontact/data/falling_correction.nc``
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
