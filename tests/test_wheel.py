@@ -61,6 +61,7 @@ def test_the_wheel_holds_every_shipped_table_as_package_data(wheel):
     assert "railcontact/tables.py" in names          # the reader beside its data
     assert "railcontact/data/kalker_spline.npz" in names   # Kalker's spline, fitted
     assert "railcontact/data/falling_correction.nc" in names   # the falling fast path's table
+    assert "railcontact/data/falling_correction_polach.nc" in names     # and Polach's
     for package in ("effects", "roughness", "reference", "data"):
         assert any(n.startswith(f"railcontact/{package}/") for n in names), package
 
