@@ -382,7 +382,7 @@ def test_compiled_smooth_law_path_equals_the_numpy_function(case):
     polach = PolachFriction(0.3, 0.4, 0.6)       # at 30 m/s: the law in s is polach(30 s)
     ref_polach = falling_friction_table(values, *args[:6],
                                         lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
-                                        (E, NU, 0.4, 0.6 * 30.0))
+                                        (E, NU, 0.4, 0.6 * 30.0, "polach"))
     # both compiled paths: the contact's buffer, and the five-dimensional spline with no
     # buffer (a contact whose a0/b0 changes at every call; the FMU's step)
     for path in ("contact_buffer", "table_point"):
@@ -850,7 +850,7 @@ def test_a_contact_whose_shape_changes_at_every_call_stays_compiled(monkeypatch)
             values, *args[:6], smooth, 0.3, (E, NU, 0.1 / 0.3, 0.8 / SAT)),
             falling_table.falling_friction_table(
                 values, *args[:6], lambda s: polach(np.minimum(s, 1e300) * 30.0), 0.3,
-                (E, NU, 0.4, 0.6 * 30.0))))
+                (E, NU, 0.4, 0.6 * 30.0, "polach"))))   # (Polach's own table)
     monkeypatch.setattr(falling_table, "falling_friction_table", _unavailable)
     for args, (ref_smooth, ref_polach) in zip(cases, refs):
         assert (args[4] / args[5], NU) not in table._buffers
