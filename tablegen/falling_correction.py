@@ -1012,8 +1012,7 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None, b
         write(values, output, source=(source, base.name) if source.any() else None,
               nodes=nodes, base=base.name)
         if not pending.any():
-            (workdir / "done.json").write_text(json.dumps({"output": str(output),
-                                                           "model": _model_hash()}))
+            _mark_done(workdir, output)
         return done, int(source.sum()), output
     if partial_from is not None:
         values, ladder_mask, pending = assemble(workdir, source_fill(partial_from))
@@ -1021,9 +1020,14 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None, b
         return done, int(pending.sum()), output
     values, ladder_mask = assemble(workdir)
     write(values, output, ladder=ladder_mask)
+    _mark_done(workdir, output)
+    return done, 0, output
+
+
+def _mark_done(workdir, output):
+    """Record in the work directory that the table ``output`` is complete (``done.json``)."""
     (workdir / "done.json").write_text(json.dumps({"output": str(output),
                                                    "model": _model_hash()}))
-    return done, 0, output
 
 
 def main(argv=None):

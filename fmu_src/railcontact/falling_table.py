@@ -974,7 +974,8 @@ def falling_friction_table_compiled(table, xi_x, xi_y, phi, normal_load, a0, b0,
         if kernel is None:   # (compiled ahead of time in a wheel or FMU; else numba's,
             from . import _compiled  # noqa: PLC0415          imported on the first call only)
             kernel = _KERNEL[0] = _compiled.falling_contact()
-        corr = _AT.get(_at_key(family, poisson_ratio, shape))   # (a fixed shape: kept)
+        corr = _AT.get((poisson_ratio, shape) if family == "smooth"    # (a fixed shape:
+                       else (family, poisson_ratio, shape))     # kept; _at_key, inlined)
         if corr is None:
             corr = correction_at(poisson_ratio, ratio, shape, path != "auto", family)
         done = kernel(entry[0], xi_x, xi_y, phi, normal_load, a0, b0, youngs_modulus, kind,

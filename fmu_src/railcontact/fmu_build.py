@@ -49,6 +49,7 @@ After building, the model description is checked with :func:`fmpy.validation.val
 from __future__ import annotations
 
 import argparse
+import fnmatch
 import hashlib
 import os
 import re
@@ -92,9 +93,9 @@ def _check_sources():
 def _bundled_files():
     _check_sources()
     files = [SLAVE]
-    files += sorted(p for p in PACKAGE.rglob("*") if p.is_file()
-                    and "__pycache__" not in p.parts and p.suffix not in (".pyc", ".pyo")
-                    and p.name != "falling_correction_polach.nc")
+    files += sorted(p for p in PACKAGE.rglob("*") if p.is_file() and not any(
+        fnmatch.fnmatch(part, pattern) for part in p.relative_to(PACKAGE).parts
+        for pattern in NOT_IN_FMU))
     files += sorted(TABLES.glob("*.nc")) + sorted(SCENES.glob("*.toml"))
     files += sorted(SCENES.glob("*.csv"))          # data files the scenes name (profiles)
     return files
