@@ -180,16 +180,26 @@ POLACH_BUILD_SPEED = 1.0
 #: with nodes 30 degrees apart was within 1 % of mu_0 N on 4,487 of 4,491 random cases, max
 #: 1.32 %, against 4,489 and 1.02 % every 15 degrees).
 THETA_NODES = {"smooth": 24, "polach": 12}
+#: Creepage-coordinate nodes a family's table has beyond :data:`NODES`': Polach's s = 0.375
+#: (2026-11-30: at tau = 0 its table missed Kalker's exact theory by up to 1.27 % of mu_0 N
+#: where a strongly falling law's creep curve peaks between the nodes 0.3 and 0.45). The s
+#: axis names the chunks, so an added node reuses every chunk solved before.
+CREEPAGE_NODES_ADDED = {"smooth": (), "polach": (0.375,)}
 
 
 def set_law_family(family):
     """Build the table of ``family`` (:data:`LAW_FAMILIES`) from now on in this process (its
-    work directory, file name, law and theta nodes, :data:`THETA_NODES`)."""
+    work directory, file name, law, theta and s nodes, :data:`THETA_NODES`,
+    :data:`CREEPAGE_NODES_ADDED`)."""
     global LAW_FAMILY
     if family not in LAW_FAMILIES:
         raise ValueError(f"law family must be one of {LAW_FAMILIES}; got {family!r}")
     LAW_FAMILY = family
     NODES["creepage_angle"] = np.linspace(-np.pi, np.pi, THETA_NODES[family] + 1)[:-1]
+    added = np.concatenate([np.asarray(v, dtype=float) for v in CREEPAGE_NODES_ADDED.values()])
+    s = NODES["creepage_coordinate"]
+    NODES["creepage_coordinate"] = np.union1d(s[~np.isin(s, added)],
+                                              CREEPAGE_NODES_ADDED[family])
 
 
 def _law(mu0, mu_k, kappa):
@@ -668,9 +678,10 @@ def _pending_tau(workdir, i_tau):
     return out
 
 
-def _theta_and_values(path, name):
+def _theta_and_values(path, name, free=("creepage_angle",)):
     """A table file's theta nodes and node values (3, ...), checked to have the builder's
-    nodes on every other axis (``name``: the argument, for the error)."""
+    nodes on every other axis but those in ``free`` (``name``: the argument, for the error);
+    with another ``free``, a dict of the nodes of those axes instead of theta's."""
     import xarray as xr  # noqa: PLC0415
 
     with xr.open_dataset(path) as ds:
@@ -678,11 +689,23 @@ def _theta_and_values(path, name):
             got = np.asarray(ds[k].values, dtype=float)
             same = got.size == NODES[k].size and np.allclose(got, NODES[k], rtol=0.0,
                                                               atol=1e-12)
-            if k != "creepage_angle" and not same:
+            if k not in free and not same:
                 raise ValueError(f"{name}: the file's nodes of {k} {got.tolist()} are not the "
-                                 f"builder's {NODES[k].tolist()} (only theta may differ)")
-        return (np.asarray(ds["creepage_angle"].values, dtype=float),
+                                 f"builder's {NODES[k].tolist()} (only {', '.join(free)} "
+                                 "may differ)")
+        got = {k: np.asarray(ds[k].values, dtype=float) for k in free}
+        return (got["creepage_angle"] if free == ("creepage_angle",) else got,
                 np.stack([ds[v].values.astype(float) for v in VARIABLES]))
+
+
+def _on_nodes(nodes, wanted, name, axis):
+    """Indices of the nodes ``wanted`` among ``nodes`` (each there to 1e-12), else a
+    ValueError naming the file ``name`` and the ``axis``."""
+    at = [np.flatnonzero(np.isclose(nodes, t, rtol=0.0, atol=1e-12)) for t in wanted]
+    if not all(i.size == 1 for i in at):
+        raise ValueError(f"{name}: its {axis} nodes {nodes.tolist()} do not include "
+                         f"{np.asarray(wanted).tolist()}")
+    return np.array([int(i[0]) for i in at])
 
 
 def source_fill(source):
@@ -706,7 +729,8 @@ def source_fill(source):
 
 def on_base(values, pending, base):
     """A law family's table written on the smooth law's table ``base`` (a file with these
-    nodes on every axis but theta, whose theta nodes include these): the base's node values
+    nodes on every axis but theta and s, whose theta nodes include these and whose s nodes
+    are among these: at the others, its not-a-knot spline along s): the base's node values
     plus the family's difference to it, ``D = C_family - C_base`` at this family's nodes,
     interpolated along theta by the reader's periodic spline onto the base's theta nodes.
     ``D`` is 0 at the nodes not computed yet (``pending``: the base's value, which the reader
@@ -723,13 +747,17 @@ def on_base(values, pending, base):
 
     from railcontact.falling_table import _filled  # noqa: PLC0415
 
-    theta, vals = _theta_and_values(base, "base")
-    at = [np.flatnonzero(np.isclose(theta, t, rtol=0.0, atol=1e-12))
-          for t in NODES["creepage_angle"]]
-    if not all(i.size == 1 for i in at):
-        raise ValueError(f"base: its theta nodes {theta.tolist()} do not include the builder's "
-                         f"{NODES['creepage_angle'].tolist()}")
-    at = np.array([int(i[0]) for i in at])
+    free, vals = _theta_and_values(base, "base", ("creepage_angle", "creepage_coordinate"))
+    theta = free["creepage_angle"]
+    at = _on_nodes(theta, NODES["creepage_angle"], "base", "theta")
+    s_base = free["creepage_coordinate"]
+    on_s = _on_nodes(NODES["creepage_coordinate"], s_base, "base", "s")
+    if s_base.size < NODES["creepage_coordinate"].size:
+        # the base at the family's other s nodes: its not-a-knot spline along s (the reader's)
+        filled = _filled(vals, NODES["friction_ratio"], NODES["friction_decay_number"])
+        vals_s = make_interp_spline(s_base, filled, k=3, axis=3)(NODES["creepage_coordinate"])
+        vals_s[:, :, :, on_s] = vals
+        vals = vals_s
     d = np.where(pending, 0.0, values - vals[:, :, :, :, at])
     d = _filled(d, NODES["friction_ratio"], NODES["friction_decay_number"])
     th = NODES["creepage_angle"]

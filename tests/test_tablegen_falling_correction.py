@@ -428,6 +428,7 @@ def polach(monkeypatch):
     """The builder set to Polach's law family, restored after the test."""
     monkeypatch.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
     monkeypatch.setitem(fc.NODES, "creepage_angle", fc.NODES["creepage_angle"])
+    monkeypatch.setitem(fc.NODES, "creepage_coordinate", fc.NODES["creepage_coordinate"])
     fc.set_law_family("polach")
     return monkeypatch
 
@@ -451,6 +452,7 @@ def test_polach_family_is_its_own_build_written_on_the_smooth_table(builder, tmp
     from scipy.interpolate import CubicSpline
 
     builder.setattr(fc, "THETA_NODES", {"smooth": 8, "polach": 4})
+    builder.setattr(fc, "CREEPAGE_NODES_ADDED", {"smooth": (), "polach": ()})
     builder.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
     builder.setattr(fc, "NODES", _theta_nodes(8))
     builder.setattr(fc, "exact_point", _exact_theta)
@@ -512,6 +514,63 @@ def test_polach_family_is_its_own_build_written_on_the_smooth_table(builder, tmp
     with pytest.raises(ValueError, match="recover takes the smooth law's table; got law "
                                          "family 'polach'"):
         fc.recover(tmp_path / "full.nc", tmp_path / "w5")
+
+
+def _exact_curved(lg, nu, s, th, tau, m, kn):
+    """The stand-in, curved along s (a cubic there)."""
+    return _exact(lg, nu, s, th, tau, m, kn) + np.array(
+        [0.05 * s ** 2, -0.03 * s ** 3, 0.01 * s ** 2 * (1.0 - m)])
+
+
+def _exact_curved_polach(lg, nu, s, th, tau, m, kn):
+    return _exact_curved(lg, nu, s, th, tau, m, kn) + np.array(
+        [0.004 * (1.0 - m) * kn * s, 0.002 * np.cos(th) * s, 0.0])
+
+
+def test_a_family_s_node_the_smooth_table_lacks_takes_its_spline_there(builder, tmp_path):
+    """Polach's table has an s node the smooth law's has not (CREEPAGE_NODES_ADDED; here
+    0.45 between 0.3 and 0.6): set_law_family adds it (and takes it away for the smooth law),
+    the work directory's hash stays, and on_base takes the smooth table there as its spline
+    along s (with four s nodes, the cubic through them: checked against numpy's polyfit).
+    Where Polach's rows are solved (a partial build: 3 of 32 blocks) the file holds Polach's
+    exact minus the model at every s node, the new one too; where not yet, the smooth
+    table's cubic, flagged ``source_node``."""
+    builder.setattr(fc, "THETA_NODES", {"smooth": 4, "polach": 4})
+    builder.setattr(fc, "CREEPAGE_NODES_ADDED", {"smooth": (), "polach": (0.45,)})
+    builder.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
+    builder.setattr(fc, "exact_point", _exact_curved)
+    fc.build(tmp_path / "ws", workers=1, output=tmp_path / "smooth.nc")
+    base = _read(tmp_path / "smooth.nc")[0]
+    s_base = fc.NODES["creepage_coordinate"].copy()
+    fc.set_law_family("polach")
+    assert fc.NODES["creepage_coordinate"].tolist() == [0.0, 0.3, 0.45, 0.6, 1.0]
+    hash_polach = fc._hash()
+    builder.setattr(fc, "exact_point", _exact_curved_polach)
+    fc.build(tmp_path / "w", workers=1, limit=3)
+    done, n_source, path = fc.build(tmp_path / "w", workers=1, output=tmp_path / "p.nc",
+                                    partial_from=tmp_path / "smooth.nc")
+    vals = _read(path)[0]
+    with netCDF4.Dataset(path) as ds:
+        source = ds.variables["source_node"][:].astype(bool)
+        assert ds.variables["creepage_coordinate"][:].tolist() == [0.0, 0.3, 0.45, 0.6, 1.0]
+    n = fc.NODES
+    # solved (tau 0, (g, nu) = (0, 0)): Polach's exact minus the model at s = 0.45
+    i = (0, 0, 2, 1, 0, 1, 2)
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None),) + i],
+                               _exact_curved_polach(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
+    assert not source[i]
+    # not solved (tau 4, (g, nu) = (2, 1), m 0.65, kn 1.125): the smooth table's cubic in s
+    at = (slice(None), 2, 1, slice(None), 0, 3, 1, 2)
+    want = [np.polyval(np.polyfit(s_base, base[at][v], 3), 0.45) for v in range(3)]
+    np.testing.assert_allclose(vals[at][:, 2], want, rtol=1e-6, atol=1e-8)
+    np.testing.assert_allclose(vals[at][:, [0, 1, 3, 4]], base[at], rtol=1e-6, atol=1e-9)
+    assert source[at[1:]][:4].all() and not source[at[1:]][4]      # (s = 1: known, 0)
+    fc.set_law_family("smooth")
+    assert fc.NODES["creepage_coordinate"].tolist() == s_base.tolist()
+    fc.set_law_family("polach")
+    assert fc._hash() == hash_polach
 
 
 def test_polach_family_solves_polach_s_law_in_the_slip(polach):
