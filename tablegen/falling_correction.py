@@ -658,10 +658,10 @@ def _model_work(workdir, i_tau, solved=None):
     return path.name, 0.0
 
 
-def _pending_tau(workdir, i_tau):
+def _pending_tau(workdir, i_tau, ladder=True):
     """The nodes of one tau node not computed yet, shaped as :func:`_exact_tau` without the
-    variables: pending in their chunk of exact solves (:func:`_pending`), or unconverged and
-    pending in their ladder's file (tau <= :data:`LADDER_TAU_MAX`)."""
+    variables: pending in their chunk of exact solves (:func:`_pending`), or (``ladder``)
+    unconverged and pending in their ladder's file (tau <= :data:`LADDER_TAU_MAX`)."""
     n = NODES
     shape = tuple(n[k].size for k in AXES if k != "spin_coordinate")
     out = np.zeros(shape, dtype=bool)
@@ -673,7 +673,7 @@ def _pending_tau(workdir, i_tau):
                     out[i, j, k] = True
                 elif _pending(path).exists():
                     out[i, j, k] = np.load(_pending(path))
-                elif n["spin_coordinate"][i_tau] <= LADDER_TAU_MAX:
+                elif ladder and n["spin_coordinate"][i_tau] <= LADDER_TAU_MAX:
                     out[i, j, k] = _ladder_todo(workdir, i, j, i_tau, k)[0]
     return out
 
@@ -776,13 +776,15 @@ def on_base(values, pending, base):
     return vals + sp(theta), nodes, src
 
 
-def assemble(workdir, fill=None):
+def assemble(workdir, fill=None, ladder_pending=True):
     """The whole grid of corrections (3, n_g, n_nu, n_s, n_theta, n_tau, n_m, n_kn): the exact
     solves (the ladder's where they did not converge) minus the model (0 at the known nodes,
     NaN where either is missing), and the mask of the ladder's nodes; or None while any
     model chunk is missing. ``fill`` (the grid's shape, :func:`source_fill`): the values of
     the nodes not computed yet (:func:`_pending_tau`), then also returned as their mask (and
-    a missing model chunk computed: a build running beside changes what is solved)."""
+    a missing model chunk computed: a build running beside changes what is solved).
+    ``ladder_pending`` False: an unconverged node the ladder has not reached yet is not
+    pending but unconverged (NaN: the reader fills it from its neighbours)."""
     n = NODES
     shape = tuple(n[k].size for k in AXES)
     out = np.empty((3,) + shape)
@@ -792,7 +794,7 @@ def assemble(workdir, fill=None):
     known = _known(grids[4], grids[5], grids[2])
     for i_tau in range(shape[4]):
         if fill is not None:    # (first: a build running beside may finish a row meanwhile)
-            pending[:, :, :, :, i_tau] = _pending_tau(workdir, i_tau) & ~known
+            pending[:, :, :, :, i_tau] = _pending_tau(workdir, i_tau, ladder_pending) & ~known
         solved, ladder[:, :, :, :, i_tau] = _solved_tau(workdir, i_tau)
         path = _model_chunk(workdir, i_tau, solved)
         if not path.exists() and fill is not None:
@@ -989,7 +991,9 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None, b
     Returns (n_done, n_source_nodes, path).
     A law family other than the smooth law's (:func:`set_law_family`) is written on the
     smooth law's table ``base`` (default ``partial_from``, else the package's; its theta
-    nodes, :func:`on_base`): its difference to that table, 0 where not computed yet."""
+    nodes, :func:`on_base`): its difference to that table, 0 where not computed yet; an
+    unconverged node the ladder has not reached yet is filled from its neighbours, as the
+    reader fills one (the base's value there would be the smooth law's correction)."""
     workdir = Path(workdir or Path.cwd() / "tables-build-work") / f"falling_correction-{_hash()}"
     workdir.mkdir(parents=True, exist_ok=True)
     n = NODES
@@ -1035,10 +1039,13 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None, b
 
         base = Path(base or partial_from or Path(falling_table.__file__).parent / "data"
                     / f"{falling_table.CORRECTION_TABLE}.nc")
-        values, _, pending = assemble(workdir, np.nan)
+        values, ladder_mask, pending = assemble(workdir, np.nan, ladder_pending=False)
         values, nodes, source = on_base(values, pending, base)
+        ladder_on_base = np.zeros(values.shape[1:], dtype=bool)
+        ladder_on_base[:, :, :, _on_nodes(nodes["creepage_angle"], NODES["creepage_angle"],
+                                          "base", "theta")] = ladder_mask
         write(values, output, source=(source, base.name) if source.any() else None,
-              nodes=nodes, base=base.name)
+              nodes=nodes, base=base.name, ladder=ladder_on_base)
         if not pending.any():
             _mark_done(workdir, output)
         return done, int(source.sum()), output

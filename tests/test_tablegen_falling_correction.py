@@ -573,6 +573,53 @@ def test_a_family_s_node_the_smooth_table_lacks_takes_its_spline_there(builder, 
     assert fc._hash() == hash_polach
 
 
+def test_a_family_node_the_ladder_has_not_reached_is_filled_not_the_base_s(builder, tmp_path):
+    """Polach's table written while its ladder is under way: a node its exact solve did not
+    converge on and the ladder has not reached yet (here Polach's own, tau 1, m 0.3, kn 1.125,
+    s 0.6, theta 0; the smooth table converged there) is not flagged ``source_node`` and is
+    not the smooth table's value: the base plus the difference filled from its neighbours
+    along theta (the reader's fill); once the ladder has reached it, the ladder's value minus
+    the model, flagged ``ladder_node``."""
+    builder.setattr(fc, "THETA_NODES", {"smooth": 4, "polach": 4})
+    builder.setattr(fc, "CREEPAGE_NODES_ADDED", {"smooth": (), "polach": ()})
+    builder.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
+    builder.setattr(fc, "exact_point", _exact_theta)
+    fc.build(tmp_path / "ws", workers=1, output=tmp_path / "smooth.nc")
+    base = _read(tmp_path / "smooth.nc")[0]
+    fc.set_law_family("polach")
+    builder.setattr(fc, "exact_point", _exact_polach)
+    builder.setattr(fc, "LADDER_TAU_MAX", 2.0)
+    builder.setattr(fc, "ladder_point", _ladder)
+    assert fc.build(tmp_path / "w", workers=1, limit=32)[2] is None     # (no ladder yet)
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "p.nc",
+             partial_from=tmp_path / "smooth.nc")
+    vals, ladder, _ = _read(tmp_path / "p.nc")
+    with netCDF4.Dataset(tmp_path / "p.nc") as ds:
+        source = ds.variables["source_node"][:].astype(bool) if "source_node" in \
+            ds.variables else np.zeros(ladder.shape, dtype=bool)
+    n = fc.NODES
+    i = (1, 0, 2, 2, 1, 0, 2)           # (g, nu, s 0.6, theta 0, tau 1, m 0.3, kn 1.125)
+    assert not source[i] and not ladder[i] and np.isfinite(base[(slice(None),) + i]).all()
+
+    def d_at(i_theta):
+        j = list(i)
+        j[3] = i_theta
+        p = [n[k][q] for k, q in zip(fc.AXES, j)]
+        return (_exact_polach(*p) - _model(*[np.array(v) for v in p])
+                - base[(slice(None),) + tuple(j)])
+
+    want = base[(slice(None),) + i] + 0.5 * (d_at(1) + d_at(3))
+    np.testing.assert_allclose(vals[(slice(None),) + i], want, rtol=1e-6, atol=1e-8)
+    assert np.abs(want - base[(slice(None),) + i]).max() > 1e-4      # (not the base's)
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "full.nc", base=tmp_path / "smooth.nc")
+    vals, ladder, _ = _read(tmp_path / "full.nc")
+    p = [n[k][q] for k, q in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None),) + i],
+                               _ladder(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
+    assert ladder[i] and ladder.sum() > 1
+
+
 def test_polach_family_solves_polach_s_law_in_the_slip(polach):
     """The Polach family's node is Polach's law ``mu_0 ((1 - A) exp(-B w) + A)`` with A the
     node's mu_k/mu_0 and B V its kappa (the same slope at zero slip as the smooth law's node):
