@@ -19,17 +19,19 @@ drawn where the stick zone collapses with spin under a strong law (``--region co
 0.23 %; before the blend 564 of 587, 2.55 %, 0.42 %): the exact force peaks just before the
 stick zone collapses (tau near 1.4-1.5), and where and how high moves with every axis of the
 table, along theta fastest (``benchmarks/diagnose_falling_misses.py``).
-With Polach's law on its own correction table (since 2026-11-30; a partial build, solved at
-|tau| <= 2.5, the smooth law's table beyond; ``--law polach``): seeds 11-20 (1,496 cases)
-1,483 within 1 %, max 0.76 / 0.91 / 1.50 % without spin / with |tau| <= 1 / beyond (RMS
-0.22 %); seeds 21-40 (2,990 cases, drawn after) 2,958, max 1.27 / 0.70 / 1.83 % (RMS
-0.22 %). All 2,169 cases of both at 0 < |tau| <= 2.5 are within 1 % (max 1.00 %); the misses
-are at |tau| > 2.5 (42 of 969, max 1.83 %), where the table is still the smooth law's, and
-three at tau = 0 (max 1.27 %), where the exact creep curve of a strong law peaks before the
-model's and the correction swings between the s nodes 0.3 and 0.45. Before, on the smooth
+With Polach's law on its own correction table (since 2026-11-30: solved at every node, with
+an s node of its own at 0.375, the ladder at its unconverged nodes of tau 2-2.5 in part so far,
+the others filled; ``--law polach``): seeds 11-20 (1,496 cases) all within 1 %, max 0.55 / 0.80
+/ 0.96 % without spin / with |tau| <= 1 / beyond (RMS 0.14 %); seeds 21-40 (2,990 cases,
+drawn after) 2,989, max 0.63 / 0.54 / 1.16 % (RMS 0.14 %); seeds 41-50 (1,495 cases, drawn
+after its s node was chosen) 1,494, max 0.64 / 0.49 / 1.08 % (RMS 0.15 %). The two misses
+are at a strong law (mu_k/mu_0 0.50-0.51, kappa number 1.2-1.6, |tau| 2.55 and 4.59) beside
+nodes the exact solver did not converge on and the ladder has not reached yet. On the table
+solved at |tau| <= 2.5 only (the smooth law's beyond), 1,483 and 2,958 within 1 %, max 1.50
+and 1.83 %; before, on the smooth
 law's table (:func:`law_shape`): 1,473 and 2,932 within 1 %, max 1.80 and 2.31 %, RMS 0.28
 and 0.30 % (before the blend 1,450 of 1,493 and 2.90 %). (Each sample counts the cases ``method="exact"`` converges on:
-9, 8, 9 and 4 of them do not, in the order above; the relaxed sweeps of :mod:`railcontact.reference.rolling3d`
+9, 8, 9 and 4 of them do not, in the order above, and 5 of Polach's seeds 41-50; the relaxed sweeps of :mod:`railcontact.reference.rolling3d`
 converge on 8 that had not.)
 A model in three steps, each one call of the Coulomb table
 (:class:`railcontact.exact_table.ExactCreepTable`), and a table of what the model misses:
@@ -96,8 +98,9 @@ A model in three steps, each one call of the Coulomb table
    Polach's ``mu_0 ((1 - A) exp(-B w) + A)`` at ``A`` = mu_k/mu_0 and ``B V`` = kappa (the
    same slope at zero slip) minus the model, solved at theta every 30 degrees and written
    on the smooth law's table (its difference to it, interpolated along theta onto the
-   smooth table's 15-degree nodes, ``tablegen.falling_correction.on_base``; the smooth
-   table's value where not solved yet, flagged ``source_node``). The exponential falls
+   smooth table's 15-degree nodes, ``tablegen.falling_correction.on_base``; at its own s
+   node 0.375, which the smooth table has not, that table's spline along s). The
+   exponential falls
    faster than the smooth law's ``1 / (1 + kappa s)`` at the same slope: the smooth law's
    table taken for Polach's law (before; still where the package has no Polach table)
    missed by up to 2.3 % of mu_0 N over 4,486 random cases, and no choice of the smooth
