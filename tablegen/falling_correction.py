@@ -682,10 +682,10 @@ def _pending_tau(workdir, i_tau, ladder=True):
     return out
 
 
-def _theta_and_values(path, name, free=("creepage_angle",)):
-    """A table file's theta nodes and node values (3, ...), checked to have the builder's
-    nodes on every other axis but those in ``free`` (``name``: the argument, for the error);
-    with another ``free``, a dict of the nodes of those axes instead of theta's."""
+def _nodes_and_values(path, name, free=("creepage_angle",)):
+    """A table file's nodes of the axes ``free`` (a dict) and its node values (3, ...),
+    checked to have the builder's nodes on every other axis (``name``: the argument, for the
+    error)."""
     import xarray as xr  # noqa: PLC0415
 
     with xr.open_dataset(path) as ds:
@@ -697,8 +697,7 @@ def _theta_and_values(path, name, free=("creepage_angle",)):
                 raise ValueError(f"{name}: the file's nodes of {k} {got.tolist()} are not the "
                                  f"builder's {NODES[k].tolist()} (only {', '.join(free)} "
                                  "may differ)")
-        got = {k: np.asarray(ds[k].values, dtype=float) for k in free}
-        return (got["creepage_angle"] if free == ("creepage_angle",) else got,
+        return ({k: np.asarray(ds[k].values, dtype=float) for k in free},
                 np.stack([ds[v].values.astype(float) for v in VARIABLES]))
 
 
@@ -724,14 +723,15 @@ def source_fill(source):
 
     from railcontact.falling_table import _filled  # noqa: PLC0415
 
-    theta, vals = _theta_and_values(source, "source")
+    free, vals = _nodes_and_values(source, "source")
+    theta = free["creepage_angle"]
     vals = _filled(vals, NODES["friction_ratio"], NODES["friction_decay_number"])
     sp = make_interp_spline(np.append(theta, np.pi), np.concatenate(
         [vals, vals[:, :, :, :, :1]], axis=4), k=3, bc_type="periodic", axis=4)
     return sp(NODES["creepage_angle"])
 
 
-def on_base(values, pending, base):
+def on_base(values, pending, base, ladder=None):
     """A law family's table written on the smooth law's table ``base`` (a file with these
     nodes on every axis but theta and s, whose theta nodes include these and whose s nodes
     are among these: at the others, its not-a-knot spline along s): the base's node values
@@ -745,13 +745,14 @@ def on_base(values, pending, base):
     through every other 30-degree node missed the 30-degree nodes between by RMS 0.8-0.9e-3
     of mu_0 N for D against 1.7-3.3e-3 for the correction, max 0.022 against 0.050), so the
     base's 15-degree resolution along theta carries over. Returns ``(values, nodes,
-    source)``: the values on the base's grid, its nodes, and the mask of its nodes whose
-    ``D`` is all fallback (a 15-degree node between two 30-degree ones: either pending)."""
+    source, ladder)``: the values on the base's grid, its nodes, and the mask of its nodes whose
+    ``D`` is all fallback (a 15-degree node between two 30-degree ones: either pending), and
+    ``ladder`` (a mask on this family's nodes, default none) on the base's grid."""
     from scipy.interpolate import make_interp_spline  # noqa: PLC0415
 
     from railcontact.falling_table import _filled  # noqa: PLC0415
 
-    free, vals = _theta_and_values(base, "base", ("creepage_angle", "creepage_coordinate"))
+    free, vals = _nodes_and_values(base, "base", ("creepage_angle", "creepage_coordinate"))
     theta = free["creepage_angle"]
     at = _on_nodes(theta, NODES["creepage_angle"], "base", "theta")
     s_base = free["creepage_coordinate"]
@@ -777,7 +778,10 @@ def on_base(values, pending, base):
                    pending[:, :, :, np.clip(np.searchsorted(at, np.arange(theta.size)), 0,
                                             at.size - 1)],
                    pending[:, :, :, left] | pending[:, :, :, right])
-    return vals + sp(theta), nodes, src
+    ladder_on_base = np.zeros(src.shape, dtype=bool)
+    if ladder is not None:
+        ladder_on_base[:, :, :, at] = ladder
+    return vals + sp(theta), nodes, src, ladder_on_base
 
 
 def assemble(workdir, fill=None, ladder_pending=True):
@@ -1044,10 +1048,7 @@ def build(workdir=None, workers=2, output=None, limit=None, partial_from=None, b
         base = Path(base or partial_from or Path(falling_table.__file__).parent / "data"
                     / f"{falling_table.CORRECTION_TABLE}.nc")
         values, ladder_mask, pending = assemble(workdir, np.nan, ladder_pending=False)
-        values, nodes, source = on_base(values, pending, base)
-        ladder_on_base = np.zeros(values.shape[1:], dtype=bool)
-        ladder_on_base[:, :, :, _on_nodes(nodes["creepage_angle"], NODES["creepage_angle"],
-                                          "base", "theta")] = ladder_mask
+        values, nodes, source, ladder_on_base = on_base(values, pending, base, ladder_mask)
         write(values, output, source=(source, base.name) if source.any() else None,
               nodes=nodes, base=base.name, ladder=ladder_on_base)
         if not pending.any():

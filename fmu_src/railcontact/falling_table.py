@@ -28,11 +28,11 @@ after its s node was chosen) 1,494, max 0.64 / 0.49 / 1.08 % (RMS 0.15 %). The t
 are at a strong law (mu_k/mu_0 0.50-0.51, kappa number 1.2-1.6, |tau| 2.55 and 4.59) beside
 nodes the exact solver did not converge on and the ladder has not reached yet. On the table
 solved at |tau| <= 2.5 only (the smooth law's beyond), 1,483 and 2,958 within 1 %, max 1.50
-and 1.83 %; before, on the smooth
-law's table (:func:`law_shape`): 1,473 and 2,932 within 1 %, max 1.80 and 2.31 %, RMS 0.28
-and 0.30 % (before the blend 1,450 of 1,493 and 2.90 %). (Each sample counts the cases ``method="exact"`` converges on:
-9, 8, 9 and 4 of them do not, in the order above, and 5 of Polach's seeds 41-50; the relaxed sweeps of :mod:`railcontact.reference.rolling3d`
-converge on 8 that had not.)
+and 1.83 %; before, on the smooth law's table (:func:`law_shape`): 1,473 and 2,932 within
+1 %, max 1.80 and 2.31 %, RMS 0.28 and 0.30 % (before the blend 1,450 of 1,493 and 2.90 %).
+(Each sample counts the cases ``method="exact"`` converges on: 9, 8, 9 and 4 of them do not,
+in the order above, and 5 of Polach's seeds 41-50; the relaxed sweeps of
+:mod:`railcontact.reference.rolling3d` converge on 8 that had not.)
 A model in three steps, each one call of the Coulomb table
 (:class:`railcontact.exact_table.ExactCreepTable`), and a table of what the model misses:
 
