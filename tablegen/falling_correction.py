@@ -189,12 +189,21 @@ THETA_NODES = {"smooth": 24, "polach": 12}
 #: where a strongly falling law's creep curve peaks between the nodes 0.3 and 0.45). The s
 #: axis names the chunks, so an added node reuses every chunk solved before.
 CREEPAGE_NODES_ADDED = {"smooth": (), "polach": (0.375,)}
+#: mu_k/mu_0 nodes a family's table has beyond :data:`NODES`': Polach's 0.45 (2026-11-30: the
+#: reader is linear along mu_k/mu_0, and between the nodes 0.3 and 0.65 the exact correction
+#: is not: with large spin it falls steeply just above 0.3, where the solver stops converging,
+#: and is nearly flat from 0.4 up; at ln(a0/b0) 0, nu 0, pure spin, tau 2.25, kappa number
+#: 1.125 it is -0.31 / 0.08 / 0.24 / 0.46 / 0.73 / 0.80 % of mu_0 N at mu_k/mu_0 0.3 (the
+#: ladder) / 0.32 / 0.35 / 0.4 / 0.5 / 0.65, the line between the nodes missing 0.5 by
+#: 0.41 %; both of the table's misses over 1 % on seeds 11-50 were pure spin at mu_k/mu_0
+#: 0.50-0.51). A row axis: the node changes the work directory's hash.
+FRICTION_RATIO_NODES_ADDED = {"smooth": (), "polach": (0.45,)}
 
 
 def set_law_family(family):
     """Build the table of ``family`` (:data:`LAW_FAMILIES`) from now on in this process (its
-    work directory, file name, law, theta and s nodes, :data:`THETA_NODES`,
-    :data:`CREEPAGE_NODES_ADDED`)."""
+    work directory, file name, law, theta, s and mu_k/mu_0 nodes, :data:`THETA_NODES`,
+    :data:`CREEPAGE_NODES_ADDED`, :data:`FRICTION_RATIO_NODES_ADDED`)."""
     global LAW_FAMILY
     if family not in LAW_FAMILIES:
         raise ValueError(f"law family must be one of {LAW_FAMILIES}; got {family!r}")
@@ -204,6 +213,11 @@ def set_law_family(family):
     s = NODES["creepage_coordinate"]
     NODES["creepage_coordinate"] = np.union1d(s[~np.isin(s, added)],
                                               CREEPAGE_NODES_ADDED[family])
+    added = np.concatenate([np.asarray(v, dtype=float)
+                            for v in FRICTION_RATIO_NODES_ADDED.values()])
+    m = NODES["friction_ratio"]
+    NODES["friction_ratio"] = np.union1d(m[~np.isin(m, added)],
+                                         FRICTION_RATIO_NODES_ADDED[family])
 
 
 def _law(mu0, mu_k, kappa):
@@ -559,16 +573,20 @@ def _between_unconverged_theta(row, todo):
 def _work(workdir, i_g, i_nu, i_tau):
     """The missing rows of one (ln(a0/b0), nu, tau) block, or their pending nodes, each
     saved when done (nodes between two unconverged ones along s, or along theta for the
-    pending ones, not attempted: :func:`_between_unconverged`,
-    :func:`_between_unconverged_theta`)."""
+    pending ones, and those unconverged at the tau node below, not attempted:
+    :func:`_between_unconverged`, :func:`_between_unconverged_theta`,
+    :func:`_after_unconverged_tau`)."""
     t = time.perf_counter()
     for i_s in _block_missing(workdir, i_g, i_nu, i_tau):
         path = _chunk(workdir, i_g, i_nu, i_tau, i_s)
         pending = _pending(path)
         if pending.exists() and path.exists():
             row, todo = np.load(path), np.load(pending)
-            row = exact_row(i_g, i_nu, i_tau, i_s, _between_unconverged_theta(row, todo),
-                            todo, row)
+            skip = _between_unconverged_theta(row, todo)
+            if SKIP_AFTER_UNCONVERGED_TAU:
+                below = _after_unconverged_tau(workdir, i_g, i_nu, i_tau, i_s)
+                skip = skip if below is None else skip | (todo & below)
+            row = exact_row(i_g, i_nu, i_tau, i_s, skip, todo, row)
             _save(path, row)
             ladder = _pending(_ladder_chunk(workdir, i_g, i_nu, i_tau, i_s))
             if ladder.exists():     # (the ladder's pending nodes: those that did not converge)
@@ -733,8 +751,9 @@ def source_fill(source):
 
 def on_base(values, pending, base, ladder=None):
     """A law family's table written on the smooth law's table ``base`` (a file with these
-    nodes on every axis but theta and s, whose theta nodes include these and whose s nodes
-    are among these: at the others, its not-a-knot spline along s): the base's node values
+    nodes on every axis but theta, s and mu_k/mu_0, whose theta nodes include these and whose
+    s and mu_k/mu_0 nodes are among these: at the others, its not-a-knot spline along s and
+    its straight line along mu_k/mu_0, as the reader interpolates): the base's node values
     plus the family's difference to it, ``D = C_family - C_base`` at this family's nodes,
     interpolated along theta by the reader's periodic spline onto the base's theta nodes.
     ``D`` is 0 at the nodes not computed yet (``pending``: the base's value, which the reader
@@ -752,17 +771,25 @@ def on_base(values, pending, base, ladder=None):
 
     from railcontact.falling_table import _filled  # noqa: PLC0415
 
-    free, vals = _nodes_and_values(base, "base", ("creepage_angle", "creepage_coordinate"))
+    free, vals = _nodes_and_values(base, "base", ("creepage_angle", "creepage_coordinate",
+                                                   "friction_ratio"))
     theta = free["creepage_angle"]
     at = _on_nodes(theta, NODES["creepage_angle"], "base", "theta")
-    s_base = free["creepage_coordinate"]
+    s_base, m_base = free["creepage_coordinate"], free["friction_ratio"]
     on_s = _on_nodes(NODES["creepage_coordinate"], s_base, "base", "s")
+    on_m = _on_nodes(NODES["friction_ratio"], m_base, "base", "mu_k/mu_0")
     if s_base.size < NODES["creepage_coordinate"].size:
         # the base at the family's other s nodes: its not-a-knot spline along s (the reader's)
-        filled = _filled(vals, NODES["friction_ratio"], NODES["friction_decay_number"])
+        filled = _filled(vals, m_base, NODES["friction_decay_number"])
         vals_s = make_interp_spline(s_base, filled, k=3, axis=3)(NODES["creepage_coordinate"])
         vals_s[:, :, :, on_s] = vals
         vals = vals_s
+    if m_base.size < NODES["friction_ratio"].size:
+        # the base at the family's other mu_k/mu_0 nodes: linear along it (the reader's)
+        filled = _filled(vals, m_base, NODES["friction_decay_number"])
+        vals_m = make_interp_spline(m_base, filled, k=1, axis=6)(NODES["friction_ratio"])
+        vals_m[:, :, :, :, :, :, on_m] = vals
+        vals = vals_m
     d = np.where(pending, 0.0, values - vals[:, :, :, :, at])
     d = _filled(d, NODES["friction_ratio"], NODES["friction_decay_number"])
     th = NODES["creepage_angle"]

@@ -1034,6 +1034,38 @@ def test_correction_table_fill_along_the_kappa_number_where_the_truth_is_known()
     assert np.all(np.isfinite(filled))
 
 
+def test_correction_table_fill_at_an_inner_friction_ratio_node():
+    """The fill's step along mu_k/mu_0 at an inner node (a table with the node 0.45 between
+    0.3 and 0.65, as Polach's): a whole layer unconverged is the straight line between its
+    two neighbours (the reader is linear along mu_k/mu_0, so as if the node were not there);
+    with the layer below unconverged too, both are the line through the two nodes above
+    (values linear in mu_k/mu_0 come back exactly: checked with numpy's interp); nothing is
+    left NaN."""
+    from railcontact import falling_table as ft
+
+    m = np.array([0.3, 0.45, 0.65, 1.0])
+    kn = np.array([0.0, 0.125, 0.5, 1.125, 2.0])
+    rng = np.random.default_rng(5)
+    slope = rng.normal(size=(3, 2, 1, 1, 4, 1, 1, 5))
+    vals = slope * (1.0 - m)[:, None]           # (3, g, nu, s, theta, tau, m, kn), linear
+    vals[..., 0] = 0.0
+    blank = vals.copy()
+    blank[..., 1, :] = np.nan
+    filled = ft._filled(blank, m, kn)
+    np.testing.assert_allclose(filled, vals, rtol=0.0, atol=1e-15)
+    two = vals.copy()
+    two[..., :2, :] = np.nan
+    filled = ft._filled(two, m, kn)
+    np.testing.assert_allclose(filled, vals, rtol=0.0, atol=1e-15)
+    curved = vals + 0.1 * (1.0 - m)[:, None] ** 2
+    blank = curved.copy()
+    blank[..., 1, :] = np.nan
+    got = ft._filled(blank, m, kn)[..., 1, 3]
+    want = np.apply_along_axis(lambda v: np.interp(0.45, m[[0, 2, 3]], v[[0, 2, 3]]), -1,
+                               curved[..., 3])
+    np.testing.assert_allclose(got, want, rtol=0.0, atol=1e-15)
+
+
 def test_polach_law_takes_the_polach_table_or_the_smooth_one_where_there_is_none(monkeypatch):
     """A PolachFriction takes the correction table of its own family (law_family "polach";
     every other law "smooth"); where the package has no Polach table it takes the smooth

@@ -62,6 +62,7 @@ def builder(monkeypatch):
     monkeypatch.setattr(fc, "LADDER_TAU_MAX", -1.0)     # no ladder unless a test asks
     monkeypatch.setattr(fc, "ladder_point", _no_ladder)
     monkeypatch.setattr(fc, "SKIP_AFTER_UNCONVERGED_TAU", False)   # (unless a test asks)
+    monkeypatch.setattr(fc, "FRICTION_RATIO_NODES_ADDED", {"smooth": (), "polach": ()})
     return monkeypatch
 
 
@@ -429,6 +430,7 @@ def polach(monkeypatch):
     monkeypatch.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
     monkeypatch.setitem(fc.NODES, "creepage_angle", fc.NODES["creepage_angle"])
     monkeypatch.setitem(fc.NODES, "creepage_coordinate", fc.NODES["creepage_coordinate"])
+    monkeypatch.setitem(fc.NODES, "friction_ratio", fc.NODES["friction_ratio"])
     fc.set_law_family("polach")
     return monkeypatch
 
@@ -678,3 +680,87 @@ def test_a_node_unconverged_at_the_tau_below_is_not_tried(builder, tmp_path):
     # 2 x 8 (g, nu) skipped at tau 4
     per_block = (1 + 2 * 4) * 2 * 3
     assert len(calls) == 4 * 2 * 4 * per_block - 2 * 8
+
+
+def test_a_pending_node_unconverged_at_the_tau_below_is_not_tried(builder, tmp_path):
+    """SKIP_AFTER_UNCONVERGED_TAU for the nodes added to the rows (pending after ``recover``)
+    too: a new theta node (pi/4) that did not converge at tau 2 is not solved at tau 4, and
+    every other new node is solved once."""
+    def exact(lg, nu, s, th, tau, m, kn):
+        if (m, kn, s) == (0.3, 2.0, 0.3) and tau >= 2.0 and np.isclose(th, np.pi / 4):
+            return np.full(3, np.nan)
+        return _exact(lg, nu, s, th, tau, m, kn)
+
+    builder.setattr(fc, "SKIP_AFTER_UNCONVERGED_TAU", True)
+    builder.setattr(fc, "exact_point", exact)
+    fc.build(tmp_path / "w", workers=1, output=tmp_path / "t.nc")
+    builder.setattr(fc, "NODES", _theta_nodes(8))
+    fc.recover(tmp_path / "t.nc", tmp_path / "w2")
+    builder.setattr(fc, "exact_point", _counted(exact, tmp_path / "calls"))
+    fc.build(tmp_path / "w2", workers=1, output=tmp_path / "t2.nc")
+    calls = _calls(tmp_path / "calls")
+    at = [a for a in calls if (a[5], a[6], a[2]) == (0.3, 2.0, 0.3)
+          and np.isclose(a[3], np.pi / 4)]
+    assert {a[4] for a in at} == {0.0, 1.0, 2.0}            # (not 4.0)
+    # the new thetas' unknown nodes, as in the theta test, less the 4 x 2 (g, nu) at tau 4
+    assert len(calls) == 4 * 6 * 2 * 4 * 2 * 4 - 4 * 2
+    vals = _read(tmp_path / "t2.nc")[0]
+    assert np.isnan(vals[0, 0, 0, 1, 5, 3, 0, 3]) and np.isnan(vals[0, 0, 0, 1, 5, 2, 0, 3])
+
+
+def _exact_curved_m(lg, nu, s, th, tau, m, kn):
+    """The stand-in, curved along mu_k/mu_0."""
+    return _exact(lg, nu, s, th, tau, m, kn) + np.array(
+        [0.04 * (1.0 - m) ** 2, 0.02 * m * (1.0 - m) * kn, 0.0])
+
+
+def _exact_curved_m_polach(lg, nu, s, th, tau, m, kn):
+    return _exact_curved_m(lg, nu, s, th, tau, m, kn) + np.array(
+        [0.003 * (1.0 - m) * kn, 0.002 * np.cos(th) * (1.0 - m), 0.0])
+
+
+def test_a_family_m_node_the_smooth_table_lacks_takes_its_line_there(builder, tmp_path):
+    """Polach's table has a mu_k/mu_0 node the smooth law's has not
+    (FRICTION_RATIO_NODES_ADDED; here 0.45 between 0.3 and 0.65): set_law_family adds it
+    (and takes it away for the smooth law, whose hash stays). Where Polach's rows are solved
+    (a partial build: 3 of 32 blocks) the file holds Polach's exact minus the model at the
+    new node; where not yet, the smooth table's straight line between 0.3 and 0.65 there (the
+    reader is linear along mu_k/mu_0: checked with numpy's interp), flagged ``source_node``."""
+    builder.setattr(fc, "THETA_NODES", {"smooth": 4, "polach": 4})
+    builder.setattr(fc, "CREEPAGE_NODES_ADDED", {"smooth": (), "polach": ()})
+    builder.setattr(fc, "FRICTION_RATIO_NODES_ADDED", {"smooth": (), "polach": (0.45,)})
+    builder.setattr(fc, "LAW_FAMILY", fc.LAW_FAMILY)
+    builder.setattr(fc, "exact_point", _exact_curved_m)
+    fc.build(tmp_path / "ws", workers=1, output=tmp_path / "smooth.nc")
+    base = _read(tmp_path / "smooth.nc")[0]
+    smooth_hash = fc._hash()
+    fc.set_law_family("polach")
+    assert fc.NODES["friction_ratio"].tolist() == [0.3, 0.45, 0.65, 1.0]
+    builder.setattr(fc, "exact_point", _exact_curved_m_polach)
+    fc.build(tmp_path / "w", workers=1, limit=3)
+    path = fc.build(tmp_path / "w", workers=1, output=tmp_path / "p.nc",
+                    partial_from=tmp_path / "smooth.nc")[2]
+    vals = _read(path)[0]
+    with netCDF4.Dataset(path) as ds:
+        source = ds.variables["source_node"][:].astype(bool)
+        assert ds.variables["friction_ratio"][:].tolist() == [0.3, 0.45, 0.65, 1.0]
+    n = fc.NODES
+    # solved (tau 0, (g, nu) = (0, 0)): Polach's exact minus the model at m = 0.45
+    i = (0, 0, 1, 2, 0, 1, 2)
+    p = [n[k][j] for k, j in zip(fc.AXES, i)]
+    np.testing.assert_allclose(vals[(slice(None),) + i],
+                               _exact_curved_m_polach(*p) - _model(*[np.array(v) for v in p]),
+                               rtol=1e-6, atol=1e-8)
+    assert not source[i]
+    # not solved (tau 4, (g, nu) = (2, 1), s 0.6, kn 1.125): the smooth table's line
+    at = (slice(None), 2, 1, 2, 1, 3, slice(None), 2)
+    want = [np.interp(0.45, [0.3, 0.65, 1.0], base[at][v]) for v in range(3)]
+    np.testing.assert_allclose(vals[at][:, 1], want, rtol=1e-6, atol=1e-8)
+    np.testing.assert_allclose(vals[at][:, [0, 2, 3]], base[at], rtol=1e-6, atol=1e-9)
+    assert abs(vals[at][1, 1] - (_exact_curved_m_polach(*[n[k][j] for k, j in zip(
+        fc.AXES, (2, 1, 2, 1, 3, 1, 2))]) - _model(*[np.array(n[k][j]) for k, j in zip(
+            fc.AXES, (2, 1, 2, 1, 3, 1, 2))]))[1]) > 5e-4    # (the line is not the truth)
+    assert source[at[1:]][:3].all() and not source[at[1:]][3]      # (m = 1: known, 0)
+    fc.set_law_family("smooth")
+    assert fc.NODES["friction_ratio"].tolist() == [0.3, 0.65, 1.0]
+    assert fc._hash() == smooth_hash

@@ -703,8 +703,10 @@ def _filled(vals, friction_ratio, friction_decay_number):
        nodes (repeated while any is left);
     2. the straight line along the kappa number through the two nodes below, in
        sqrt(kappa number) (the nodes are uniform there, 0 ... sqrt 2);
-    3. at the lowest mu_k/mu_0, the straight line through the two nodes above it (the reader
-       is linear along mu_k/mu_0); 0 where none of these is there.
+    3. along mu_k/mu_0 (the reader is linear along it), from the top: at an inner node the
+       straight line between its two neighbours (as if the node were not there), else
+       through the two nodes above it; at the lowest, the line through the two nodes above
+       it; 0 where none of these is there.
 
     Nearly all unconverged nodes are the strongest law of the grid (mu_k/mu_0 = 0.3, kappa
     number 2), whole rows of them at s = 0. Step 2 was chosen on the converged nodes of that
@@ -736,6 +738,12 @@ def _filled(vals, friction_ratio, friction_decay_number):
         _fill_by_line(vals[..., j], vals[..., j - 1], vals[..., j - 2], r[j], r[j - 1],
                       r[j - 2])
     m = np.asarray(friction_ratio, dtype=float)
+    for j in range(m.size - 2, 0, -1):  # (the inner nodes, from the top)
+        _fill_by_line(vals[..., j, :], vals[..., j + 1, :], vals[..., j - 1, :], m[j], m[j + 1],
+                      m[j - 1])
+        if j + 2 < m.size:
+            _fill_by_line(vals[..., j, :], vals[..., j + 1, :], vals[..., j + 2, :], m[j],
+                          m[j + 1], m[j + 2])
     _fill_by_line(vals[..., 0, :], vals[..., 1, :], vals[..., 2, :], m[0], m[1], m[2])
     return np.nan_to_num(vals, nan=0.0)
 
