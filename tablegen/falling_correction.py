@@ -9,15 +9,19 @@ parameters (issue 38; read by :mod:`railcontact.falling_table`).
 ``--law polach`` (since 2026-11-30) builds the table of Polach's exponential law (2005,
 :data:`LAW_FAMILIES`) in its own work directory, file ``falling_correction_polach.nc``: solved
 at theta every 30 degrees (:data:`THETA_NODES`), with one s node more, 0.375
-(:data:`CREEPAGE_NODES_ADDED`), and written on the smooth law's table (``--base``, default
-``--partial-from``, else the package's): its difference to that table, interpolated along
-theta onto the smooth table's nodes and added to it (at the added s node, to the smooth
-table's spline along s; :func:`on_base`); 0 where not solved yet, so that a partial table
-(``--partial-from`` the smooth law's table: solves nothing) is the smooth table there, the
-reader's fallback for Polach's law before its own table, flagged ``source_node``; an
-unconverged node the ladder has not reached yet is filled from its neighbours. 2026-11-30:
-about 3 h of exact solves on 2 cores for every node; the ladder, 100-500 s an (ln(a0/b0),
-nu) block, done at tau 2 and in part at 2.25 and 2.5.
+(:data:`CREEPAGE_NODES_ADDED`), and one mu_k/mu_0 node more, 0.45
+(:data:`FRICTION_RATIO_NODES_ADDED`), and written on the smooth law's table (``--base``,
+default ``--partial-from``, else the package's): its difference to that table, interpolated
+along theta onto the smooth table's nodes and added to it (at the added s node, to the
+smooth table's spline along s, at the added mu_k/mu_0 node to its line along mu_k/mu_0;
+:func:`on_base`); 0 where not solved yet, so that a partial table (``--partial-from`` the
+smooth law's table: solves nothing) is the smooth table there, the reader's fallback for
+Polach's law before its own table, flagged ``source_node``; an unconverged node the ladder
+has not reached yet is filled from its neighbours. 2026-11-30: about 3 h of exact solves on
+2 cores for every node, 73 min more for the node 0.45 (its rows copied from the work
+directory before with the node pending, :func:`_pending`, as ``recover`` writes them, which
+does not take a family's file); the ladder, 1-500 s an (ln(a0/b0), nu) block, done at tau
+0-0.75 and in part at 1-2.5.
 
 The shipped file is the package data ``fmu_src/railcontact/data/falling_correction.nc``
 (``--output`` that path to replace it; default ``./tables-build/falling_correction.nc``). It is
