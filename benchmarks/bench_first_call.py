@@ -6,7 +6,9 @@ Each figure is the wall time of a fresh ``python -c ...`` process, measured from
 max printed too). "cold" gives every process a new empty ``RAILCONTACT_CACHE_DIR`` (a new
 machine, user, CI runner or container: numba's kernels and the decompressed tables are not
 there yet); "warm" runs them on one cache that a first, untimed process filled. The
-interpreter's own start (``python -c pass``) is printed for reference.
+interpreter's own start (``python -c pass``) is printed for reference, and each process's
+own peak resident memory (the median of the runs; ``--only TEXT`` times the processes whose
+label contains TEXT).
 
 Usage (the figures of docs/performance.md: a wheel built from a fresh clone, installed in a
 fresh virtual environment, run from another directory)::
@@ -62,6 +64,14 @@ CASES = (
      + "rc.creep_force_3d(np.linspace(-2e-3, 2e-3, 10), 0.0, 0.0, **kw)"),
     ("import + first method='exact' call", "import railcontact as rc\n" + CONTACT
      + "rc.creep_solution_3d(1e-3, 0.0, 0.0, method='exact', **kw)"),
+    ("import + exact table with Polach's law: scalar",
+     "import railcontact as rc\nfrom railcontact.friction import PolachFriction\n" + CONTACT
+     + "kw['friction_coefficient'] = PolachFriction(0.3, 0.4, 0.6)\n"
+       "rc.creep_force_3d(1e-3, 0.0, 0.0, method='exact_table', rolling_speed=30.0, **kw)"),
+    ("import + exact table with the smooth law (5.16): scalar",
+     "import railcontact as rc\nfrom railcontact.friction import SmoothFriction\n" + CONTACT
+     + "kw['friction_coefficient'] = SmoothFriction(0.3, 0.15, 300.0)\n"
+       "rc.creep_force_3d(1e-3, 0.0, 0.0, method='exact_table', **kw)"),
 )
 
 
@@ -81,11 +91,20 @@ def _run(python, code, cache, timeout, args=()):
     env.setdefault("OPENBLAS_NUM_THREADS", "1")
     t0 = time.perf_counter()
     cpu0 = _children_cpu()
-    subprocess.run([python, "-c", code, *args], env=env, check=True, stdout=subprocess.DEVNULL,
-                   timeout=timeout)
+    out = subprocess.run([python, "-c", code + PEAK, *args], env=env, check=True,
+                         capture_output=True, text=True, timeout=timeout).stdout
     wall = time.perf_counter() - t0
     _CPU.append(_children_cpu() - cpu0)
+    _PEAK.append(float(out.rsplit("peak-rss-kib ", 1)[-1]) / 1024.0)
     return wall
+
+
+#: Appended to each process's code: its own peak resident memory (Linux: KiB), the last line
+#: of its output (the timed process includes this line: microseconds).
+PEAK = ("\nimport resource as _r\nprint('peak-rss-kib', "
+        "_r.getrusage(_r.RUSAGE_SELF).ru_maxrss)\n")
+#: Peak resident memory of each process run, in order. [MiB]
+_PEAK = []
 
 
 #: CPU seconds (user + system) of each process run, in order: on a loaded machine the wall
@@ -143,9 +162,10 @@ def fmu_cold_start(python, fmu, runs, timeout, tmp):
 
 
 def _row(label, times):
-    cpu = _CPU[-len(times):]
-    return (f"{label:<52s} {statistics.median(times):8.2f} s  (min {min(times):.2f}, "
-            f"max {max(times):.2f}, {len(times)} runs; CPU {statistics.median(cpu):.2f} s)")
+    cpu, peak = _CPU[-len(times):], _PEAK[-len(times):]
+    return (f"{label:<56s} {statistics.median(times):8.2f} s  (min {min(times):.2f}, "
+            f"max {max(times):.2f}, {len(times)} runs; CPU {statistics.median(cpu):.2f} s; "
+            f"peak memory {statistics.median(peak):.0f} MiB)")
 
 
 def main(argv=None):
@@ -158,6 +178,8 @@ def main(argv=None):
     parser.add_argument("--skip-cold", action="store_true",
                         help="warm cache only (cold: minutes without the compiled kernels)")
     parser.add_argument("--timeout", type=float, default=900.0, help="per process [s]")
+    parser.add_argument("--only", default="", metavar="TEXT",
+                        help="time only the processes whose label contains TEXT")
     parser.add_argument("--fmu", nargs="?", const="", default=None, metavar="PATH",
                         help="time the FMU's table scenes against a trivial slave instead "
                              "(default PATH: the FMU built from this checkout)")
@@ -171,18 +193,19 @@ def main(argv=None):
                            check=True, capture_output=True, text=True).stdout.split()
     print(f"python {args.python}\nrailcontact {where[0]}\ncompiled kernels (wheel) "
           f"{where[1]}\n")
+    cases = [(label, code) for label, code in CASES if args.only in label]
     with tempfile.TemporaryDirectory(prefix="railcontact-bench-") as tmp:
         if not args.skip_cold:
             print("cold: a new empty user cache for every process")
-            for label, code in CASES:
+            for i, (label, code) in enumerate(cases):
                 times = []
                 for k in range(args.cold_runs or args.runs):
-                    cache = os.path.join(tmp, f"cold-{len(label)}-{k}")
+                    cache = os.path.join(tmp, f"cold-{i}-{k}")
                     times.append(_run(args.python, code, cache, args.timeout))
                 print(_row(label, times), flush=True)
         print("warm: one user cache, filled by an untimed first process")
         warm = os.path.join(tmp, "warm")
-        for label, code in CASES:
+        for label, code in cases:
             _run(args.python, code, warm, args.timeout)
             times = [_run(args.python, code, warm, args.timeout) for _ in range(args.runs)]
             print(_row(label, times), flush=True)
