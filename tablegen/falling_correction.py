@@ -213,15 +213,11 @@ def set_law_family(family):
         raise ValueError(f"law family must be one of {LAW_FAMILIES}; got {family!r}")
     LAW_FAMILY = family
     NODES["creepage_angle"] = np.linspace(-np.pi, np.pi, THETA_NODES[family] + 1)[:-1]
-    added = np.concatenate([np.asarray(v, dtype=float) for v in CREEPAGE_NODES_ADDED.values()])
-    s = NODES["creepage_coordinate"]
-    NODES["creepage_coordinate"] = np.union1d(s[~np.isin(s, added)],
-                                              CREEPAGE_NODES_ADDED[family])
-    added = np.concatenate([np.asarray(v, dtype=float)
-                            for v in FRICTION_RATIO_NODES_ADDED.values()])
-    m = NODES["friction_ratio"]
-    NODES["friction_ratio"] = np.union1d(m[~np.isin(m, added)],
-                                         FRICTION_RATIO_NODES_ADDED[family])
+    for axis, nodes_added in (("creepage_coordinate", CREEPAGE_NODES_ADDED),
+                              ("friction_ratio", FRICTION_RATIO_NODES_ADDED)):
+        added = np.concatenate([np.asarray(v, dtype=float) for v in nodes_added.values()])
+        x = NODES[axis]
+        NODES[axis] = np.union1d(x[~np.isin(x, added)], nodes_added[family])
 
 
 def _law(mu0, mu_k, kappa):
@@ -779,21 +775,18 @@ def on_base(values, pending, base, ladder=None):
                                                    "friction_ratio"))
     theta = free["creepage_angle"]
     at = _on_nodes(theta, NODES["creepage_angle"], "base", "theta")
-    s_base, m_base = free["creepage_coordinate"], free["friction_ratio"]
-    on_s = _on_nodes(NODES["creepage_coordinate"], s_base, "base", "s")
-    on_m = _on_nodes(NODES["friction_ratio"], m_base, "base", "mu_k/mu_0")
-    if s_base.size < NODES["creepage_coordinate"].size:
-        # the base at the family's other s nodes: its not-a-knot spline along s (the reader's)
-        filled = _filled(vals, m_base, NODES["friction_decay_number"])
-        vals_s = make_interp_spline(s_base, filled, k=3, axis=3)(NODES["creepage_coordinate"])
-        vals_s[:, :, :, on_s] = vals
-        vals = vals_s
-    if m_base.size < NODES["friction_ratio"].size:
-        # the base at the family's other mu_k/mu_0 nodes: linear along it (the reader's)
-        filled = _filled(vals, m_base, NODES["friction_decay_number"])
-        vals_m = make_interp_spline(m_base, filled, k=1, axis=6)(NODES["friction_ratio"])
-        vals_m[:, :, :, :, :, :, on_m] = vals
-        vals = vals_m
+    m_base = free["friction_ratio"]
+    # the base at the family's other nodes as the reader interpolates it: its not-a-knot
+    # spline along s, its straight line along mu_k/mu_0
+    for name, label, k in (("creepage_coordinate", "s", 3), ("friction_ratio", "mu_k/mu_0", 1)):
+        got = free[name]
+        on = _on_nodes(NODES[name], got, "base", label)
+        if got.size < NODES[name].size:
+            axis = 1 + AXES.index(name)
+            filled = _filled(vals, m_base, NODES["friction_decay_number"])
+            wider = make_interp_spline(got, filled, k=k, axis=axis)(NODES[name])
+            wider[(slice(None),) * axis + (on,)] = vals     # (its own nodes as they were)
+            vals = wider
     d = np.where(pending, 0.0, values - vals[:, :, :, :, at])
     d = _filled(d, NODES["friction_ratio"], NODES["friction_decay_number"])
     th = NODES["creepage_angle"]
